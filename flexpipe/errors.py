@@ -1,0 +1,56 @@
+"""Exception types shared by every flexpipe stage.
+
+Every error a user can cause says *what* is wrong, *where* (file, line, key, element or
+node id, interface name, simulated time) and *what would be valid*.  Catch
+:class:`FlexpipeError` to handle all of them.
+"""
+
+from __future__ import annotations
+
+
+class FlexpipeError(Exception):
+    """Base class of all errors raised by flexpipe."""
+
+
+class InputError(FlexpipeError, ValueError):
+    """Bad user input: a data file, a key, an argument."""
+
+    def __init__(self, message: str, *, file=None, line=None, key=None):
+        where = []
+        if file is not None:
+            where.append(str(file))
+        if line is not None:
+            where.append(f"line {line}")
+        if key is not None:
+            where.append(f"key '{key}'")
+        prefix = (", ".join(where) + ": ") if where else ""
+        super().__init__(prefix + message)
+        self.file = file
+        self.line = line
+        self.key = key
+
+
+class MeshError(InputError):
+    """A mesh file that cannot be read or describes an invalid structure."""
+
+
+class ModelError(FlexpipeError, ValueError):
+    """A structural model that cannot be analysed (mechanism, disconnected part, ...)."""
+
+
+class SolverError(FlexpipeError, RuntimeError):
+    """A numerical failure: divergence, singular matrix, failed convergence.
+
+    Parameters
+    ----------
+    message : str
+        What failed and the likely cause.
+    time : float, optional
+        Simulated time at which it failed, in seconds.
+    """
+
+    def __init__(self, message: str, *, time: float | None = None):
+        if time is not None:
+            message = f"at simulated time t = {time:.6g} s: {message}"
+        super().__init__(message)
+        self.time = time

@@ -1,0 +1,400 @@
+"""Assembly: element families vectorized over all cells, scattered once into scipy.sparse.
+
+Material and section data are resolved per cell: explicit arguments first (a single
+value, or a mapping from cell-set name to value with an optional ``"default"``), then
+the properties the mesh file carried (:attr:`Mesh.sections`, e.g. Nastran PSHELL/MAT1).
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
+
+from flexpipe.errors import InputError, MeshError, ModelError
+from flexpipe.fem._element import BadElements
+from flexpipe.fem.material import Material
+from flexpipe.fem.model import FEModel
+from flexpipe.mesh.mesh import BEAM_TYPES, SHELL_TYPES, Mesh
+
+#: element family module for each meshio cell type
+FAMILIES = {
+    "tetra": "flexpipe.fem.tet4",
+    "tetra10": "flexpipe.fem.tet10",
+    "hexahedron": "flexpipe.fem.hex8",
+    "triangle": "flexpipe.fem.shell_tri3",
+    "quad": "flexpipe.fem.shell_quad4",
+    "line": "flexpipe.fem.beam3d",
+}
+CHUNK = 100_000  # cells per vectorized batch (bounds peak memory)
+
+
+@dataclass(frozen=True)
+class BeamSection:
+    """Cross-section of a 3D beam, SI units.
+
+    Parameters
+    ----------
+    A : float
+        Area, m^2.
+    Iy, Iz : float
+        Second moments of area about the local y and z axes, m^4.
+    J : float
+        Torsion constant, m^4.
+    orientation : (3,) array_like, optional
+        Vector lying in the local x-y plane (Nastran CBAR convention); local
+        z = x cross v.  Default: global z, or global y for beams parallel to z.
+    """
+
+    A: float
+    Iy: float
+    Iz: float
+    J: float
+    orientation: tuple[float, float, float] | None = None
+
+    @classmethod
+    def rectangle(cls, b: float, h: float, **kw) -> BeamSection:
+        """Solid rectangle of width ``b`` (local z) and height ``h`` (local y)."""
+        a, c = max(b, h), min(b, h)
+        J = a * c**3 * (1 / 3 - 0.21 * c / a * (1 - c**4 / (12 * a**4)))
+        return cls(b * h, b * h**3 / 12, h * b**3 / 12, J, **kw)
+
+    @classmethod
+    def circle(cls, d: float, **kw) -> BeamSection:
+        """Solid circle of diameter ``d``."""
+        I = np.pi * d**4 / 64
+        return cls(np.pi * d**2 / 4, I, I, 2 * I, **kw)
+
+    @classmethod
+    def box(cls, b: float, h: float, t: float, **kw) -> BeamSection:
+        """Thin-walled rectangular tube, outer ``b`` x ``h``, wall ``t`` (Bredt torsion)."""
+        bi, hi = b - 2 * t, h - 2 * t
+        Iy = (b * h**3 - bi * hi**3) / 12
+        Iz = (h * b**3 - hi * bi**3) / 12
+        bm, hm = b - t, h - t
+        J = 4 * (bm * hm) ** 2 * t / (2 * (bm + hm))
+        return cls(b * h - bi * hi, Iy, Iz, J, **kw)
+
+
+def _family(cell_type: str):
+    try:
+        return importlib.import_module(FAMILIES[cell_type])
+    except KeyError:
+        raise InputError(
+            f"no finite element for cell type '{cell_type}'; valid: {sorted(FAMILIES)}"
+        ) from None
+
+
+def _per_cell(mesh: Mesh, bi: int, n: int, value, name: str, section_keys):
+    """Resolve a property (scalar, object or set->value mapping) to one value per cell."""
+    out = [None] * n
+    if value is not None and not isinstance(value, Mapping):
+        return [value] * n
+    mapping = dict(value or {})
+    default = mapping.pop("default", None)
+    if default is not None:
+        out = [default] * n
+    # properties stored with the mesh (e.g. PSHELL/MAT1), by cell set
+    for set_name, props in mesh.sections.items():
+        if set_name in mapping or bi not in mesh.cell_sets.get(set_name, {}):
+            continue
+        val = section_keys(props)
+        if val is not None:
+            for c in mesh.cell_sets[set_name][bi]:
+                if out[c] is None or default is None:
+                    out[c] = val
+    for set_name, val in mapping.items():
+        if set_name not in mesh.cell_sets:
+            raise InputError(
+                f"{name} given for cell set '{set_name}', which the mesh does not have; "
+                f"valid: {sorted(mesh.cell_sets)} or 'default'", file=mesh.source or None,
+                key=set_name,
+            )
+        for c in mesh.cell_sets[set_name].get(bi, ()):
+            out[c] = val
+    return out
+
+
+def _material_arrays(mesh, bi, block, material):
+    def from_section(p):
+        if all(k in p for k in ("E", "nu", "rho")):
+            return Material(float(p["E"]), float(p["nu"]), float(p["rho"]))
+        return None
+
+    mats = _per_cell(mesh, bi, len(block), material, "material", from_section)
+    missing = [i for i, m in enumerate(mats) if m is None]
+    if missing:
+        ids = block.ids[missing[:10]].tolist()
+        raise MeshError(
+            f"no material for {len(missing)} {block.type} element(s), e.g. ids {ids}; pass "
+            "material=Material(E, nu, rho) or a mapping {cell_set: Material, 'default': ...}",
+            file=mesh.source or None,
+        )
+    E = np.array([m.E for m in mats])
+    nu = np.array([m.nu for m in mats])
+    rho = np.array([m.rho for m in mats])
+    return E, nu, rho
+
+
+def _shell_props(mesh, bi, block, thickness):
+    def from_section(p):
+        return float(p["thickness"]) if "thickness" in p else None
+
+    t = _per_cell(mesh, bi, len(block), thickness, "thickness", from_section)
+    bad = [i for i, v in enumerate(t) if v is None or not np.isfinite(v) or v <= 0]
+    if bad:
+        ids = block.ids[bad[:10]].tolist()
+        raise MeshError(
+            f"{len(bad)} shell ({block.type}) element(s) have no positive thickness, e.g. ids "
+            f"{ids}; pass thickness=<m> (or a mapping by cell set) or give PSHELL T",
+            file=mesh.source or None,
+        )
+    return {"thickness": np.asarray(t, dtype=float)}
+
+
+def _beam_props(mesh, bi, block, beam_section):
+    def from_section(p):
+        if all(k in p for k in ("A", "Iy", "Iz", "J")):
+            return BeamSection(float(p["A"]), float(p["Iy"]), float(p["Iz"]), float(p["J"]))
+        return None
+
+    secs = _per_cell(mesh, bi, len(block), beam_section, "beam_section", from_section)
+    bad = [i for i, s in enumerate(secs) if s is None]
+    if bad:
+        ids = block.ids[bad[:10]].tolist()
+        raise MeshError(
+            f"{len(bad)} beam element(s) have no cross-section, e.g. ids {ids}; pass "
+            "beam_section=BeamSection(A, Iy, Iz, J) (or a mapping by cell set) or give PBAR",
+            file=mesh.source or None,
+        )
+    props = {k: np.array([getattr(s, k) for s in secs], dtype=float)
+             for k in ("A", "Iy", "Iz", "J")}
+    orient = np.array([s.orientation if s.orientation is not None else (np.nan,) * 3
+                       for s in secs], dtype=float)
+    if "orientation" in block.data:
+        given = np.asarray(block.data["orientation"], dtype=float)
+        use = np.isfinite(given).all(axis=1) & np.isnan(orient).any(axis=1)
+        orient[use] = given[use]
+    props["orientation"] = orient
+    return props
+
+
+def _scatter(conn, Ke, dpn_elem, dpn, n_dof):
+    """COO triplets of element matrices into a CSR matrix (duplicates summed)."""
+    ne, nn = conn.shape
+    comp = np.arange(dpn_elem)
+    itype = np.int32 if n_dof < 2**31 - 1 else np.int64
+    gdof = (conn[:, :, None].astype(itype) * dpn + comp[None, None, :].astype(itype))
+    gdof = gdof.reshape(ne, nn * dpn_elem)
+    nd = gdof.shape[1]
+    rows = np.broadcast_to(gdof[:, :, None], (ne, nd, nd)).ravel()
+    cols = np.broadcast_to(gdof[:, None, :], (ne, nd, nd)).ravel()
+    return sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(n_dof, n_dof))
+
+
+def _check_connectivity(mesh: Mesh, *, allow_disconnected: bool):
+    n = mesh.n_nodes
+    rows, cols = [], []
+    for b in mesh.blocks:
+        c = b.cells
+        for a in range(1, c.shape[1]):
+            rows.append(c[:, 0])
+            cols.append(c[:, a])
+    for link in mesh.rigid_links:
+        rows.append(np.full(len(link.slaves), link.master))
+        cols.append(np.asarray(link.slaves))
+    used = np.zeros(n, dtype=bool)
+    for b in mesh.blocks:
+        used[b.cells.ravel()] = True
+    for link in mesh.rigid_links:
+        used[link.master] = True
+        used[np.asarray(link.slaves)] = True
+    for pm in mesh.point_masses:
+        used[pm.node] = True
+    if not used.all():
+        idx = np.flatnonzero(~used)
+        raise MeshError(
+            f"{len(idx)} node(s) belong to no element, e.g. node ids "
+            f"{mesh.node_ids[idx[:10]].tolist()}; delete them or read the mesh with "
+            "prune_unreferenced=True", file=mesh.source or None,
+        )
+    if not rows:
+        return
+    r = np.concatenate(rows)
+    c = np.concatenate(cols)
+    G = sp.coo_matrix((np.ones(len(r)), (r, c)), shape=(n, n))
+    ncomp, labels = connected_components(G, directed=False)
+    if ncomp > 1 and not allow_disconnected:
+        sizes = np.bincount(labels)
+        parts = ", ".join(
+            f"part {k + 1}: {sizes[k]} nodes incl. {mesh.describe_node(int(np.argmax(labels == k)))}"
+            for k in np.argsort(-sizes)[:5]
+        )
+        raise ModelError(
+            f"{mesh.source or 'mesh'}: the structure falls into {ncomp} disconnected parts "
+            f"({parts}); connect them (shared nodes, RBE2) or pass allow_disconnected=True"
+        )
+
+
+def _point_mass_matrix(mesh, dpn, n_dof):
+    rows, cols, vals = [], [], []
+    for pm in mesh.point_masses:
+        base = pm.node * dpn
+        m = float(pm.mass)
+        if not np.isfinite(m) or m < 0:
+            raise MeshError(f"point mass {pm.id} at {mesh.describe_node(pm.node)} has mass "
+                            f"{m}; must be >= 0 kg", file=mesh.source or None)
+        blk = np.zeros((dpn, dpn))
+        blk[:3, :3] = m * np.eye(3)
+        if dpn == 6:
+            r = np.asarray(pm.offset, dtype=float)
+            S = np.array([[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]])
+            blk[:3, 3:] = -m * S
+            blk[3:, :3] = m * S
+            blk[3:, 3:] = m * S.T @ S + np.asarray(pm.inertia, dtype=float)
+        ii, jj = np.meshgrid(np.arange(dpn) + base, np.arange(dpn) + base, indexing="ij")
+        rows.append(ii.ravel())
+        cols.append(jj.ravel())
+        vals.append(blk.ravel())
+    if not rows:
+        return sp.csr_matrix((n_dof, n_dof))
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(n_dof, n_dof))
+
+
+def _constraint_map(mesh, dpn, n_dof, K, M):
+    """T (n_dof, n_indep): drops untouched DOF, ties RBE2 slave DOF to their master."""
+    touched = (np.abs(K.diagonal()) > 0) | (np.abs(M.diagonal()) > 0)
+    dependent = np.zeros(n_dof, dtype=bool)
+    dep_rows, dep_cols, dep_vals = [], [], []
+    masters = set()
+    for link in mesh.rigid_links:
+        masters.add(int(link.master))
+    for link in mesh.rigid_links:
+        comps = sorted({int(ch) - 1 for ch in link.dofs if ch in "123456"})
+        xm = mesh.points[link.master]
+        for s in np.asarray(link.slaves, dtype=np.int64):
+            if s == link.master:
+                continue
+            if int(s) in masters:
+                raise ModelError(
+                    f"RBE2 {link.id}: slave {mesh.describe_node(int(s))} is itself the master of "
+                    "another rigid link; merge the links into one"
+                )
+            d = mesh.points[s] - xm
+            for c in comps:
+                g = s * dpn + c
+                if dependent[g]:
+                    raise ModelError(f"RBE2 {link.id}: {mesh.describe_node(int(s))} component "
+                                     f"{c + 1} is already tied by another rigid link")
+                dependent[g] = True
+                mb = link.master * dpn
+                dep_rows.append(g)
+                dep_cols.append(mb + c)
+                dep_vals.append(1.0)
+                if c < 3 and dpn == 6:  # u_s = u_m + theta_m x d
+                    cross = np.zeros((3, 3))  # row c of [theta]x d = -S(d) theta
+                    S = np.array([[0, -d[2], d[1]], [d[2], 0, -d[0]], [-d[1], d[0], 0]])
+                    cross = -S
+                    for k in range(3):
+                        if cross[c, k] != 0:
+                            dep_rows.append(g)
+                            dep_cols.append(mb + 3 + k)
+                            dep_vals.append(cross[c, k])
+            touched[link.master * dpn: link.master * dpn + dpn] = True
+    indep = np.flatnonzero(touched & ~dependent)
+    col_of = np.full(n_dof, -1, dtype=np.int64)
+    col_of[indep] = np.arange(len(indep))
+    rows = list(indep)
+    cols = list(range(len(indep)))
+    vals = [1.0] * len(indep)
+    if dep_rows:
+        dc = col_of[np.asarray(dep_cols)]
+        if (dc < 0).any():
+            raise ModelError("an RBE2 master DOF is not an independent DOF")
+        rows += dep_rows
+        cols += dc.tolist()
+        vals += dep_vals
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n_dof, len(indep)))
+
+
+def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
+             allow_disconnected: bool = False, progress: bool = False) -> FEModel:
+    """Assemble mass and stiffness matrices of a mesh.
+
+    Parameters
+    ----------
+    mesh : Mesh
+    material : Material or mapping, optional
+        One material, or ``{cell_set: Material, "default": Material}``; falls back to
+        materials carried by the mesh (Nastran MAT1).
+    thickness : float or mapping, optional
+        Shell thickness in m, likewise per cell set; falls back to PSHELL T.
+    beam_section : BeamSection or mapping, optional
+        Beam cross-section, likewise per cell set.
+    allow_disconnected : bool
+        Accept a structure made of several unconnected parts.
+    progress : bool
+        Show a progress bar over element batches.
+
+    Returns
+    -------
+    FEModel
+
+    Raises
+    ------
+    MeshError
+        Missing material/thickness/section, inverted or degenerate elements, orphan nodes.
+    ModelError
+        Disconnected parts, inconsistent rigid links.
+    """
+    if isinstance(material, str):
+        material = Material.named(material)
+    _check_connectivity(mesh, allow_disconnected=allow_disconnected)
+    dpn = 6 if mesh.has_rotations() else 3
+    n_dof = mesh.n_nodes * dpn
+    K = sp.csr_matrix((n_dof, n_dof))
+    M = sp.csr_matrix((n_dof, n_dof))
+    batches = []
+    for bi, block in enumerate(mesh.blocks):
+        if block.type == "vertex" or len(block) == 0:
+            continue
+        fam = _family(block.type)
+        E, nu, rho = _material_arrays(mesh, bi, block, material)
+        if block.type in SHELL_TYPES:
+            props = _shell_props(mesh, bi, block, thickness)
+        elif block.type in BEAM_TYPES:
+            props = _beam_props(mesh, bi, block, beam_section)
+        else:
+            props = {}
+        for start in range(0, len(block), CHUNK):
+            batches.append((bi, block, fam, E, nu, rho, props, slice(start, start + CHUNK)))
+    iterator = batches
+    if progress and len(batches) > 1:
+        from tqdm import tqdm
+
+        iterator = tqdm(batches, desc="assembling", unit="batch")
+    for bi, block, fam, E, nu, rho, props, sl in iterator:
+        conn = block.cells[sl]
+        X = mesh.points[conn]
+        try:
+            Ke, Me = fam.matrices(X, E=E[sl], nu=nu[sl], rho=rho[sl],
+                                  **{k: v[sl] for k, v in props.items()})
+        except BadElements as exc:
+            ids = block.ids[sl][exc.index[:10]].tolist()
+            raise MeshError(
+                f"{len(exc.index)} {block.type} element(s) are {exc.reason}, e.g. element "
+                f"ids {ids}; fix the node order/coordinates of these elements",
+                file=mesh.source or None,
+            ) from None
+        K = K + _scatter(conn, Ke, fam.DOFS_PER_NODE, dpn, n_dof)
+        M = M + _scatter(conn, Me, fam.DOFS_PER_NODE, dpn, n_dof)
+    M = M + _point_mass_matrix(mesh, dpn, n_dof)
+    K = ((K + K.T) * 0.5).tocsr()
+    M = ((M + M.T) * 0.5).tocsr()
+    T = _constraint_map(mesh, dpn, n_dof, K, M)
+    return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh)

@@ -1,0 +1,200 @@
+"""The :class:`Mesh` data object: nodes, typed cell blocks, named sets, point masses, links.
+
+Element type names follow meshio: ``vertex``, ``line`` (2-node beam), ``triangle``,
+``quad``, ``tetra``, ``tetra10``, ``hexahedron``.  Node indices in cells are 0-based
+positions in :attr:`Mesh.points`; the ids users see in their files are kept in
+:attr:`Mesh.node_ids` and :attr:`CellBlock.ids` so that every error names them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Mapping
+
+import numpy as np
+
+#: nodes per cell for every supported element type
+NODES_PER_CELL = {
+    "vertex": 1,
+    "line": 2,
+    "triangle": 3,
+    "quad": 4,
+    "tetra": 4,
+    "tetra10": 10,
+    "hexahedron": 8,
+}
+SOLID_TYPES = ("tetra", "tetra10", "hexahedron")
+SHELL_TYPES = ("triangle", "quad")
+BEAM_TYPES = ("line",)
+
+
+def _ro(a, dtype) -> np.ndarray:
+    a = np.ascontiguousarray(a, dtype=dtype)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True)
+class CellBlock:
+    """Cells of one element type.
+
+    Attributes
+    ----------
+    type : str
+        meshio element type name (see :data:`NODES_PER_CELL`).
+    cells : ndarray of int, shape (n, nodes_per_cell)
+        0-based node indices.
+    ids : ndarray of int, shape (n,)
+        Element ids as in the source file (1-based counters when the format has none).
+    tags : ndarray of int, shape (n,)
+        Property id (Nastran PID, Gmsh physical tag, 0 when none).
+    data : mapping of str to ndarray
+        Per-cell data, e.g. ``"orientation"`` (n, 3) for beams.
+    """
+
+    type: str
+    cells: np.ndarray
+    ids: np.ndarray | None = None
+    tags: np.ndarray | None = None
+    data: Mapping[str, np.ndarray] = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.type not in NODES_PER_CELL:
+            raise ValueError(
+                f"unknown element type '{self.type}'; valid: {sorted(NODES_PER_CELL)}"
+            )
+        cells = np.asarray(self.cells, dtype=np.int64).reshape(-1, NODES_PER_CELL[self.type])
+        n = len(cells)
+        ids = np.arange(1, n + 1) if self.ids is None else self.ids
+        tags = np.zeros(n, dtype=np.int64) if self.tags is None else self.tags
+        object.__setattr__(self, "cells", _ro(cells, np.int64))
+        object.__setattr__(self, "ids", _ro(ids, np.int64))
+        object.__setattr__(self, "tags", _ro(tags, np.int64))
+        object.__setattr__(self, "data", MappingProxyType(dict(self.data)))
+
+    def __len__(self) -> int:
+        return len(self.cells)
+
+
+@dataclass(frozen=True)
+class PointMass:
+    """A concentrated mass (Nastran CONM2) at node index ``node``.
+
+    ``inertia`` is the 3x3 rotary inertia about the node (kg m^2); ``offset`` the
+    position of the mass centre relative to the node (m).
+    """
+
+    node: int
+    mass: float
+    inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+    offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    id: int = 0
+
+
+@dataclass(frozen=True)
+class RigidLink:
+    """A rigid spider (Nastran RBE2): ``slaves`` follow ``master`` rigidly in ``dofs``.
+
+    ``dofs`` is a string of Nastran component digits, ``"123456"`` for all six.
+    """
+
+    master: int
+    slaves: np.ndarray
+    dofs: str = "123456"
+    id: int = 0
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """A finite-element mesh in SI units.
+
+    Attributes
+    ----------
+    points : ndarray, shape (n_nodes, 3)
+        Node coordinates in metres.
+    blocks : tuple of CellBlock
+        Cells grouped by element type.
+    node_ids : ndarray of int, shape (n_nodes,)
+        Node ids as in the source file.
+    node_sets : mapping of str to ndarray of int
+        Named sets of 0-based node indices.
+    cell_sets : mapping of str to mapping of int to ndarray of int
+        Named cell sets: block index -> cell indices within that block.
+    point_masses : tuple of PointMass
+    rigid_links : tuple of RigidLink
+    sections : mapping of str to mapping
+        Properties carried by the file, keyed by cell-set name: ``thickness``,
+        ``E``, ``nu``, ``rho``, beam ``A``, ``Iy``, ``Iz``, ``J``.
+    source : str
+        The file the mesh came from ("" when built in memory).
+    """
+
+    points: np.ndarray
+    blocks: tuple[CellBlock, ...]
+    node_ids: np.ndarray | None = None
+    node_sets: Mapping[str, np.ndarray] = field(default_factory=dict)
+    cell_sets: Mapping[str, Mapping[int, np.ndarray]] = field(default_factory=dict)
+    point_masses: tuple[PointMass, ...] = ()
+    rigid_links: tuple[RigidLink, ...] = ()
+    sections: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
+    source: str = ""
+
+    def __post_init__(self):
+        pts = np.asarray(self.points, dtype=float)
+        if pts.ndim != 2 or pts.shape[1] not in (2, 3):
+            raise ValueError(f"points must have shape (n, 3), got {pts.shape}")
+        if pts.shape[1] == 2:
+            pts = np.column_stack([pts, np.zeros(len(pts))])
+        nid = np.arange(1, len(pts) + 1) if self.node_ids is None else self.node_ids
+        object.__setattr__(self, "points", _ro(pts, float))
+        object.__setattr__(self, "node_ids", _ro(nid, np.int64))
+        object.__setattr__(self, "blocks", tuple(self.blocks))
+        object.__setattr__(
+            self, "node_sets",
+            MappingProxyType({k: _ro(v, np.int64) for k, v in dict(self.node_sets).items()}),
+        )
+        object.__setattr__(
+            self, "cell_sets",
+            MappingProxyType({
+                k: MappingProxyType({int(b): _ro(c, np.int64) for b, c in dict(v).items()})
+                for k, v in dict(self.cell_sets).items()
+            }),
+        )
+        object.__setattr__(self, "point_masses", tuple(self.point_masses))
+        object.__setattr__(self, "rigid_links", tuple(self.rigid_links))
+        object.__setattr__(
+            self, "sections",
+            MappingProxyType({k: MappingProxyType(dict(v)) for k, v in dict(self.sections).items()}),
+        )
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes."""
+        return len(self.points)
+
+    @property
+    def cell_types(self) -> tuple[str, ...]:
+        """Element types present, in block order."""
+        return tuple(b.type for b in self.blocks)
+
+    def blocks_of(self, *types: str) -> list[tuple[int, CellBlock]]:
+        """Return ``(block_index, block)`` pairs whose type is one of ``types``."""
+        return [(i, b) for i, b in enumerate(self.blocks) if b.type in types]
+
+    def has_rotations(self) -> bool:
+        """True when any element carries rotational DOF (shells, beams)."""
+        return any(b.type in SHELL_TYPES + BEAM_TYPES for b in self.blocks) or bool(
+            self.rigid_links
+        )
+
+    def describe_node(self, index: int) -> str:
+        """Human-readable name of node ``index`` for messages: its file id and position."""
+        x, y, z = self.points[index]
+        return f"node {int(self.node_ids[index])} at ({x:.4g}, {y:.4g}, {z:.4g}) m"
+
+    def scaled(self, factor: float) -> Mesh:
+        """Return a copy with coordinates multiplied by ``factor`` (e.g. 1e-3 for mm)."""
+        from dataclasses import replace
+
+        return replace(self, points=self.points * factor)
