@@ -183,17 +183,96 @@ def _beam_props(mesh, bi, block, beam_section):
     return props
 
 
-def _scatter(conn, Ke, dpn_elem, dpn, n_dof):
-    """COO triplets of element matrices into a CSR matrix (duplicates summed)."""
-    ne, nn = conn.shape
-    comp = np.arange(dpn_elem)
-    itype = np.int32 if n_dof < 2**31 - 1 else np.int64
-    gdof = (conn[:, :, None].astype(itype) * dpn + comp[None, None, :].astype(itype))
-    gdof = gdof.reshape(ne, nn * dpn_elem)
-    nd = gdof.shape[1]
-    rows = np.broadcast_to(gdof[:, :, None], (ne, nd, nd)).ravel()
-    cols = np.broadcast_to(gdof[:, None, :], (ne, nd, nd)).ravel()
-    return sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(n_dof, n_dof))
+class _Pattern:
+    """Sparsity pattern of the assembled matrices, built once from the connectivity.
+
+    The pattern is the set of node pairs sharing an element (plus the diagonal blocks
+    of point-mass nodes), each a dense ``dpn x dpn`` block.  The matrices are stored in
+    CSR with rows sorted and no duplicates; element matrices are summed straight into
+    the CSR data array with ``np.add.at`` at precomputed positions, so no COO triplets,
+    sorting or sparse additions are needed per batch.
+    """
+
+    def __init__(self, mesh: Mesh, dpn: int):
+        n = mesh.n_nodes
+        self.n, self.dpn = n, dpn
+        parts = []
+        for b in mesh.blocks:
+            if b.type == "vertex" or len(b) == 0:
+                continue
+            for start in range(0, len(b), CHUNK):
+                c = b.cells[start:start + CHUNK]
+                parts.append(_unique_sorted((c[:, :, None] * n + c[:, None, :]).ravel()))
+        pm = np.array([p.node for p in mesh.point_masses], dtype=np.int64)
+        parts.append(pm * n + pm)
+        keys = _unique_sorted(np.concatenate(parts)) if parts else np.zeros(0, np.int64)
+        rows = keys // n
+        cols = keys - rows * n
+        counts = np.bincount(rows, minlength=n)
+        start_b = np.concatenate([[0], np.cumsum(counts)])
+        nnzb = len(keys)
+        self.keys = keys
+        self.nnz = nnzb * dpn * dpn
+        n_dof = n * dpn
+        self.itype = it = np.int32 if max(self.nnz, n_dof) < 2**31 - 1 else np.int64
+        # data position of entry (i, j) of block p in node row a:
+        #   base[p] + i * row_stride[a] + j,  base[p] = dpn^2 start_b[a] + dpn (p - start_b[a])
+        first = start_b[rows]
+        self.base = (dpn * dpn * first + dpn * (np.arange(nnzb) - first)).astype(it)
+        self.row_stride = (dpn * counts).astype(it)
+        del first
+        self.indptr = np.concatenate([[0], np.cumsum(np.repeat(dpn * counts, dpn))]).astype(it)
+        # every DOF row of node a holds the same columns: [b * dpn + j for blocks b, j < dpn]
+        row_cols = (cols[:, None] * dpn + np.arange(dpn)).astype(it).ravel()
+        del rows, cols
+        seg = np.repeat(dpn * counts, dpn)                      # length of each DOF row
+        shift = np.repeat(dpn * dpn * start_b[:-1] - dpn * start_b[:-1], dpn) + \
+            np.tile(np.arange(dpn), n) * np.repeat(dpn * counts, dpn)
+        src = np.arange(self.nnz, dtype=np.int64)
+        src -= np.repeat(shift, seg)
+        self.indices = row_cols[src]
+        del src, row_cols
+
+    def positions(self, conn: np.ndarray, de: int) -> np.ndarray:
+        """Data positions (ne, nn, de, nn, de) of element matrices with ``de`` DOF/node."""
+        p = np.searchsorted(self.keys, conn[:, :, None] * self.n + conn[:, None, :])
+        comp = np.arange(de, dtype=self.itype)
+        row = self.row_stride[conn][:, :, None] * comp          # (ne, nn, de)
+        pos = self.base[p][:, :, None, :, None] + row[:, :, :, None, None]
+        return pos + comp
+
+    def add(self, data: np.ndarray, pos: np.ndarray, values: np.ndarray):
+        """Sum element matrices (ne, nd, nd) into ``data``."""
+        np.add.at(data, pos.ravel(), values.ravel())
+
+    def add_sparse(self, data: np.ndarray, A):
+        """Sum a (small) sparse matrix whose node blocks lie in the pattern into ``data``."""
+        A = sp.coo_matrix(A)
+        if A.nnz == 0:
+            return
+        r, c = A.row.astype(np.int64), A.col.astype(np.int64)
+        a, i = np.divmod(r, self.dpn)
+        b, j = np.divmod(c, self.dpn)
+        p = np.searchsorted(self.keys, a * self.n + b)
+        np.add.at(data, self.base[p] + i * self.stride[p] + j, A.data)
+
+    def matrix(self, data: np.ndarray, *, copy_structure: bool) -> sp.csr_matrix:
+        """CSR matrix over all DOF from a data array laid out by this pattern."""
+        n_dof = self.n * self.dpn
+        idx = self.indices.copy() if copy_structure else self.indices
+        ptr = self.indptr.copy() if copy_structure else self.indptr
+        A = sp.csr_matrix((data, idx, ptr), shape=(n_dof, n_dof), copy=False)
+        A.has_sorted_indices = True
+        A.has_canonical_format = True
+        return A
+
+
+def _unique_sorted(k: np.ndarray) -> np.ndarray:
+    """Sorted distinct values (sort + mask; faster than np.unique for large int arrays)."""
+    k = np.sort(k)
+    keep = np.ones(len(k), dtype=bool)
+    keep[1:] = k[1:] != k[:-1]
+    return k[keep]
 
 
 def _check_connectivity(mesh: Mesh, *, allow_disconnected: bool):
@@ -309,16 +388,14 @@ def _constraint_map(mesh, dpn, n_dof, K, M):
     indep = np.flatnonzero(touched & ~dependent)
     col_of = np.full(n_dof, -1, dtype=np.int64)
     col_of[indep] = np.arange(len(indep))
-    rows = list(indep)
-    cols = list(range(len(indep)))
-    vals = [1.0] * len(indep)
+    rows, cols, vals = indep, np.arange(len(indep)), np.ones(len(indep))
     if dep_rows:
         dc = col_of[np.asarray(dep_cols)]
         if (dc < 0).any():
             raise ModelError("an RBE2 master DOF is not an independent DOF")
-        rows += dep_rows
-        cols += dc.tolist()
-        vals += dep_vals
+        rows = np.concatenate([rows, np.asarray(dep_rows, dtype=np.int64)])
+        cols = np.concatenate([cols, dc])
+        vals = np.concatenate([vals, np.asarray(dep_vals, dtype=float)])
     return sp.csr_matrix((vals, (rows, cols)), shape=(n_dof, len(indep)))
 
 
@@ -357,8 +434,6 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
     _check_connectivity(mesh, allow_disconnected=allow_disconnected)
     dpn = 6 if mesh.has_rotations() else 3
     n_dof = mesh.n_nodes * dpn
-    K = sp.csr_matrix((n_dof, n_dof))
-    M = sp.csr_matrix((n_dof, n_dof))
     batches = []
     for bi, block in enumerate(mesh.blocks):
         if block.type == "vertex" or len(block) == 0:
@@ -378,6 +453,9 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
         from tqdm import tqdm
 
         iterator = tqdm(batches, desc="assembling", unit="batch")
+    pattern = _Pattern(mesh, dpn)
+    Kdata = np.zeros(pattern.nnz)
+    Mdata = np.zeros(pattern.nnz)
     for bi, block, fam, E, nu, rho, props, sl in iterator:
         conn = block.cells[sl]
         X = mesh.points[conn]
@@ -391,10 +469,24 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
                 f"ids {ids}; fix the node order/coordinates of these elements",
                 file=mesh.source or None,
             ) from None
-        K = K + _scatter(conn, Ke, fam.DOFS_PER_NODE, dpn, n_dof)
-        M = M + _scatter(conn, Me, fam.DOFS_PER_NODE, dpn, n_dof)
-    M = M + _point_mass_matrix(mesh, dpn, n_dof)
-    K = ((K + K.T) * 0.5).tocsr()
-    M = ((M + M.T) * 0.5).tocsr()
+        # exact symmetry of the element matrices makes the assembled ones exactly symmetric
+        # (both triangles receive the same values in the same order)
+        Ke = Ke + Ke.transpose(0, 2, 1)
+        Ke *= 0.5
+        Me = Me + Me.transpose(0, 2, 1)
+        Me *= 0.5
+        de = fam.DOFS_PER_NODE
+        pos = pattern.positions(conn, de)
+        pattern.add(Kdata, pos, Ke)
+        pattern.add(Mdata, pos, Me)
+        del Ke, Me, pos
+    Mp = _point_mass_matrix(mesh, dpn, n_dof)
+    pattern.add_sparse(Mdata, (Mp + Mp.T) * 0.5)
+    K = pattern.matrix(Kdata, copy_structure=False)
+    M = pattern.matrix(Mdata, copy_structure=True)
+    # drop exact zeros (unused rotation entries of solid nodes in a 6-DOF model, couplings
+    # that vanish on regular grids): less work for the factorization
+    K.eliminate_zeros()
+    M.eliminate_zeros()
     T = _constraint_map(mesh, dpn, n_dof, K, M)
     return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh)

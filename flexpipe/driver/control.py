@@ -1,0 +1,217 @@
+"""Driver controllers: pure-pursuit steering and a PI speed controller.
+
+Both read their gains from a TOML table (``from_dict``), e.g. ``paths/driver.toml``::
+
+    [steering]
+    wheelbase_m = 2.7
+    lookahead_base_m = 2.0      # preview distance at standstill
+    lookahead_time_s = 0.2      # + this time times the speed
+    max_steer_rad = 0.6
+    rear_axle_offset_m = 1.3    # reference point -> rear axle, along the body x axis
+
+    [speed]
+    kp_Nm_s_per_m = 600.0
+    ki_Nm_per_m = 150.0
+    drive_torque_max_Nm = 3000.0
+    brake_torque_max_Nm = 8000.0
+    integral_band_mps = 1.0     # optional; integrate only within this speed error
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pathlib
+
+from flexpipe.driver.path import Path
+from flexpipe.errors import InputError
+from flexpipe.roads._tables import TableReader, read_toml
+
+
+@dataclasses.dataclass(frozen=True)
+class PurePursuit:
+    """Pure-pursuit path follower with speed-dependent preview.
+
+    The rear-axle centre ``R`` is projected onto the path; the goal point lies
+    ``Ld = lookahead_base + lookahead_time * |v|`` further along it (on the straight
+    continuation beyond the path end).  The road-wheel angle of a bicycle of wheelbase
+    ``L`` whose rear axle moves on the circle through ``R`` and the goal point is
+    ``delta = atan(2 L sin(alpha) / d)``, ``alpha`` the bearing of the goal relative to the
+    heading and ``d`` its distance (Coulter, CMU-RI-TR-92-01, 1992).
+
+    Parameters
+    ----------
+    wheelbase : float
+        Wheelbase ``L`` (m).
+    lookahead_base : float
+        Preview distance at zero speed (m).
+    lookahead_time : float
+        Preview time (s); the preview grows by ``lookahead_time * |v|``.
+    max_steer : float
+        Road-wheel angle limit (rad).
+    rear_axle_offset : float
+        Distance from the vehicle reference point back to the rear-axle centre (m), so
+        that :meth:`steer` can take the reference point's position.
+    path : Path, optional
+        The path to follow; gains come from data without one, then
+        :meth:`with_path` binds it.
+    """
+
+    wheelbase: float
+    lookahead_base: float = 2.0
+    lookahead_time: float = 0.2
+    max_steer: float = 0.6
+    rear_axle_offset: float = 0.0
+    path: Path | None = dataclasses.field(default=None, repr=False)
+
+    def __post_init__(self):
+        checks = (("wheelbase", self.wheelbase, 0.0, False),
+                  ("lookahead_base", self.lookahead_base, 0.0, False),
+                  ("lookahead_time", self.lookahead_time, 0.0, True),
+                  ("max_steer", self.max_steer, 0.0, False),
+                  ("rear_axle_offset", self.rear_axle_offset, -math.inf, True))
+        for name, value, lo, closed in checks:
+            ok = math.isfinite(value) and (value >= lo if closed else value > lo)
+            if not ok or (name == "max_steer" and value >= math.pi / 2):
+                raise InputError(f"PurePursuit: {name} = {value!r} is out of range")
+
+    @classmethod
+    def from_dict(cls, table: dict, *, file=None, name: str = "steering") -> PurePursuit:
+        """Build from a ``[steering]`` table (keys in the module notes)."""
+        t = TableReader(table, file=file, name=name)
+        kind = t.str("type", "pure_pursuit", choices=("pure_pursuit",))
+        del kind
+        obj = cls(wheelbase=t.float("wheelbase_m", positive=True),
+                  lookahead_base=t.float("lookahead_base_m", 2.0, positive=True),
+                  lookahead_time=t.float("lookahead_time_s", 0.2, nonnegative=True),
+                  max_steer=t.float("max_steer_rad", 0.6, positive=True, hi=1.5),
+                  rear_axle_offset=t.float("rear_axle_offset_m", 0.0))
+        t.finish()
+        return obj
+
+    def with_path(self, path: Path) -> PurePursuit:
+        """A copy of this controller that follows ``path``."""
+        if not isinstance(path, Path):
+            raise InputError(f"PurePursuit.with_path needs a flexpipe.driver.Path, got "
+                             f"{type(path).__name__}")
+        return dataclasses.replace(self, path=path)
+
+    def lookahead(self, v: float) -> float:
+        """Preview distance at speed ``v`` (m)."""
+        return self.lookahead_base + self.lookahead_time * abs(v)
+
+    def steer(self, x: float, y: float, yaw: float, v: float) -> float:
+        """Road-wheel angle (rad, positive left) for the reference point at ``(x, y)``.
+
+        Parameters
+        ----------
+        x, y : float
+            Position of the vehicle reference point (m).
+        yaw : float
+            Heading of the vehicle body x axis (rad).
+        v : float
+            Forward speed (m/s).
+        """
+        path = self.path
+        if path is None:
+            raise InputError("PurePursuit has no path; call with_path(path) first")
+        c, s = math.cos(yaw), math.sin(yaw)
+        rx = x - self.rear_axle_offset * c
+        ry = y - self.rear_axle_offset * s
+        s_rear, _ = path.project(rx, ry)
+        gx, gy = path.point_at(s_rear + self.lookahead(v))
+        dx, dy = gx - rx, gy - ry
+        d = math.hypot(dx, dy)
+        alpha = math.atan2(dy, dx) - yaw
+        delta = math.atan2(2.0 * self.wheelbase * math.sin(alpha), d)
+        return max(-self.max_steer, min(self.max_steer, delta))
+
+
+@dataclasses.dataclass
+class SpeedPI:
+    """PI speed controller producing a total wheel torque (drive > 0, brake < 0).
+
+    ``T = kp e + ki I``, ``e = v_target - v``, clamped to
+    ``[-brake_torque_max, drive_torque_max]``.  Anti-windup by conditional integration:
+    the integral ``I`` of ``e`` only changes while the output is not saturated in the
+    direction of ``e`` and ``|e| <= integral_band`` (integral separation: during a large
+    speed change the P part acts alone, so the integral does not collect the whole
+    transient and overshoot).  The controller keeps ``I`` between calls (the only mutable
+    object in :mod:`flexpipe.driver`); :meth:`reset` clears it.
+
+    Parameters
+    ----------
+    kp : float
+        Proportional gain (N m per m/s).
+    ki : float
+        Integral gain (N m per m).
+    drive_torque_max, brake_torque_max : float
+        Torque limits (N m), both > 0.
+    integral_band : float
+        Speed error (m/s) above which the integral is frozen; ``inf`` disables this.
+    """
+
+    kp: float
+    ki: float
+    drive_torque_max: float
+    brake_torque_max: float
+    integral_band: float = math.inf
+    integral: float = dataclasses.field(default=0.0, compare=False)
+
+    def __post_init__(self):
+        for name in ("kp", "ki", "drive_torque_max", "brake_torque_max", "integral_band"):
+            value = getattr(self, name)
+            if math.isnan(value) or value < 0.0 or (math.isinf(value) and name != "integral_band") \
+                    or (name.endswith(("max", "band")) and value == 0.0):
+                raise InputError(f"SpeedPI: {name} = {value!r} is out of range")
+
+    @classmethod
+    def from_dict(cls, table: dict, *, file=None, name: str = "speed") -> SpeedPI:
+        """Build from a ``[speed]`` table (keys in the module notes)."""
+        t = TableReader(table, file=file, name=name)
+        obj = cls(kp=t.float("kp_Nm_s_per_m", nonnegative=True),
+                  ki=t.float("ki_Nm_per_m", nonnegative=True),
+                  drive_torque_max=t.float("drive_torque_max_Nm", positive=True),
+                  brake_torque_max=t.float("brake_torque_max_Nm", positive=True),
+                  integral_band=t.float("integral_band_mps", math.inf, positive=True))
+        t.finish()
+        return obj
+
+    def reset(self) -> None:
+        """Clear the integral state."""
+        self.integral = 0.0
+
+    def torque(self, v_target: float, v: float, dt: float) -> float:
+        """Total wheel torque for this step (N m); ``dt`` is the step since the last call."""
+        e = v_target - v
+        trial = self.integral + e * dt if (dt > 0.0 and abs(e) <= self.integral_band) \
+            else self.integral
+        raw = self.kp * e + self.ki * trial
+        if raw > self.drive_torque_max:
+            out = self.drive_torque_max
+            if e < 0.0:
+                self.integral = trial
+        elif raw < -self.brake_torque_max:
+            out = -self.brake_torque_max
+            if e > 0.0:
+                self.integral = trial
+        else:
+            out = raw
+            self.integral = trial
+        return out
+
+
+def read_driver(path) -> tuple[PurePursuit, SpeedPI]:
+    """Read ``[steering]`` and ``[speed]`` tables from a TOML file.
+
+    Returns
+    -------
+    (PurePursuit, SpeedPI)
+    """
+    path = pathlib.Path(path)
+    doc = read_toml(path)
+    for key in ("steering", "speed"):
+        if key not in doc:
+            raise InputError(f"no [{key}] table", file=path, key=key)
+    return (PurePursuit.from_dict(doc["steering"], file=path),
+            SpeedPI.from_dict(doc["speed"], file=path))

@@ -1,0 +1,287 @@
+"""Exudyn adapter for a :class:`~flexpipe.flexbody.FlexBody` (the only module of flexpipe,
+with its siblings in :mod:`flexpipe.exu`, that imports exudyn).
+
+:func:`add_flexible_body` builds an ``ObjectFFRFreducedOrder`` (floating frame of
+reference: a rigid-body node plus one modal coordinate per elastic mode) with a
+``MarkerSuperElementRigid`` at every interface; :func:`add_rigid_twin` builds an
+``ObjectRigidBody`` with identical mass, centre of mass and inertia and a
+``MarkerBodyRigid`` at every interface hardpoint.  Both return a :class:`BodyHandle`
+whose ``markers`` are ready for joints, springs and loads.
+
+Interfaces as 6-DOF markers
+---------------------------
+Exudyn's FFRF body carries 3 translations per mesh node.  For every interface the
+adapter appends seven massless *marker points* to the mode basis: the hardpoint and six
+points at ``+-arm`` along the body axes, whose mode-shape rows are the rigid motion of
+the hardpoint, ``u = u_h + theta_h x d``.  A ``MarkerSuperElementRigid`` on these seven
+points (equal weights, centred on the hardpoint, zero offset) therefore moves exactly
+like the hardpoint of the RBE2 spider (or the 6-DOF node) in the reduced model.  Being
+massless, the points do not change the inertia invariants.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+from exudyn.rigidBodyUtilities import GetRigidBodyNode
+
+from flexpipe.errors import InputError
+from flexpipe.flexbody.body import FlexBody
+
+#: rotation parameterization of the reference-frame node (works with implicit solvers)
+NODE_TYPE = exu.NodeType.RotationEulerParameters
+_ARMS = np.vstack([np.eye(3), -np.eye(3)])
+
+
+@dataclass(frozen=True)
+class BodyHandle:
+    """Exudyn items of a body added by :func:`add_flexible_body` or :func:`add_rigid_twin`.
+
+    Attributes
+    ----------
+    kind : {"flexible", "rigid"}
+    object : ObjectIndex
+        ``ObjectFFRFreducedOrder`` or ``ObjectRigidBody``.
+    node : NodeIndex
+        Rigid-body node of the reference frame (placed at the mesh-coordinate origin).
+    modal_node : NodeIndex or None
+        ``NodeGenericODE2`` holding the modal coordinates (flexible bodies only).
+    markers : mapping of str to MarkerIndex
+        Interface name -> 6-DOF marker (``MarkerSuperElementRigid`` /
+        ``MarkerBodyRigid``) at the hardpoint.
+    node_marker : MarkerIndex
+        ``MarkerNodeRigid`` on the reference-frame node.
+    body_marker : MarkerIndex
+        ``MarkerBodyMass`` of the body (gravity and other mass-proportional loads).
+    gravity_load : LoadIndex or None
+    interface_points : mapping of str to ndarray
+        Hardpoints in body coordinates.
+    mesh_node_count : int
+        Number of real mesh nodes (marker points come after them).
+    """
+
+    kind: str
+    object: object
+    node: object
+    modal_node: object
+    markers: Mapping[str, object]
+    node_marker: object
+    body_marker: object
+    gravity_load: object = None
+    interface_points: Mapping[str, np.ndarray] = field(default_factory=dict)
+    mesh_node_count: int = 0
+
+    def _marker(self, name):
+        if name not in self.markers:
+            raise InputError(f"no interface {name!r}; valid: {sorted(self.markers)}", key=name)
+        return self.markers[name]
+
+    def interface_position(self, mbs, name: str, *, reference: bool = False) -> np.ndarray:
+        """World position of interface ``name`` (current, or reference configuration)."""
+        cfg = exu.ConfigurationType.Reference if reference else exu.ConfigurationType.Current
+        return np.asarray(mbs.GetMarkerOutput(self._marker(name),
+                                              exu.OutputVariableType.Position,
+                                              configuration=cfg))
+
+    def interface_velocity(self, mbs, name: str) -> np.ndarray:
+        """World velocity of interface ``name``."""
+        return np.asarray(mbs.GetMarkerOutput(self._marker(name),
+                                              exu.OutputVariableType.Velocity))
+
+    def modal_coordinates(self, mbs) -> np.ndarray:
+        """Current modal coordinates (empty for a rigid twin)."""
+        if self.modal_node is None:
+            return np.zeros(0)
+        return np.asarray(mbs.GetNodeOutput(self.modal_node, exu.OutputVariableType.Coordinates))
+
+
+def _frame_node(mbs, position, rotation, velocity, angular_velocity, name):
+    R = np.eye(3) if rotation is None else np.asarray(rotation, dtype=float)
+    if R.shape != (3, 3) or not np.allclose(R @ R.T, np.eye(3), atol=1e-9):
+        raise InputError("rotation must be a 3x3 rotation matrix (orthonormal)", key="rotation")
+    item = GetRigidBodyNode(nodeType=NODE_TYPE, position=list(map(float, position)),
+                            velocity=list(map(float, velocity)), rotationMatrix=R,
+                            angularVelocity=list(map(float, angular_velocity)))
+    item.name = f"{name}:frame" if name else ""
+    return mbs.AddNode(item)
+
+
+def _check_vec(v, key):
+    a = np.asarray(v, dtype=float)
+    if a.shape != (3,) or not np.all(np.isfinite(a)):
+        raise InputError(f"must be 3 finite numbers, got {v!r}", key=key)
+    return a
+
+
+def marker_points(body: FlexBody, *, arm: float | None = None):
+    """Reference positions (7 k, 3) and elastic mode rows (7 k, 3, m_e) of the marker points.
+
+    Per interface: the hardpoint, then ``hardpoint +- arm e_x, e_y, e_z``.
+    """
+    if arm is None:
+        size = np.ptp(body.nodes, axis=0).max() if body.n_nodes else 1.0
+        arm = 0.02 * max(size, 1e-3)
+    pos, rows = [], []
+    for itf in body.interfaces:
+        u = itf.shapes[:3, body.n_rigid:]  # (3, m_e)
+        th = itf.shapes[3:, body.n_rigid:]
+        d = np.vstack([np.zeros(3), arm * _ARMS])  # (7, 3)
+        pos.append(itf.point + d)
+        # u + theta x d for every point and mode: (7, 3, m_e)
+        rows.append(u[None] + np.cross(th.T[None, :, :], d[:, None, :]).transpose(0, 2, 1))
+    m_e = body.n_elastic
+    if not pos:
+        return np.zeros((0, 3)), np.zeros((0, 3, m_e))
+    return np.vstack(pos), np.concatenate(rows)
+
+
+def _elastic_selection(body, n_modes):
+    if n_modes is None:
+        return body.n_elastic
+    if not isinstance(n_modes, (int, np.integer)) or not 0 <= n_modes <= body.n_elastic:
+        raise InputError(f"n_modes must be an integer in [0, {body.n_elastic}], got {n_modes!r}",
+                         key="n_modes")
+    return int(n_modes)
+
+
+def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=None,
+                      velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0),
+                      gravity=(0.0, 0.0, -9.81), damping=True, n_modes: int | None = None,
+                      color=(0.2, 0.6, 0.9, 1.0), name: str = "flexbody",
+                      arm: float | None = None) -> BodyHandle:
+    """Add ``body`` as an Exudyn ``ObjectFFRFreducedOrder`` with interface markers.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    body : FlexBody
+    position : (3,) array_like
+        World position of the body-coordinate (mesh) origin, m.
+    rotation : (3, 3) array_like, optional
+        Body-to-world rotation matrix (default identity).
+    velocity, angular_velocity : (3,) array_like
+        Initial velocity of the origin and angular velocity, world frame.
+    gravity : (3,) array_like
+        Gravitational acceleration, m/s^2; ``(0, 0, 0)`` for none.
+    damping : bool or float
+        ``True``: the body's modal damping ``body.D``; ``False``: none; a float: that
+        damping ratio for every elastic mode.
+    n_modes : int, optional
+        Use only the lowest ``n_modes`` elastic modes (default all).
+    color : RGBA
+    name : str
+        Exudyn item name prefix.
+    arm : float, optional
+        Distance of the marker points from each hardpoint (default 2% of the body size).
+
+    Returns
+    -------
+    BodyHandle
+    """
+    if not isinstance(body, FlexBody):
+        raise InputError(f"body must be a FlexBody, got {type(body).__name__}")
+    position = _check_vec(position, "position")
+    g = _check_vec(gravity, "gravity")
+    me = _elastic_selection(body, n_modes)
+    sel = slice(body.n_rigid, body.n_rigid + me)
+    n = body.n_nodes
+    Psi = body.modes[:, :, sel]
+    mp_pos, mp_rows = marker_points(body, arm=arm)
+    basis = np.concatenate([Psi, mp_rows[:, :, :me]]).reshape(-1, me)
+    xref = np.vstack([body.nodes, mp_pos]).ravel()
+    Mr = body.M[sel, sel]
+    Kr = body.K[sel, sel]
+    if damping is True:
+        Dr = body.D[sel, sel]
+    elif damping is False or damping is None:
+        Dr = np.zeros((me, me))
+    else:
+        zeta = float(damping)
+        Dr = np.diag(2 * zeta * body.omega[sel])
+    inv = body.invariants
+    k3 = slice(0, 3 * me)
+
+    def mc(A):
+        c = exu.MatrixContainer()
+        c.SetWithDenseMatrix(np.ascontiguousarray(A), useDenseMatrix=True)
+        return c
+
+    n_frame = _frame_node(mbs, position, rotation, velocity, angular_velocity, name)
+    n_modal = mbs.AddNode(eii.NodeGenericODE2(
+        name=f"{name}:modal" if name else "", numberOfODE2Coordinates=me,
+        referenceCoordinates=[0.0] * me, initialCoordinates=[0.0] * me,
+        initialCoordinates_t=[0.0] * me))
+    obj = mbs.AddObject(eii.ObjectFFRFreducedOrder(
+        name=name, nodeNumbers=[n_frame, n_modal],
+        massMatrixReduced=mc(Mr), stiffnessMatrixReduced=mc(Kr),
+        dampingMatrixReduced=mc(Dr) if np.any(Dr) else [],
+        modeBasis=basis, referencePositions=xref,
+        mass=body.mass, inertia=body.inertia_origin, centerOfMass=body.center_of_mass,
+        mPsiTildePsi=inv.mPsiTildePsi[k3, :me], mPsiTildePsiTilde=inv.mPsiTildePsiTilde[k3, k3],
+        mPhitTPsi=inv.mPhitTPsi[:, :me], mPhitTPsiTilde=inv.mPhitTPsiTilde[:, k3],
+        mXRefTildePsi=inv.mXRefTildePsi[:, :me], mXRefTildePsiTilde=inv.mXRefTildePsiTilde[:, k3],
+        computeFFRFterms=True,
+        visualization=eii.VObjectFFRFreducedOrder(
+            triangleMesh=np.asarray(body.triangles, dtype=np.int64), color=list(color),
+            showNodes=False)))
+    markers = {}
+    for j, itf in enumerate(body.interfaces):
+        pts = list(range(n + 7 * j, n + 7 * j + 7))
+        markers[itf.name] = mbs.AddMarker(eii.MarkerSuperElementRigid(
+            name=f"{name}:{itf.name}" if name else "", bodyNumber=obj, offset=[0.0, 0.0, 0.0],
+            meshNodeNumbers=pts, weightingFactors=[1.0 / 7.0] * 7,
+            useAlternativeApproach=True, rotationsExponentialMap=2))
+    m_node = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_frame))
+    m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
+    load = None
+    if np.any(g):
+        load = mbs.AddLoad(eii.LoadMassProportional(markerNumber=m_body, loadVector=list(g)))
+    return BodyHandle(kind="flexible", object=obj, node=n_frame, modal_node=n_modal,
+                      markers=markers, node_marker=m_node, body_marker=m_body,
+                      gravity_load=load,
+                      interface_points={i.name: i.point.copy() for i in body.interfaces},
+                      mesh_node_count=n)
+
+
+def add_rigid_twin(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=None,
+                   velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0),
+                   gravity=(0.0, 0.0, -9.81), color=(0.7, 0.7, 0.7, 1.0),
+                   name: str = "rigidbody", show_surface: bool = True) -> BodyHandle:
+    """Add the rigid twin of ``body``: same mass, centre of mass and inertia, same markers.
+
+    The reference node sits at the body-coordinate origin (as for
+    :func:`add_flexible_body`), so both bodies can be placed with the same arguments.
+    """
+    if not isinstance(body, FlexBody):
+        raise InputError(f"body must be a FlexBody, got {type(body).__name__}")
+    position = _check_vec(position, "position")
+    g = _check_vec(gravity, "gravity")
+    J = body.inertia_origin
+    n_frame = _frame_node(mbs, position, rotation, velocity, angular_velocity, name)
+    graphics = []
+    if show_surface and len(body.triangles):
+        import exudyn.graphics as gfx
+
+        graphics = [gfx.FromPointsAndTrigs(body.nodes.tolist(), body.triangles.tolist(),
+                                           color=list(color))]
+    obj = mbs.AddObject(eii.ObjectRigidBody(
+        name=name, nodeNumber=n_frame, mass=body.mass,
+        inertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
+        centerOfMass=list(body.center_of_mass),
+        visualization=eii.VObjectRigidBody(graphicsData=graphics)))
+    markers = {itf.name: mbs.AddMarker(eii.MarkerBodyRigid(
+        name=f"{name}:{itf.name}" if name else "", bodyNumber=obj,
+        localPosition=list(itf.point))) for itf in body.interfaces}
+    m_node = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_frame))
+    m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
+    load = None
+    if np.any(g):
+        load = mbs.AddLoad(eii.LoadMassProportional(markerNumber=m_body, loadVector=list(g)))
+    return BodyHandle(kind="rigid", object=obj, node=n_frame, modal_node=None, markers=markers,
+                      node_marker=m_node, body_marker=m_body, gravity_load=load,
+                      interface_points={i.name: i.point.copy() for i in body.interfaces},
+                      mesh_node_count=body.n_nodes)

@@ -1,0 +1,163 @@
+"""Nastran bulk-data tokenizer: physical lines -> cards with typed field access.
+
+Handles free field (commas), small field (8 characters), large field (16 characters,
+``NAME*`` and ``*`` continuation lines), continuation lines (first field blank, ``+`` or
+``*``), ``$`` comments, executive/case control before ``BEGIN BULK``, ``ENDDATA`` and
+``INCLUDE 'file'`` (relative to the including file).  Numbers may use Nastran's implied
+exponent (``7.85-9``, ``1.+5``) or ``D`` exponents.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from flexpipe.errors import MeshError
+
+_IMPLIED_EXP = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))([+-]\d+)$")
+_REQUIRED = object()
+
+
+@dataclass
+class Card:
+    """One bulk-data entry: ``name`` and its data fields (field 2 onward, strings)."""
+
+    name: str
+    fields: list[str] = field(default_factory=list)
+    file: str = ""
+    line: int = 0
+
+    def error(self, message: str) -> MeshError:
+        """A :class:`MeshError` located at this card."""
+        return MeshError(f"{self.name} {self.label()}: {message}", file=self.file, line=self.line)
+
+    def label(self) -> str:
+        """The card's id (its first field) for messages."""
+        return self.fields[0] if self.fields and self.fields[0] else "?"
+
+    def raw(self, i: int) -> str:
+        """Field ``i`` as a stripped string ('' when blank or absent)."""
+        return self.fields[i] if i < len(self.fields) else ""
+
+    def int(self, i: int, name: str, default=_REQUIRED):
+        """Integer field ``i`` (0-based data index) called ``name`` in messages."""
+        s = self.raw(i)
+        if not s:
+            if default is _REQUIRED:
+                raise self.error(f"field {name} is blank; it needs an integer")
+            return default
+        try:
+            return int(s)
+        except ValueError:
+            raise self.error(f"field {name} = '{s}' is not an integer") from None
+
+    def real(self, i: int, name: str, default=_REQUIRED):
+        """Real field ``i`` (Nastran real syntax accepted)."""
+        s = self.raw(i)
+        if not s:
+            if default is _REQUIRED:
+                raise self.error(f"field {name} is blank; it needs a real number")
+            return default
+        v = parse_real(s)
+        if v is None:
+            raise self.error(f"field {name} = '{s}' is not a number")
+        return v
+
+    def is_int(self, i: int) -> bool:
+        """True when field ``i`` holds an integer (e.g. CBAR G0 instead of X1)."""
+        s = self.raw(i)
+        return bool(s) and (s.lstrip("+-").isdigit())
+
+
+def parse_real(s: str):
+    """Parse a Nastran real (``1.5``, ``1.5E-3``, ``1.5-3``, ``1.5D-3``, ``7``); None if bad."""
+    t = s.strip().upper().replace("D", "E")
+    try:
+        return float(t)
+    except ValueError:
+        m = _IMPLIED_EXP.match(t)
+        if m:
+            return float(f"{m.group(1)}E{m.group(2)}")
+    return None
+
+
+def _split(line: str) -> tuple[str, list[str]]:
+    """Split one physical line into (first field, data fields)."""
+    if "," in line:
+        parts = [p.strip() for p in line.split(",")]
+        first = parts[0]
+        width = 4 if (first.endswith("*") or first.startswith("*")) else 8
+        data = parts[1:]
+        if len(data) == width + 1:          # trailing continuation marker
+            data = data[:width]
+        elif len(data) < width:
+            data = data + [""] * (width - len(data))
+        return first, data
+    first = line[:8].strip()
+    if first.endswith("*") or first.startswith("*"):
+        return first, [line[8 + 16 * k: 24 + 16 * k].strip() for k in range(4)]
+    return first, [line[8 + 8 * k: 16 + 8 * k].strip() for k in range(8)]
+
+
+def _include_target(line: str, path: Path, lineno: int) -> Path:
+    m = re.match(r"^\s*INCLUDE\s+['\"]?([^'\"]+)['\"]?\s*$", line, flags=re.IGNORECASE)
+    if not m:
+        raise MeshError("cannot parse INCLUDE statement; write INCLUDE 'file.bdf'",
+                        file=str(path), line=lineno)
+    target = Path(m.group(1).strip())
+    if not target.is_absolute():
+        near = path.parent / target
+        target = near if near.exists() or not target.exists() else target
+    if not target.is_file():
+        raise MeshError(f"INCLUDE file '{m.group(1)}' not found (looked next to {path.name})",
+                        file=str(path), line=lineno)
+    return target
+
+
+def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
+    """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order."""
+    path = Path(path)
+    if path.resolve() in _stack:
+        raise MeshError("INCLUDE loop: the file includes itself", file=str(path))
+    try:
+        text = path.read_text(encoding="latin-1")
+    except OSError as exc:
+        raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
+    if "\x00" in text[:4096]:
+        raise MeshError("not a Nastran bulk-data text file (binary content)", file=str(path))
+    lines = text.splitlines()
+    start = 0
+    for i, ln in enumerate(lines):
+        if ln.lstrip().upper().startswith("BEGIN BULK"):
+            start = i + 1
+            break
+    cards: list[Card] = []
+    current: Card | None = None
+    for i in range(start, len(lines)):
+        s = lines[i].split("$", 1)[0].rstrip()
+        if not s.strip():
+            continue
+        if "\t" in s:
+            s = s.expandtabs(8)
+        head = s.lstrip().upper()
+        if head.startswith("ENDDATA"):
+            break
+        if head.startswith("INCLUDE"):
+            current = None
+            target = _include_target(s, path, i + 1)
+            cards.extend(read_cards(target, _stack=_stack + (path.resolve(),)))
+            continue
+        first, data = _split(s)
+        if first == "" or first[0] in "+*":
+            if current is None:
+                raise MeshError("continuation line without a preceding card",
+                                file=str(path), line=i + 1)
+            current.fields.extend(data)
+            continue
+        current = Card(first.rstrip("*").upper(), data, str(path), i + 1)
+        cards.append(current)
+    for c in cards:
+        while c.fields and not c.fields[-1]:
+            c.fields.pop()
+    return cards

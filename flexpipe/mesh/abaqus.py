@@ -1,0 +1,457 @@
+"""Abaqus input deck (``.inp``) reader: a small dedicated parser.
+
+Keywords read
+-------------
+``*NODE`` (``NSET=``), ``*ELEMENT`` (``TYPE=``, ``ELSET=``), ``*NSET``/``*ELSET``
+(lists, set names, ``GENERATE``), ``*SOLID SECTION``, ``*SHELL SECTION`` (thickness),
+``*BEAM GENERAL SECTION`` (``SECTION=GENERAL``: A, I11, I12, I22, J; n1; E, G;
+``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``; n1),
+``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``, ``MASS``/``ROTARYI``
+elements with ``*MASS``/``*ROTARY INERTIA``, ``*KINEMATIC COUPLING`` (a rigid spider,
+like Nastran RBE2), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
+positioning.  Reading stops at the first ``*STEP``.
+
+Element types: ``C3D4*`` -> tetra, ``C3D10*`` -> tetra10, ``C3D8*`` -> hexahedron,
+``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad, ``B31*``/``B33*`` -> line (beam local
+1-axis = Abaqus n1 = flexpipe local y).  Every ``*ELSET`` is a cell set, every
+``*NSET`` a node set; sections are stored under their ``ELSET`` name.  Other element
+types and constraints (``*MPC``, ``*TIE``, ``*EQUATION``, ``*COUPLING``) raise
+:class:`~flexpipe.errors.MeshError`: dropping them would change the structure.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import MeshError
+from flexpipe.mesh._bulk import parse_real
+from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
+from flexpipe.mesh.validate import MeshWarning
+
+_TYPES = {"tetra": ("C3D4", "C3D4H"),
+          "tetra10": ("C3D10", "C3D10H", "C3D10M", "C3D10MH", "C3D10I", "C3D10HS"),
+          "hexahedron": ("C3D8", "C3D8R", "C3D8I", "C3D8H", "C3D8RH", "C3D8IH"),
+          "triangle": ("S3", "S3R", "S3RS", "STRI3"),
+          "quad": ("S4", "S4R", "S4RS", "S4R5", "S4RSW"),
+          "line": ("B31", "B31H", "B33", "B33H"),
+          "mass": ("MASS", "ROTARYI")}
+TYPE_OF = {a: t for t, names in _TYPES.items() for a in names}
+NODES = {"tetra": 4, "tetra10": 10, "hexahedron": 8, "triangle": 3, "quad": 4, "line": 2,
+         "mass": 1}
+UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "COUPLING", "DISTRIBUTING COUPLING",
+                        "RIGID BODY", "MEMBRANE SECTION", "CONNECTOR SECTION")
+
+
+class _Lines:
+    """Iterator over (file, line number, text) with ``*INCLUDE`` inlined."""
+
+    def __init__(self, path: Path):
+        self.items: list[tuple[str, int, str]] = []
+        self._load(Path(path), ())
+        self.pos = 0
+
+    def _load(self, path: Path, stack):
+        if path.resolve() in stack:
+            raise MeshError("*INCLUDE loop: the file includes itself", file=str(path))
+        try:
+            text = path.read_text(encoding="latin-1")
+        except OSError as exc:
+            raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
+        if "\x00" in text[:4096]:
+            raise MeshError("not an Abaqus input text file (binary content)", file=str(path))
+        for i, ln in enumerate(text.splitlines()):
+            s = ln.strip()
+            if not s or s.startswith("**"):
+                continue
+            if s.upper().startswith("*INCLUDE"):
+                params = _params(s)
+                name = params.get("INPUT")
+                if not name:
+                    raise MeshError("*INCLUDE needs INPUT=file", file=str(path), line=i + 1)
+                target = Path(name) if Path(name).is_absolute() else path.parent / name
+                if not target.is_file():
+                    raise MeshError(f"*INCLUDE file '{name}' not found", file=str(path),
+                                    line=i + 1)
+                self._load(target, stack + (path.resolve(),))
+                continue
+            self.items.append((str(path), i + 1, s))
+
+    def data(self):
+        """Consume and yield the data lines up to the next keyword line."""
+        while self.pos < len(self.items) and not self.items[self.pos][2].startswith("*"):
+            yield self.items[self.pos]
+            self.pos += 1
+
+
+def _params(line: str) -> dict[str, str]:
+    out = {}
+    for part in line.split(",")[1:]:
+        if not part.strip():
+            continue
+        k, _, v = part.partition("=")
+        out[k.strip().upper()] = v.strip().strip('"')
+    return out
+
+
+def _values(file, line, text, what, *, count=None):
+    vals = [v.strip() for v in text.split(",")]
+    while vals and not vals[-1]:
+        vals.pop()
+    out = []
+    for v in vals:
+        x = parse_real(v) if v else 0.0
+        if x is None:
+            raise MeshError(f"{what}: '{v}' is not a number", file=file, line=line)
+        out.append(x)
+    if count is not None and len(out) < count:
+        raise MeshError(f"{what}: expected {count} values, got {len(out)}", file=file, line=line)
+    return out
+
+
+class _Deck:
+    def __init__(self, path: Path):
+        self.path = path
+        self.node_ids, self.coords, self.node_where = [], [], []
+        self.eids = defaultdict(list)
+        self.conn = defaultdict(list)
+        self.ewhere = defaultdict(list)
+        self.nsets: dict[str, list] = {}
+        self.elsets: dict[str, list] = {}
+        self.sections = []      # (elset, props, material, n1, file, line)
+        self.materials: dict[str, dict] = {}
+        self.masses = []        # (elset, mass, file, line)
+        self.inertias = []      # (elset, 3x3, file, line)
+        self.couplings = []     # (ref node id, [(node or set, first, last)], file, line)
+        self.instances = 0
+
+    def set_key(self, table: dict, name: str):
+        name = name.split(".")[-1]
+        for k in table:
+            if k.upper() == name.upper():
+                return k
+        return None
+
+
+def _members(deck, table, params, lines, what):
+    out = []
+    gen = "GENERATE" in params
+    for f, ln, text in lines.data():
+        toks = [t.strip() for t in text.split(",") if t.strip()]
+        if gen:
+            try:
+                a, b, *step = (int(t) for t in toks)
+            except ValueError:
+                raise MeshError(f"{what} GENERATE: expected 'first, last[, step]' integers, "
+                                f"got '{text}'", file=f, line=ln) from None
+            out.extend(range(a, b + 1, step[0] if step else 1))
+            continue
+        for tok in toks:
+            if tok.lstrip("-").isdigit():
+                out.append(int(tok))
+                continue
+            key = deck.set_key(table, tok)
+            if key is None:
+                raise MeshError(f"{what} refers to set '{tok}', which is not defined "
+                                "(before this line)", file=f, line=ln)
+            out.extend(table[key])
+    return out
+
+
+def _beam_section(params, lines, f, ln):
+    rows = [(lf, lln, t) for lf, lln, t in lines.data()]
+    if not rows:
+        raise MeshError("beam section without data lines", file=f, line=ln)
+    sec = params.get("SECTION", "GENERAL").upper()
+    v = _values(*rows[0], "beam section dimensions")
+    props, mat = {}, None
+    if sec == "GENERAL":
+        A, I11, I12, I22, J = (v + [0.0] * 5)[:5]
+        if I12:
+            warnings.warn(MeshWarning(f"{f} line {ln}: product of inertia I12 ignored"),
+                          stacklevel=4)
+        props = {"A": A, "Iy": I11, "Iz": I22, "J": J}
+        if len(rows) > 2:
+            E, G = (_values(*rows[2], "beam E, G") + [0.0, 0.0])[:2]
+            rho = parse_real(params.get("DENSITY", "0")) or 0.0
+            props.update(E=E, nu=E / (2 * G) - 1 if G else 0.3, rho=rho)
+    elif sec == "RECT":
+        a, b = (v + [0.0, 0.0])[:2]
+        lo, hi = min(a, b), max(a, b)
+        J = hi * lo**3 * (1 / 3 - 0.21 * lo / hi * (1 - lo**4 / (12 * hi**4)))
+        props = {"A": a * b, "Iy": a * b**3 / 12, "Iz": b * a**3 / 12, "J": J}
+    elif sec in ("CIRC", "PIPE"):
+        r = v[0]
+        ri = r - v[1] if sec == "PIPE" else 0.0
+        I = np.pi * (r**4 - ri**4) / 4
+        props = {"A": np.pi * (r**2 - ri**2), "Iy": I, "Iz": I, "J": 2 * I}
+    else:
+        raise MeshError(f"beam SECTION={sec} is not supported; use GENERAL, RECT, CIRC or PIPE",
+                        file=f, line=ln)
+    if sec != "GENERAL":
+        mat = params.get("MATERIAL")
+    n1 = _values(*rows[1], "beam n1 direction")[:3] if len(rows) > 1 else None
+    return props, mat, n1
+
+
+def _parse(path: Path) -> _Deck:
+    deck = _Deck(path)
+    lines = _Lines(path)
+    material = None
+    while lines.pos < len(lines.items):
+        f, ln, text = lines.items[lines.pos]
+        lines.pos += 1
+        if not text.startswith("*"):
+            raise MeshError(f"data line outside a keyword block: '{text[:40]}'", file=f, line=ln)
+        kw = text[1:].split(",")[0].strip().upper()
+        p = _params(text)
+        if kw == "STEP":
+            break
+        if kw == "NODE":
+            start = len(deck.node_ids)
+            for lf, lln, t in lines.data():
+                v = _values(lf, lln, t, "*NODE line", count=3)
+                deck.node_ids.append(int(v[0]))
+                deck.coords.append((v[1:4] + [0.0])[:3])
+                deck.node_where.append((lf, lln))
+            if "NSET" in p:
+                deck.nsets.setdefault(p["NSET"], []).extend(deck.node_ids[start:])
+        elif kw == "ELEMENT":
+            etype = p.get("TYPE", "").upper()
+            if etype not in TYPE_OF:
+                raise MeshError(
+                    f"element type '{etype}' is not supported; supported: "
+                    f"{', '.join(sorted(TYPE_OF))}", file=f, line=ln)
+            t = TYPE_OF[etype]
+            buf, first = [], None
+            new = []
+            for lf, lln, dt in lines.data():
+                try:
+                    buf += [int(x) for x in dt.split(",") if x.strip()]
+                except ValueError:
+                    raise MeshError(f"element line '{dt[:60]}' must hold integer ids",
+                                    file=lf, line=lln) from None
+                first = first or (lf, lln)
+                if len(buf) >= NODES[t] + 1:
+                    deck.eids[t].append(buf[0])
+                    deck.conn[t].append(buf[1:NODES[t] + 1])
+                    deck.ewhere[t].append(first)
+                    new.append(buf[0])
+                    buf, first = [], None
+            if buf:
+                raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has {len(buf) - 1} "
+                                f"nodes, expected {NODES[t]}", file=first[0], line=first[1])
+            if "ELSET" in p:
+                deck.elsets.setdefault(p["ELSET"], []).extend(new)
+        elif kw in ("NSET", "ELSET"):
+            table = deck.nsets if kw == "NSET" else deck.elsets
+            name = p.get(kw)
+            if not name:
+                raise MeshError(f"*{kw} needs {kw}=name", file=f, line=ln)
+            if kw == "NSET" and "ELSET" in p:
+                raise MeshError("*NSET with ELSET= is not supported; list the nodes", file=f,
+                                line=ln)
+            key = deck.set_key(table, name) or name
+            table.setdefault(key, []).extend(_members(deck, table, p, lines, f"*{kw} {name}"))
+        elif kw in ("SOLID SECTION", "SHELL SECTION"):
+            rows = list(lines.data())
+            props = {}
+            if kw == "SHELL SECTION":
+                if not rows:
+                    raise MeshError("*SHELL SECTION needs a data line with the thickness",
+                                    file=f, line=ln)
+                props["thickness"] = _values(*rows[0], "shell thickness", count=1)[0]
+            deck.sections.append((p.get("ELSET"), props, p.get("MATERIAL"), None, f, ln))
+        elif kw in ("BEAM GENERAL SECTION", "BEAM SECTION"):
+            props, mat, n1 = _beam_section(p, lines, f, ln)
+            deck.sections.append((p.get("ELSET"), props, mat, n1, f, ln))
+        elif kw == "MATERIAL":
+            material = p.get("NAME", "")
+            deck.materials[material.upper()] = {}
+        elif kw == "ELASTIC":
+            if p.get("TYPE", "ISOTROPIC").upper() != "ISOTROPIC":
+                raise MeshError(f"*ELASTIC TYPE={p['TYPE']} is not supported (isotropic only)",
+                                file=f, line=ln)
+            rows = list(lines.data())
+            E, nu = _values(*rows[0], "*ELASTIC E, nu", count=2)[:2]
+            deck.materials.setdefault((material or "").upper(), {}).update(E=E, nu=nu)
+        elif kw == "DENSITY":
+            rows = list(lines.data())
+            rho = _values(*rows[0], "*DENSITY", count=1)[0]
+            deck.materials.setdefault((material or "").upper(), {}).update(rho=rho)
+        elif kw == "MASS":
+            rows = list(lines.data())
+            deck.masses.append((p.get("ELSET"), _values(*rows[0], "*MASS", count=1)[0], f, ln))
+        elif kw == "ROTARY INERTIA":
+            rows = list(lines.data())
+            v = (_values(*rows[0], "*ROTARY INERTIA", count=3) + [0.0] * 3)[:6]
+            I = np.array([[v[0], v[3], v[4]], [v[3], v[1], v[5]], [v[4], v[5], v[2]]])
+            deck.inertias.append((p.get("ELSET"), I, f, ln))
+        elif kw == "KINEMATIC COUPLING":
+            ref = p.get("REF NODE")
+            if not ref or not ref.isdigit():
+                raise MeshError("*KINEMATIC COUPLING needs REF NODE=<node id>", file=f, line=ln)
+            rows = []
+            for lf, lln, t in lines.data():
+                tok = [x.strip() for x in t.split(",")]
+                first = int(tok[1]) if len(tok) > 1 and tok[1] else 1
+                last = int(tok[2]) if len(tok) > 2 and tok[2] else (first if len(tok) > 1
+                                                                    and tok[1] else 6)
+                rows.append((tok[0], first, last, lf, lln))
+            deck.couplings.append((int(ref), rows, f, ln))
+        elif kw == "INSTANCE":
+            deck.instances += 1
+            if deck.instances > 1 or list(lines.data()):
+                raise MeshError("several or positioned *INSTANCEs are not supported; write the "
+                                "deck flat (Abaqus: input file without parts and assemblies)",
+                                file=f, line=ln)
+        elif kw in UNSUPPORTED_KEYWORDS:
+            raise MeshError(f"*{kw} is not supported (only *KINEMATIC COUPLING rigid spiders "
+                            "are); remove or convert it", file=f, line=ln)
+        else:
+            for _ in lines.data():
+                pass
+    return deck
+
+
+def _dup(ids, where, what):
+    ids = np.asarray(ids, dtype=np.int64)
+    order = np.argsort(ids, kind="stable")
+    d = np.flatnonzero(ids[order][1:] == ids[order][:-1])
+    if d.size:
+        a, b = where[order[d[0]]], where[order[d[0] + 1]]
+        raise MeshError(f"{what} {int(ids[order[d[0]]])} is defined twice: "
+                        f"{Path(a[0]).name} line {a[1]} and {Path(b[0]).name} line {b[1]}",
+                        file=b[0], line=b[1])
+
+
+def read_abaqus(path) -> Mesh:
+    """Read an Abaqus ``.inp`` deck into a :class:`Mesh` (units of the file)."""
+    path = Path(path)
+    deck = _parse(path)
+    if not deck.node_ids:
+        raise MeshError("no *NODE data found: not an Abaqus input deck?", file=str(path))
+    gid = np.asarray(deck.node_ids, dtype=np.int64)
+    _dup(gid, deck.node_where, "node")
+    sorter = np.argsort(gid, kind="stable")
+
+    def index(ids, where, what):
+        ids = np.asarray(ids, dtype=np.int64)
+        pos = np.clip(np.searchsorted(gid, ids.ravel(), sorter=sorter), 0, len(gid) - 1)
+        idx = sorter[pos]
+        bad = np.flatnonzero(gid[idx] != ids.ravel())
+        if bad.size:
+            k = int(bad[0])
+            w = where(k)
+            raise MeshError(f"{what} refers to node {int(ids.ravel()[k])}, which is not "
+                            "defined", file=w[0], line=w[1])
+        return idx.reshape(ids.shape)
+
+    all_e = [(e, t, k) for t in deck.eids for k, e in enumerate(deck.eids[t])]
+    _dup([a[0] for a in all_e], [deck.ewhere[t][k] for _, t, k in all_e], "element")
+    where_e = {e: (t, k) for e, t, k in all_e}
+    blocks, bi_of = [], {}
+    for t in deck.eids:
+        if t == "mass":
+            continue
+        nn = NODES[t]
+        conn = index(deck.conn[t], lambda k, t=t, nn=nn: deck.ewhere[t][k // nn],
+                     f"a {t} element")
+        bi_of[t] = len(blocks)
+        blocks.append([t, conn, np.asarray(deck.eids[t], dtype=np.int64)])
+
+    def cells_of(name, f, ln, what):
+        key = deck.set_key(deck.elsets, name or "")
+        if key is None:
+            raise MeshError(f"{what} refers to ELSET '{name}', which is not defined", file=f,
+                            line=ln)
+        out = defaultdict(list)
+        for e in deck.elsets[key]:
+            if e not in where_e:
+                raise MeshError(f"ELSET '{key}' lists element {e}, which is not defined",
+                                file=f, line=ln)
+            out[where_e[e][0]].append(where_e[e][1])
+        return key, out
+
+    cell_sets = {}
+    for name in deck.elsets:
+        _, members = cells_of(name, str(path), None, "set")
+        cell_sets[name] = {bi_of[t]: np.unique(v) for t, v in members.items() if t in bi_of}
+    node_sets = {name: index(ids, lambda k: (str(path), None), f"NSET '{name}'")
+                 for name, ids in deck.nsets.items()}
+    sections, orient = {}, {}
+    for elset, props, mat, n1, f, ln in deck.sections:
+        key, members = cells_of(elset, f, ln, "section")
+        sec = dict(props)
+        if mat:
+            m = deck.materials.get(mat.upper())
+            if m is None:
+                raise MeshError(f"section refers to material '{mat}', which is not defined",
+                                file=f, line=ln)
+            if "E" not in m:
+                raise MeshError(f"material '{mat}' has no *ELASTIC data", file=f, line=ln)
+            sec.update(E=m["E"], nu=m["nu"], rho=m.get("rho", 0.0))
+        sections[key] = sec
+        if n1 is not None and "line" in members:
+            orient.update({c: n1 for c in members["line"]})
+    masses = _masses(deck, cells_of, index, where_e)
+    links = _couplings(deck, index)
+    out_blocks = []
+    for t, conn, eids in blocks:
+        data = {}
+        if t == "line":
+            ori = np.full((len(eids), 3), np.nan)
+            for c, v in orient.items():
+                ori[c] = v
+            data["orientation"] = ori
+        out_blocks.append(CellBlock(t, conn, eids, np.zeros(len(eids), np.int64), data))
+    return Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
+                node_ids=gid, node_sets=node_sets, cell_sets=cell_sets, point_masses=masses,
+                rigid_links=links, sections=sections, source=str(path))
+
+
+def _masses(deck, cells_of, index, where_e):
+    out = []
+    for kind, items in (("mass", deck.masses), ("inertia", deck.inertias)):
+        for elset, value, f, ln in items:
+            _, members = cells_of(elset, f, ln, f"*{kind.upper()}")
+            for k in members.get("mass", []):
+                node = int(index([deck.conn["mass"][k][0]], lambda _: (f, ln), "*MASS")[0])
+                eid = deck.eids["mass"][k]
+                if kind == "mass":
+                    out.append(PointMass(node, float(value), id=eid))
+                else:
+                    out.append(PointMass(node, 0.0, inertia=value, id=eid))
+    return tuple(out)
+
+
+def _couplings(deck, index):
+    links = []
+    for ref, rows, f, ln in deck.couplings:
+        master = int(index([ref], lambda _: (f, ln), "*KINEMATIC COUPLING REF NODE")[0])
+        by_dofs = defaultdict(list)
+        for tok, first, last, lf, lln in rows:
+            if tok.isdigit():
+                nodes = [int(tok)]
+            else:
+                key = deck.set_key(deck.nsets, tok)
+                if key is None:
+                    raise MeshError(f"*KINEMATIC COUPLING refers to NSET '{tok}', which is "
+                                    "not defined", file=lf, line=lln)
+                nodes = deck.nsets[key]
+            dofs = "".join(str(d) for d in range(first, last + 1))
+            by_dofs[dofs].extend(nodes)
+        node_dofs = defaultdict(str)
+        for dofs, nodes in by_dofs.items():
+            for n in nodes:
+                node_dofs[n] = "".join(sorted(set(node_dofs[n] + dofs)))
+        groups = defaultdict(list)
+        for n, dofs in node_dofs.items():
+            groups[dofs].append(n)
+        for dofs, nodes in groups.items():
+            slaves = index(nodes, lambda _: (f, ln), "*KINEMATIC COUPLING")
+            links.append(RigidLink(master, slaves, dofs, 0))
+    return tuple(links)

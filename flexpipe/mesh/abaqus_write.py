@@ -1,0 +1,147 @@
+"""Abaqus ``.inp`` writer (the keywords :mod:`flexpipe.mesh.abaqus` reads).
+
+Nodes, elements (C3D4, C3D10, C3D8, S3, S4, B31), every node and cell set as
+``*NSET``/``*ELSET``, sections with their materials, point masses (``MASS``/``ROTARYI``
+elements) and rigid links (``*KINEMATIC COUPLING``).  Reals are written with 17
+significant digits, so a round trip is exact.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from flexpipe.mesh._common import cell_section_index, default_orientation, unique_ids
+from flexpipe.mesh.mesh import Mesh
+from flexpipe.mesh.validate import MeshWarning
+
+ELEMENT_OF = {"tetra": "C3D4", "tetra10": "C3D10", "hexahedron": "C3D8", "triangle": "S3",
+              "quad": "S4", "line": "B31"}
+KIND = {"tetra": "solid", "tetra10": "solid", "hexahedron": "solid", "triangle": "shell",
+        "quad": "shell", "line": "beam"}
+
+
+def _r(x) -> str:
+    return repr(float(x))
+
+
+def _id_lines(ids, per=16) -> list[str]:
+    ids = [str(int(i)) for i in ids]
+    return [", ".join(ids[k:k + per]) for k in range(0, len(ids), per)]
+
+
+def _section_groups(mesh: Mesh, eids_of_block):
+    """(elset name, kind, section name, element ids, n1) for every distinct section use."""
+    sec_idx = cell_section_index(mesh)
+    names = list(mesh.sections)
+    groups = []
+    for s, name in enumerate(names):
+        parts = []
+        for bi, b in enumerate(mesh.blocks):
+            if b.type not in KIND:
+                continue
+            cells = np.flatnonzero(sec_idx[bi] == s)
+            if cells.size == 0:
+                continue
+            if b.type == "line":
+                ori = np.asarray(b.data.get("orientation", np.full((len(b), 3), np.nan)), float)
+                ori = ori[cells]
+                miss = ~np.isfinite(ori).all(axis=1)
+                ori[miss] = default_orientation(mesh.points[b.cells[cells[miss]]])
+                uniq, inv = np.unique(np.round(ori, 15), axis=0, return_inverse=True)
+                for k in range(len(uniq)):
+                    parts.append(("beam", eids_of_block[bi][cells[inv.ravel() == k]],
+                                  ori[inv.ravel() == k][0]))
+            else:
+                parts.append((KIND[b.type], eids_of_block[bi][cells], None))
+        kinds = {}
+        for kind, e, n1 in parts:
+            kinds.setdefault(kind, []).append((e, n1))
+        whole = sum(len(mesh.cell_sets[name].get(bi, ())) for bi in range(len(mesh.blocks)))
+        for kind, items in kinds.items():
+            for j, (e, n1) in enumerate(items):
+                single = len(kinds) == 1 and len(items) == 1 and len(e) == whole
+                groups.append((name if single else f"{name}_{kind}{j + 1}", kind, name, e, n1))
+    return groups
+
+
+def abaqus_text(mesh: Mesh) -> str:
+    """Abaqus input text of ``mesh``."""
+    out = ["*HEADING", f"written by flexpipe from {mesh.source or 'an in-memory mesh'}"]
+    nid = unique_ids(mesh.node_ids)
+    out.append("*NODE")
+    out += [f"{int(nid[i])}, {_r(x)}, {_r(y)}, {_r(z)}" for i, (x, y, z) in enumerate(mesh.points)]
+    all_ids = unique_ids(np.concatenate([b.ids for b in mesh.blocks] + [np.zeros(0, np.int64)]))
+    eids_of_block, start = [], 0
+    for b in mesh.blocks:
+        eids_of_block.append(all_ids[start:start + len(b)])
+        start += len(b)
+    for bi, b in enumerate(mesh.blocks):
+        if b.type == "vertex":
+            warnings.warn(MeshWarning("vertex cells are not written to Abaqus"), stacklevel=3)
+            continue
+        out.append(f"*ELEMENT, TYPE={ELEMENT_OF[b.type]}")
+        conn = nid[b.cells]
+        out += [", ".join(str(int(v)) for v in (eids_of_block[bi][k], *conn[k]))
+                for k in range(len(b))]
+    next_eid = int(all_ids.max(initial=0)) + 1
+    for name, idx in mesh.node_sets.items():
+        out.append(f"*NSET, NSET={name}")
+        out += _id_lines(nid[idx])
+    for name, members in mesh.cell_sets.items():
+        ids = np.concatenate([eids_of_block[bi][c] for bi, c in members.items()
+                              if mesh.blocks[bi].type != "vertex"] + [np.zeros(0, np.int64)])
+        out.append(f"*ELSET, ELSET={name}")
+        out += _id_lines(ids)
+    materials = {}
+    for elset, kind, name, e, n1 in _section_groups(mesh, eids_of_block):
+        sec = mesh.sections[name]
+        if elset != name:
+            out.append(f"*ELSET, ELSET={elset}")
+            out += _id_lines(e)
+        mat = None
+        if all(k in sec for k in ("E", "nu", "rho")):
+            key = (float(sec["E"]), float(sec["nu"]), float(sec["rho"]))
+            mat = materials.setdefault(key, f"MAT{len(materials) + 1}")
+        mpar = f", MATERIAL={mat}" if mat else ""
+        if kind == "solid":
+            out.append(f"*SOLID SECTION, ELSET={elset}{mpar}")
+        elif kind == "shell" and "thickness" in sec:
+            out.append(f"*SHELL SECTION, ELSET={elset}{mpar}")
+            out.append(_r(sec["thickness"]))
+        elif kind == "beam" and all(k in sec for k in ("A", "Iy", "Iz", "J")):
+            dens = f", DENSITY={_r(sec['rho'])}" if mat else ""
+            out.append(f"*BEAM GENERAL SECTION, ELSET={elset}, SECTION=GENERAL{dens}")
+            out.append(f"{_r(sec['A'])}, {_r(sec['Iy'])}, 0., {_r(sec['Iz'])}, {_r(sec['J'])}")
+            out.append(", ".join(_r(v) for v in n1))
+            if mat:
+                E, nu = float(sec["E"]), float(sec["nu"])
+                out.append(f"{_r(E)}, {_r(E / (2 * (1 + nu)))}")
+    for (E, nu, rho), name in materials.items():
+        out += [f"*MATERIAL, NAME={name}", "*ELASTIC", f"{_r(E)}, {_r(nu)}", "*DENSITY", _r(rho)]
+    for pm in mesh.point_masses:
+        if np.any(np.asarray(pm.offset) != 0):
+            warnings.warn(MeshWarning(f"point mass {pm.id}: Abaqus MASS elements have no "
+                                      "offset; the offset is not written"), stacklevel=3)
+        eid = next_eid
+        next_eid += 2
+        out += [f"*ELEMENT, TYPE=MASS, ELSET=PM{eid}", f"{eid}, {int(nid[pm.node])}",
+                f"*MASS, ELSET=PM{eid}", _r(pm.mass)]
+        I = np.asarray(pm.inertia, dtype=float)
+        if np.any(I):
+            out += [f"*ELEMENT, TYPE=ROTARYI, ELSET=PI{eid + 1}",
+                    f"{eid + 1}, {int(nid[pm.node])}", f"*ROTARY INERTIA, ELSET=PI{eid + 1}",
+                    ", ".join(_r(v) for v in (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2],
+                                              I[1, 2]))]
+    for lk in mesh.rigid_links:
+        out.append(f"*KINEMATIC COUPLING, REF NODE={int(nid[lk.master])}")
+        digits = sorted(int(c) for c in lk.dofs)
+        runs, s0 = [], digits[0]
+        for a, b in zip(digits, digits[1:] + [None], strict=True):
+            if b != a + 1:
+                runs.append((s0, a))
+                s0 = b
+        for s in np.asarray(lk.slaves):
+            out += [f"{int(nid[s])}, {a}, {b}" for a, b in runs]
+    return "\n".join(out) + "\n"

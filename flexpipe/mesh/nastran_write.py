@@ -1,0 +1,168 @@
+"""Nastran bulk-data writer (the cards :mod:`flexpipe.mesh.nastran` reads).
+
+Integers go in small-field (8 character) cards; cards with reals use large field
+(16 characters) with up to 13 significant digits, so a round trip changes coordinates by
+at most ~1e-13 relative.  Named node/cell sets other than the property ids have no place
+in bulk data and are not written.
+"""
+
+from __future__ import annotations
+
+import re
+import warnings
+
+import numpy as np
+
+from flexpipe.mesh._common import cell_section_index, default_orientation, unique_ids
+from flexpipe.mesh.mesh import Mesh
+from flexpipe.mesh.validate import MeshWarning
+
+CARD_OF = {"tetra": "CTETRA", "tetra10": "CTETRA", "hexahedron": "CHEXA",
+           "triangle": "CTRIA3", "quad": "CQUAD4", "line": "CBAR"}
+_PID = re.compile(r"^PID(\d+)$")
+
+
+def real16(x: float) -> str:
+    """Most precise Nastran real that fits 16 characters."""
+    x = float(x)
+    if x == 0.0:
+        return "0."
+    s = repr(x)
+    if "e" not in s and len(s) <= 16:
+        return s if "." in s else s + "."
+    for p in range(15, 0, -1):
+        m, e = f"{x:.{p}e}".split("e")
+        t = f"{m}{int(e):+d}"
+        if len(t) <= 16:
+            return t
+    raise ValueError(f"cannot format {x} in 16 characters")
+
+
+def _field(v, width):
+    if v is None:
+        return ""
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, str):
+        return v
+    return real16(v)
+
+
+def card(name: str, values) -> str:
+    """Format one card: small field when every value fits 8 characters, else large field."""
+    strs = [_field(v, 16) for v in values]
+    small = all(len(s) <= 8 for s in strs) and not any(
+        isinstance(v, float) for v in values)
+    per, width = (8, 8) if small else (4, 16)
+    head = name if small else name + "*"
+    lines = []
+    for k in range(0, max(len(strs), 1), per):
+        chunk = strs[k:k + per]
+        lead = head if k == 0 else ("+" if small else "*")
+        lines.append(f"{lead:<8}" + "".join(f"{s:>{width}}" for s in chunk))
+    return "\n".join(line.rstrip() for line in lines) + "\n"
+
+
+def _property_ids(mesh: Mesh):
+    """PID per cell per block and the section name of each PID."""
+    sec_idx = cell_section_index(mesh)
+    names = list(mesh.sections)
+    used = {int(t) for b in mesh.blocks for t in b.tags if t > 0}
+    for n in names:
+        m = _PID.match(n)
+        if m:
+            used.add(int(m.group(1)))
+    nxt = max(used, default=0) + 1
+    pid_of: dict = {}
+    section_of_pid: dict = {}
+    kind_of_pid: dict = {}
+    out = []
+    for b, sidx in zip(mesh.blocks, sec_idx, strict=True):
+        pids = np.zeros(len(b), dtype=np.int64)
+        kind = "solid" if b.type in ("tetra", "tetra10", "hexahedron") else b.type
+        kind = "shell" if b.type in ("triangle", "quad") else kind
+        for key in {(int(t), int(s)) for t, s in zip(b.tags, sidx, strict=True)}:
+            full = (kind,) + key
+            if full not in pid_of:
+                tag, s = key
+                m = _PID.match(names[s]) if s >= 0 else None
+                cand = int(m.group(1)) if m else tag
+                if cand > 0 and cand not in pid_of.values():
+                    pid_of[full] = cand
+                else:
+                    pid_of[full] = nxt
+                    nxt += 1
+                section_of_pid[pid_of[full]] = names[s] if s >= 0 else None
+                kind_of_pid[pid_of[full]] = kind
+            sel = (b.tags == key[0]) & (sidx == key[1])
+            pids[sel] = pid_of[full]
+        out.append(pids)
+    return out, section_of_pid, kind_of_pid
+
+
+def nastran_text(mesh: Mesh) -> str:
+    """Bulk-data text of ``mesh`` (values as stored: SI for a mesh read by flexpipe)."""
+    parts = [f"$ written by flexpipe from {mesh.source or 'an in-memory mesh'}\n"]
+    nid = unique_ids(mesh.node_ids)
+    for i, (x, y, z) in enumerate(mesh.points):
+        parts.append(card("GRID", [int(nid[i]), None, float(x), float(y), float(z)]))
+    blocks = [b for b in mesh.blocks if b.type != "vertex"]
+    if len(blocks) < len(mesh.blocks):
+        warnings.warn(MeshWarning("vertex cells have no Nastran card and are not written"),
+                      stacklevel=3)
+    n_cells = sum(len(b) for b in blocks)
+    eids = unique_ids(np.concatenate(
+        [b.ids for b in blocks]
+        + [np.array([pm.id for pm in mesh.point_masses], dtype=np.int64),
+           np.array([lk.id for lk in mesh.rigid_links], dtype=np.int64)]))
+    pids, section_of_pid, kind_of_pid = _property_ids(mesh)
+    start = 0
+    for bi, b in enumerate(mesh.blocks):
+        if b.type == "vertex":
+            continue
+        e = eids[start:start + len(b)]
+        start += len(b)
+        conn = nid[b.cells]
+        if b.type == "line":
+            ori = np.asarray(b.data.get("orientation", np.full((len(b), 3), np.nan)), float)
+            miss = ~np.isfinite(ori).all(axis=1)
+            ori[miss] = default_orientation(mesh.points[b.cells[miss]])
+            for k in range(len(b)):
+                parts.append(card("CBAR", [int(e[k]), int(pids[bi][k]), *map(int, conn[k]),
+                                           *map(float, ori[k])]))
+        else:
+            name = CARD_OF[b.type]
+            for k in range(len(b)):
+                parts.append(card(name, [int(e[k]), int(pids[bi][k]), *map(int, conn[k])]))
+    mids: dict = {}
+    for pid in sorted(section_of_pid):
+        sec = mesh.sections.get(section_of_pid[pid] or "", {})
+        mid = None
+        if all(k in sec for k in ("E", "nu", "rho")):
+            key = (float(sec["E"]), float(sec["nu"]), float(sec["rho"]))
+            mid = mids.setdefault(key, len(mids) + 1)
+        kind = kind_of_pid[pid]
+        if kind == "solid":
+            parts.append(card("PSOLID", [pid, mid]))
+        elif kind == "shell":
+            t = sec.get("thickness")
+            parts.append(card("PSHELL", [pid, mid, None if t is None else float(t), mid]))
+        elif kind == "line" and all(k in sec for k in ("A", "Iy", "Iz", "J")):
+            parts.append(card("PBAR", [pid, mid, float(sec["A"]), float(sec["Iz"]),
+                                       float(sec["Iy"]), float(sec["J"])]))
+    for (E, nu, rho), mid in mids.items():
+        parts.append(card("MAT1", [mid, E, None, nu, rho]))
+    for k, pm in enumerate(mesh.point_masses):
+        I = np.asarray(pm.inertia, dtype=float)
+        parts.append(card("CONM2", [int(eids[n_cells + k]), int(nid[pm.node]), 0,
+                                    float(pm.mass), *map(float, pm.offset), None,
+                                    float(I[0, 0]), float(-I[1, 0]), float(I[1, 1]),
+                                    float(-I[2, 0]), float(-I[2, 1]), float(I[2, 2])]))
+    off = n_cells + len(mesh.point_masses)
+    for k, lk in enumerate(mesh.rigid_links):
+        parts.append(card("RBE2", [int(eids[off + k]), int(nid[lk.master]), lk.dofs,
+                                   *map(int, nid[np.asarray(lk.slaves)])]))
+    if mesh.node_sets or any(not _PID.match(n) for n in mesh.cell_sets):
+        warnings.warn(MeshWarning("named node/cell sets are not written to Nastran bulk data "
+                                  "(only property ids are)"), stacklevel=3)
+    return "".join(parts)

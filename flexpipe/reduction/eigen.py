@@ -1,0 +1,126 @@
+"""Eigen-solves and factorizations shared by the reduction methods.
+
+Dense LAPACK for small matrices, one sparse factorization reused for every solve for
+large ones.  The lowest modes of a large model come from shift-invert Lanczos
+(ARPACK) driven by that factor.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from flexpipe.errors import InputError, ModelError
+from flexpipe.fem.solver import factorize
+
+#: problems up to this many DOF are solved with dense LAPACK
+DENSE_LIMIT = 400
+#: default shift (rad/s)^2 for free structures: below every eigenvalue (rigid modes at 0)
+FREE_SIGMA = -(2 * np.pi * 1.0) ** 2
+
+
+class _DenseFactor:
+    """Cholesky factor of a dense SPD matrix with the sparse ``Factor`` interface."""
+
+    backend = "lapack"
+
+    def __init__(self, A):
+        self.shape = A.shape
+        try:
+            self._c = sla.cho_factor(np.asarray(A, dtype=float), lower=True,
+                                     check_finite=True)
+        except np.linalg.LinAlgError as exc:
+            raise ModelError(f"matrix is not positive definite ({exc})") from None
+
+    def solve(self, b):
+        return sla.cho_solve(self._c, np.asarray(b, dtype=float))
+
+    def as_operator(self):
+        return spla.LinearOperator(self.shape, matvec=self.solve, matmat=self.solve,
+                                   dtype=float)
+
+
+def factor_spd(A, *, backend=None):
+    """Factorize a symmetric positive definite matrix (dense or sparse).
+
+    Raises
+    ------
+    ModelError
+        When ``A`` is singular or not positive definite.
+    """
+    if sp.issparse(A):
+        if A.shape[0] <= DENSE_LIMIT:
+            return _DenseFactor(A.toarray())
+        return factorize(A, backend=backend)
+    return _DenseFactor(A)
+
+
+def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
+                 return_factor=False):
+    """Lowest ``k`` eigenpairs of ``K x = lambda M x``, mass-normalized, ascending.
+
+    Parameters
+    ----------
+    K, M : ndarray or scipy.sparse matrix
+    k : int
+    sigma : float, optional
+        Shift below the lowest eigenvalue; ``None`` means a free structure and uses
+        :data:`FREE_SIGMA` (0 is right for a supported structure).
+    factor : Factor, optional
+        Factor of ``K - sigma M`` if already available.
+    tol : float, optional
+        ARPACK relative tolerance (0: machine precision, the default).
+    return_factor : bool
+        Also return the factor of ``K - sigma M`` and sigma.
+
+    Returns
+    -------
+    lam : ndarray, shape (k,)
+    X : ndarray, shape (n, k)
+        ``X^T M X = I``.
+    factor, sigma
+        Only when ``return_factor``.
+    """
+    n = K.shape[0]
+    if k > n:
+        raise InputError(f"asked for {k} modes but the matrix has only {n} DOF")
+    if sigma is None:
+        sigma = FREE_SIGMA
+    if n <= DENSE_LIMIT:
+        Kd = K.toarray() if sp.issparse(K) else np.asarray(K, dtype=float)
+        Md = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+        try:
+            lam, X = sla.eigh(Kd, Md, subset_by_index=[0, k - 1])
+        except np.linalg.LinAlgError as exc:
+            raise ModelError(f"generalized eigenproblem failed: the mass matrix is not "
+                             f"positive definite ({exc})") from None
+        if return_factor:
+            if factor is None:
+                try:
+                    factor = _DenseFactor(Kd - sigma * Md)
+                except ModelError as exc:
+                    raise ModelError(f"K - sigma M is singular at sigma={sigma:.4g}: {exc}; "
+                                     "the structure has a mechanism") from None
+            return lam, X, factor, sigma
+        return lam, X
+    Ks = sp.csr_matrix(K)
+    Ms = sp.csr_matrix(M)
+    if factor is None:
+        try:
+            factor = factorize((Ks - sigma * Ms).tocsr(), backend=backend)
+        except ModelError as exc:
+            raise ModelError(
+                f"{exc}; K - sigma M cannot be factorized at sigma = {sigma:.4g}: look for "
+                "mechanisms, disconnected parts or zero-stiffness DOF"
+            ) from None
+    ncv = min(n, max(2 * k + 1, k + 20))
+    lam, X = spla.eigsh(Ks, k=k, M=Ms, sigma=sigma, which="LM", OPinv=factor.as_operator(),
+                        ncv=ncv, tol=0.0 if tol is None else tol)
+    order = np.argsort(lam)
+    lam, X = lam[order], X[:, order]
+    X = X / np.sqrt(np.abs(np.einsum("ij,ij->j", X, Ms @ X)))
+    if return_factor:
+        return lam, X, factor, sigma
+    return lam, X

@@ -1,0 +1,39 @@
+"""Roads: heights under the wheel tracks as a function of distance along the path.
+
+Generators (:func:`flat`, :func:`harmonic`, :func:`irregularity`, :func:`iso8608`), readers
+(:func:`read_csv`, :func:`read_crg`), a writer (:func:`write_crg`) and :func:`load_road`,
+which dispatches on ``.crg`` / ``.csv`` / ``.toml``.  All return a frozen :class:`Road`
+whose :meth:`Road.height` is vectorized and cheap for scalars.
+"""
+
+from flexpipe.roads.crg import read_crg, write_crg
+from flexpipe.roads.generators import (
+    ISO8608_BAND,
+    ISO8608_GD0,
+    ISO8608_N0,
+    flat,
+    harmonic,
+    irregularity,
+    iso8608,
+    isotropic_coherence,
+)
+from flexpipe.roads.road import Road, read_csv
+from flexpipe.roads.spec import ROAD_TYPES, load_road, road_from_spec
+
+__all__ = [
+    "ISO8608_BAND",
+    "ISO8608_GD0",
+    "ISO8608_N0",
+    "ROAD_TYPES",
+    "Road",
+    "flat",
+    "harmonic",
+    "irregularity",
+    "iso8608",
+    "isotropic_coherence",
+    "load_road",
+    "read_crg",
+    "read_csv",
+    "road_from_spec",
+    "write_crg",
+]

@@ -1,0 +1,398 @@
+"""OpenCRG road files: reader and writer.
+
+An OpenCRG file is a text header of ``$SECTION ... $`` blocks (72 significant characters
+per line; ``!`` starts a comment, a line starting with ``*`` is a comment) closed by a
+line of ``$$$$``, followed by the data block.  The parts used here:
+
+* ``$ROAD_CRG``: ``REFERENCE_LINE_START_U / END_U / INCREMENT`` (the distance grid ``u``),
+  ``LONG_SECTION_V_RIGHT / LEFT / INCREMENT`` (the lateral grid ``v``, positive left),
+  ``REFERENCE_LINE_START_Z / START_S / END_S / START_B / END_B`` (elevation, slope and
+  banking of the reference line; slope and banking vary linearly from start to end unless
+  given as data channels), ``REFERENCE_LINE_START_PHI`` (heading).
+* ``$KD_DEFINITION``: ``#:FMT`` and the channels ``D:long section <i>,m`` (by index, the
+  lateral position is ``v_right + (i-1) v_increment``) or ``D:long section at v = <v>,m``
+  and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.  ``U:`` lines
+  describe the implicit ``u`` channel and hold no data.
+* The data block, one row per ``u`` sample with one value per ``D:`` channel.  ``FMT`` is
+  four letters: ``K``ompact (rows run on without alignment) or ``L``ong (every row starts a
+  new 80-byte/80-character record); ``R``eal (single) or ``D``ouble precision;
+  ``F``ormatted text (10 or 20 characters per number, ``*`` starts a NaN placeholder) or
+  ``B``inary (IEEE big-endian); the last letter is ``I``.  The three measured files in
+  ``../shared/reference/roads`` are ``KRBI`` (compact single-precision binary).
+
+The height at ``(u, v)`` is ``z_grid(u, v) + z_ref(u) + b(u) v``, with ``z_ref`` the
+integral of the slope.  NaNs at the lateral borders of a cross section are replaced by the
+nearest valid value of that cross section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last");
+NaNs between valid values, or cross sections without any valid value, are errors.
+``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS`` sections are not applied (a warning says so).
+"""
+
+from __future__ import annotations
+
+import math
+import pathlib
+import re
+import warnings
+
+import numpy as np
+
+from flexpipe._io import atomic_path
+from flexpipe.errors import InputError
+from flexpipe.roads.road import Road
+
+_LONG_SECTION = re.compile(r"long\s+section\s+(at\s+v\s*=\s*)?([-+0-9.eEdD]+)\s*,\s*m",
+                           re.IGNORECASE)
+
+
+def _header_lines(raw: bytes, path):
+    """Split the header into (line number, text) pairs; return them and the data offset."""
+    lines, pos, k = [], 0, 0
+    while pos < len(raw):
+        end = raw.find(b"\n", pos)
+        end = len(raw) if end < 0 else end
+        k += 1
+        text = raw[pos:end].rstrip(b"\r").decode("latin-1")
+        pos = end + 1
+        if text.startswith("$$"):
+            return lines, pos, k
+        lines.append((k, text))
+    raise InputError("no data block: the header is never closed by a '$$$$' line", file=path)
+
+
+def _strip_comment(text: str) -> str:
+    return text[:72].split("!", 1)[0].strip()
+
+
+def _parse_header(lines, path):
+    sections: dict[str, dict] = {}
+    current = None
+    for k, text in lines:
+        body = _strip_comment(text)
+        if text.startswith("$"):
+            name = body[1:].strip().upper()
+            current = name or None
+            if current is not None:
+                sections.setdefault(current, {"_line": k, "_items": []})
+            continue
+        if current is None or not body or body.startswith("*"):
+            continue
+        sections[current]["_items"].append((k, body))
+    return sections
+
+
+def _road_params(section, path):
+    params = {}
+    for k, body in section["_items"]:
+        if "=" not in body:
+            raise InputError(f"expected 'KEY = value' in $ROAD_CRG, got {body!r}", file=path,
+                             line=k)
+        key, value = (t.strip() for t in body.split("=", 1))
+        try:
+            params[key.upper()] = (float(value.replace("D", "E").replace("d", "e")), k)
+        except ValueError:
+            raise InputError(f"value of {key} is not a number: {value!r}", file=path,
+                             line=k) from None
+    return params
+
+
+def _channels(section, path):
+    """Data format and the list of channels ``(kind, position, line)`` in file order."""
+    fmt, channels = None, []
+    for k, body in section["_items"]:
+        head = body[:2].upper()
+        if head == "#:":
+            fmt = body[2:6].upper()
+            if len(fmt) != 4 or fmt[0] not in "KL" or fmt[1] not in "RD" or fmt[2] not in "FB":
+                raise InputError(f"unknown data format {body[2:].strip()!r}; valid: KRBI, "
+                                 "KDBI, LRFI, LDFI (and KRFI, KDFI, LRBI, LDBI)", file=path,
+                                 line=k)
+        elif head == "D:":
+            desc = body[2:].strip()
+            m = _LONG_SECTION.search(desc)
+            low = desc.lower()
+            if m:
+                pos = float(m.group(2).replace("D", "E").replace("d", "e"))
+                channels.append(("v" if m.group(1) else "index", pos, k))
+            elif low.startswith("reference line"):
+                what = low[len("reference line"):].split(",")[0].strip()
+                if what not in ("phi", "slope", "banking"):
+                    raise InputError(f"reference line channel {what!r} is not supported; "
+                                     "supported: phi, slope, banking", file=path, line=k)
+                channels.append((what, 0.0, k))
+            else:
+                raise InputError(f"unknown data channel {desc!r}; expected 'long section "
+                                 "<i>,m', 'long section at v = <v>,m' or 'reference line "
+                                 "phi/slope/banking'", file=path, line=k)
+    if fmt is None:
+        raise InputError("$KD_DEFINITION has no '#:' data format line", file=path,
+                         line=section["_line"])
+    return fmt, channels
+
+
+def _parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int, first_line: int, path):
+    """Values of a formatted data block, shape (n_u, n_ch), and each row's first line."""
+    width = 10 if fmt[1] == "R" else 20
+    lines = raw.decode("latin-1").splitlines()
+    values, rows_line, row = [], [], []
+    per_line = 80 // width
+    for offset, text in enumerate(lines):
+        k = first_line + offset
+        fields = [text[i:i + width] for i in range(0, min(len(text), per_line * width), width)]
+        if fmt[0] == "K":
+            while fields and not fields[-1].strip():
+                fields.pop()
+        for f in fields:
+            if fmt[0] == "L" and len(row) == n_ch:
+                break
+            s = f.strip()
+            if s.startswith("*"):
+                v = math.nan
+            else:
+                try:
+                    v = float(s.replace("D", "E").replace("d", "e"))
+                except ValueError:
+                    raise InputError(f"data value {f!r} is not a number (fields are {width} "
+                                     f"characters wide in format {fmt})", file=path,
+                                     line=k) from None
+            if not row:
+                rows_line.append(k)
+            row.append(v)
+            if len(row) == n_ch:
+                values.append(row)
+                row = []
+                if len(values) == n_u:
+                    return np.array(values), np.array(rows_line)
+        if fmt[0] == "L" and row and len(row) < n_ch and len(fields) < per_line:
+            raise InputError(f"data row has {len(row)} values, expected {n_ch}", file=path,
+                             line=k)
+    raise InputError(f"data block holds {len(values)} complete rows, expected {n_u} "
+                     f"(from REFERENCE_LINE_START_U/END_U/INCREMENT)", file=path)
+
+
+def _parse_binary_values(raw: bytes, fmt: str, n_ch: int, n_u: int, path):
+    dtype = np.dtype(">f4") if fmt[1] == "R" else np.dtype(">f8")
+    row_bytes = n_ch * dtype.itemsize
+    if fmt[0] == "L":
+        row_bytes = -(-row_bytes // 80) * 80
+    need = row_bytes * n_u
+    if len(raw) < need:
+        raise InputError(f"binary data block has {len(raw)} bytes, expected at least {need} "
+                         f"({n_u} rows x {n_ch} channels, format {fmt})", file=path)
+    if fmt[0] == "K":
+        vals = np.frombuffer(raw, dtype=dtype, count=n_u * n_ch).reshape(n_u, n_ch)
+    else:
+        per_row = row_bytes // dtype.itemsize
+        vals = np.frombuffer(raw, dtype=dtype, count=n_u * per_row).reshape(n_u, per_row)
+        vals = vals[:, :n_ch]
+    return vals.astype(float)
+
+
+def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road:
+    """Read an OpenCRG file (formats KRBI, KDBI, LRFI, LDFI and the other combinations).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The ``.crg`` file.
+    track_width : float
+        Lateral distance between the two wheel tracks used for ``Road.left/right`` (m).
+    name : str, optional
+        Road name (default: the file stem).
+
+    Returns
+    -------
+    Road
+        With ``x = u`` samples, the lateral grid ``y = v`` and heights ``z``; ``heading``
+        when the file has a ``reference line phi`` channel or a non-zero start heading.
+    """
+    path = pathlib.Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read the CRG file ({exc.strerror})", file=path) from None
+    lines, data_offset, sep_line = _header_lines(raw, path)
+    sections = _parse_header(lines, path)
+    for missing in ("ROAD_CRG", "KD_DEFINITION"):
+        if missing not in sections:
+            raise InputError(f"no ${missing} section", file=path)
+    for ignored in ("ROAD_CRG_MODS", "ROAD_CRG_OPTS", "ROAD_CRG_FILE"):
+        if ignored in sections and sections[ignored]["_items"]:
+            warnings.warn(f"{path}: ${ignored} is not applied by flexpipe", stacklevel=2)
+    p = _road_params(sections["ROAD_CRG"], path)
+
+    def get(key, default=None):
+        if key in p:
+            return p[key][0]
+        if default is None:
+            raise InputError(f"$ROAD_CRG has no {key}", file=path,
+                             line=sections["ROAD_CRG"]["_line"])
+        return default
+
+    u0, u1, du = get("REFERENCE_LINE_START_U", 0.0), get("REFERENCE_LINE_END_U"), \
+        get("REFERENCE_LINE_INCREMENT")
+    if not (du > 0.0 and u1 > u0):
+        raise InputError(f"need REFERENCE_LINE_END_U > START_U and INCREMENT > 0, got "
+                         f"{u0:g}, {u1:g}, {du:g}", file=path, line=p.get(
+                             "REFERENCE_LINE_INCREMENT", (0, None))[1])
+    n_u = int(round((u1 - u0) / du)) + 1
+    if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
+        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
+                         f"of the increment {du:g} m", file=path)
+    fmt, channels = _channels(sections["KD_DEFINITION"], path)
+    kinds = [c[0] for c in channels]
+    sec_idx = [i for i, c in enumerate(channels) if c[0] in ("index", "v")]
+    if len(sec_idx) < 2:
+        raise InputError("need at least 2 'long section' channels", file=path,
+                         line=sections["KD_DEFINITION"]["_line"])
+    if "index" in kinds and "v" in kinds:
+        raise InputError("mixes 'long section <i>' and 'long section at v =' channels",
+                         file=path, line=sections["KD_DEFINITION"]["_line"])
+    if "index" in kinds:
+        v_right, dv = get("LONG_SECTION_V_RIGHT"), get("LONG_SECTION_V_INCREMENT")
+        numbers = [channels[i][1] for i in sec_idx]
+        if numbers != [float(i + 1) for i in range(len(sec_idx))]:
+            raise InputError(f"long sections are numbered {numbers}, expected 1..{len(numbers)}",
+                             file=path, line=channels[sec_idx[0]][2])
+        v = v_right + dv * np.arange(len(sec_idx))
+        v_left = p.get("LONG_SECTION_V_LEFT", (None,))[0]
+        if v_left is not None and abs(v[-1] - v_left) > 1e-6 * max(1.0, abs(v_left)):
+            raise InputError(f"{len(sec_idx)} long sections from {v_right:g} m by {dv:g} m end "
+                             f"at {v[-1]:g} m, but LONG_SECTION_V_LEFT = {v_left:g} m",
+                             file=path, line=p["LONG_SECTION_V_LEFT"][1])
+    else:
+        v = np.array([channels[i][1] for i in sec_idx])
+    order = np.argsort(v)
+    if np.any(np.diff(v[order]) <= 0.0):
+        raise InputError("two long sections share the same lateral position", file=path)
+
+    data = raw[data_offset:]
+    if fmt[2] == "F":
+        vals, row_line = _parse_text_values(data, fmt, len(channels), n_u, sep_line + 1, path)
+    else:
+        vals = _parse_binary_values(data, fmt, len(channels), n_u, path)
+        row_line = None
+    z = vals[:, sec_idx][:, order]
+    z = _fill_border_nans(z, u0 + du * np.arange(n_u), row_line, path)
+    u = u0 + du * np.arange(n_u)
+    v = v[order]
+
+    def channel(kind, start_key, end_key):
+        if kind in kinds:
+            c = vals[:, kinds.index(kind)]
+            if not np.all(np.isfinite(c[1:])):
+                raise InputError(f"reference line {kind} channel has NaN values", file=path)
+            return c
+        a = get(start_key, 0.0)
+        b = get(end_key, a)
+        return a + (b - a) * (u - u0) / (u1 - u0)
+
+    slope = channel("slope", "REFERENCE_LINE_START_S", "REFERENCE_LINE_END_S")
+    bank = channel("banking", "REFERENCE_LINE_START_B", "REFERENCE_LINE_END_B")
+    z_ref = get("REFERENCE_LINE_START_Z", 0.0) + np.concatenate(
+        [[0.0], np.cumsum(0.5 * (slope[1:] + slope[:-1]) * du)])
+    z = z + z_ref[:, None] + bank[:, None] * v[None, :]
+    heading = None
+    if "phi" in kinds:
+        heading = vals[:, kinds.index("phi")].copy()
+        heading[0] = heading[1] if n_u > 1 else get("REFERENCE_LINE_START_PHI", 0.0)
+    elif get("REFERENCE_LINE_START_PHI", 0.0) != 0.0:
+        heading = np.full(n_u, get("REFERENCE_LINE_START_PHI", 0.0))
+    return Road.from_grid(u, v, z, track_width=track_width, heading=heading,
+                          name=path.stem if name is None else name, source=str(path))
+
+
+def _fill_border_nans(z, u, row_line, path):
+    bad = ~np.isfinite(z)
+    if not bad.any():
+        return z
+    z = z.copy()
+    for i in np.flatnonzero(bad.any(axis=1)):
+        good = np.flatnonzero(~bad[i])
+        where = dict(file=path, line=None if row_line is None else int(row_line[i]))
+        if good.size == 0:
+            raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has no valid "
+                             "height; every cross section needs at least one", **where)
+        lo, hi = good[0], good[-1]
+        if hi - lo + 1 != good.size:
+            raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has a NaN "
+                             "between valid heights; NaN is only allowed at the borders",
+                             **where)
+        z[i, :lo] = z[i, lo]
+        z[i, hi + 1:] = z[i, hi]
+    return z
+
+
+def _fmt_text(v: float, width: int) -> str:
+    if not math.isfinite(v):
+        return "*missing*".ljust(width)[:width]
+    for prec in range(width - 3, 0, -1):
+        s = f"{v:{width}.{prec}f}"
+        if len(s) <= width:
+            return s
+    s = f"{v:{width}.{width - 7}E}"
+    if len(s) > width:
+        raise InputError(f"value {v!r} does not fit a {width}-character CRG field")
+    return s
+
+
+def write_crg(road: Road, path, *, fmt: str = "KRBI", comment: str = "") -> None:
+    """Write ``road`` as an OpenCRG file (atomically).
+
+    Parameters
+    ----------
+    road : Road
+        Must have uniform ``x`` spacing.  A road without a lateral grid is written with two
+        long sections at ``-track_width/2`` (right) and ``+track_width/2`` (left).
+    path : str or pathlib.Path
+        Output file.
+    fmt : {'KRBI', 'KDBI', 'LRFI', 'LDFI'}
+        Data format (binary single/double, text single/double).
+    comment : str
+        Text for the ``$CT`` block.
+    """
+    fmt = fmt.upper()
+    if fmt not in ("KRBI", "KDBI", "LRFI", "LDFI"):
+        raise InputError(f"CRG format {fmt!r} not writable; valid: KRBI, KDBI, LRFI, LDFI")
+    if not road._dx:
+        raise InputError(f"road '{road.name}' has non-uniform distance samples; OpenCRG needs "
+                         "a constant REFERENCE_LINE_INCREMENT")
+    if road.z is None:
+        v = np.array([-0.5, 0.5]) * road.track_width
+        z = np.column_stack([road.right, road.left])
+    else:
+        v, z = road.y, road.z
+    dv = np.diff(v)
+    if np.any(np.abs(dv - dv[0]) > 1e-9 * max(1.0, abs(v[-1]))):
+        raise InputError("the lateral grid is not uniform; write_crg needs a uniform grid")
+    du = road._dx
+    head = ["$CT", *(comment.splitlines() or [road.name or "flexpipe road"]), "$",
+            "$ROAD_CRG"]
+    for key, value in (("REFERENCE_LINE_START_U", road.x[0]),
+                       ("REFERENCE_LINE_END_U", road.x[-1]),
+                       ("REFERENCE_LINE_INCREMENT", du),
+                       ("LONG_SECTION_V_RIGHT", v[0]), ("LONG_SECTION_V_LEFT", v[-1]),
+                       ("LONG_SECTION_V_INCREMENT", dv[0])):
+        head.append(f"{key:<26}= {value:.16e}")
+    head += ["$", "$KD_DEFINITION", f"#:{fmt}", f"U:reference line u,m,{road.x[0]:.3f},{du:.3f}"]
+    head += [f"D:long section {j + 1},m" for j in range(v.size)]
+    head += ["$", "$" * 72]
+    body = "\n".join(line[:72] for line in head) + "\n"
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as fh:
+            fh.write(body.encode("ascii"))
+            if fmt[2] == "B":
+                dtype = ">f4" if fmt[1] == "R" else ">f8"
+                flat = np.asarray(z, dtype=float).ravel()
+                per_record = 80 // np.dtype(dtype).itemsize
+                pad = (-flat.size) % per_record
+                block = np.concatenate([flat, np.full(pad, np.nan)]).astype(dtype)
+                fh.write(block.tobytes())
+            else:
+                width = 10 if fmt[1] == "R" else 20
+                per_line = 80 // width
+                out = []
+                for row in z:
+                    fields = [_fmt_text(float(val), width) for val in row]
+                    out += ["".join(fields[i:i + per_line])
+                            for i in range(0, len(fields), per_line)]
+                fh.write(("\n".join(out) + "\n").encode("ascii"))

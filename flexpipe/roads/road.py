@@ -1,0 +1,373 @@
+"""The :class:`Road` data object and its CSV form.
+
+A road is described in path coordinates: ``s`` is the distance along the driven path (m)
+and ``lateral`` the offset from the path centre line, positive to the left (m).  The height
+is given either by two wheel tracks (``left`` at ``+track_width/2``, ``right`` at
+``-track_width/2``) or, for OpenCRG roads, by a full grid ``z[i, j]`` at ``(x[i], y[j])``.
+
+Evaluation rules (:meth:`Road.height`)
+-------------------------------------
+* Along the path: linear interpolation between samples; beyond either end the end value is
+  held (constant extrapolation).  Use :meth:`Road.require_length` before a run to make sure
+  the road covers it.
+* Across the path, two-track roads: linear between the right and the left track, the track
+  value held beyond either track.
+* Across the path, grid roads: bilinear on the grid, the border long section held beyond
+  the outermost one (the OpenCRG default border mode).
+"""
+
+from __future__ import annotations
+
+import bisect
+import dataclasses
+import math
+import pathlib
+
+import numpy as np
+
+from flexpipe._io import atomic_path
+from flexpipe.errors import InputError
+
+_SCALARS = (float, int, np.float64, np.float32, np.int64)
+
+
+def _as_readonly(a) -> np.ndarray:
+    a = np.array(a, dtype=float, copy=True)
+    a.setflags(write=False)
+    return a
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Road:
+    """Road heights along a path.
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,)
+        Distance along the path of the samples, strictly increasing (m).
+    left, right : ndarray, shape (n,)
+        Height under the left and right wheel tracks (m).
+    track_width : float
+        Lateral distance between the tracks ``left`` and ``right`` (m); the tracks lie at
+        ``lateral = +track_width/2`` and ``-track_width/2``.
+    y : ndarray, shape (n_y,), optional
+        Lateral grid (m, positive left, strictly increasing), with ``z``.
+    z : ndarray, shape (n, n_y), optional
+        Heights on the grid ``(x, y)`` (m).  When given, :meth:`height` interpolates it.
+    heading : ndarray, shape (n,), optional
+        Heading of the reference line at each ``x`` (rad), for curved OpenCRG roads.
+    name : str
+        Short name.
+    source : str
+        Where it came from (file name or generator description).
+    """
+
+    x: np.ndarray
+    left: np.ndarray
+    right: np.ndarray
+    track_width: float = 1.5
+    y: np.ndarray | None = None
+    z: np.ndarray | None = None
+    heading: np.ndarray | None = None
+    name: str = ""
+    source: str = ""
+
+    def __post_init__(self):
+        where = self.source or self.name or None
+        x = _as_readonly(self.x)
+        left = _as_readonly(self.left)
+        right = _as_readonly(self.right)
+        if x.ndim != 1 or x.size < 2:
+            raise InputError(f"a road needs at least 2 distance samples, got shape {x.shape}",
+                             file=where)
+        if left.shape != x.shape or right.shape != x.shape:
+            raise InputError(f"left {left.shape} and right {right.shape} heights must match "
+                             f"the distance samples {x.shape}", file=where)
+        for label, a in (("distance", x), ("left height", left), ("right height", right)):
+            bad = np.flatnonzero(~np.isfinite(a))
+            if bad.size:
+                raise InputError(f"{label} sample {bad[0]} is {a[bad[0]]}; all values must "
+                                 "be finite", file=where)
+        step = np.diff(x)
+        if np.any(step <= 0.0):
+            i = int(np.flatnonzero(step <= 0.0)[0]) + 1
+            raise InputError(f"distance must increase strictly: sample {i} is {x[i]} m after "
+                             f"{x[i - 1]} m", file=where)
+        if not (math.isfinite(self.track_width) and self.track_width > 0.0):
+            raise InputError(f"track_width must be > 0, got {self.track_width}", file=where)
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "left", left)
+        object.__setattr__(self, "right", right)
+        object.__setattr__(self, "track_width", float(self.track_width))
+        if (self.y is None) != (self.z is None):
+            raise InputError("give both the lateral grid y and the height grid z, or neither",
+                             file=where)
+        if self.y is not None:
+            y = _as_readonly(self.y)
+            z = _as_readonly(self.z)
+            if y.ndim != 1 or y.size < 2 or np.any(np.diff(y) <= 0.0):
+                raise InputError("lateral grid y must hold >= 2 strictly increasing values",
+                                 file=where)
+            if z.shape != (x.size, y.size):
+                raise InputError(f"height grid z has shape {z.shape}, expected "
+                                 f"{(x.size, y.size)}", file=where)
+            if not np.all(np.isfinite(z)):
+                i, j = np.argwhere(~np.isfinite(z))[0]
+                raise InputError(f"height grid value at x = {x[i]} m, y = {y[j]} m is "
+                                 f"{z[i, j]}; all values must be finite", file=where)
+            object.__setattr__(self, "y", y)
+            object.__setattr__(self, "z", z)
+        if self.heading is not None:
+            heading = _as_readonly(self.heading)
+            if heading.shape != x.shape or not np.all(np.isfinite(heading)):
+                raise InputError("heading must be finite with one value per distance sample",
+                                 file=where)
+            object.__setattr__(self, "heading", heading)
+        # uniform spacing enables index arithmetic instead of a search in the grid lookup
+        dx = (x[-1] - x[0]) / (x.size - 1)
+        uniform = bool(np.all(np.abs(step - dx) <= 1e-9 * max(1.0, abs(x[-1]))))
+        object.__setattr__(self, "_dx", dx if uniform else 0.0)
+
+    # ----------------------------------------------------------------- constructors
+    @classmethod
+    def from_grid(cls, x, y, z, *, track_width: float = 1.5, heading=None, name: str = "",
+                  source: str = "") -> Road:
+        """A road from a height grid; the tracks are read at ``±track_width/2``."""
+        x = np.asarray(x, dtype=float)
+        y = np.asarray(y, dtype=float)
+        z = np.asarray(z, dtype=float)
+        if y.ndim != 1 or y.size < 2 or z.shape != (x.size, y.size):
+            raise InputError(f"grid shapes do not match: x {x.shape}, y {y.shape}, z {z.shape}",
+                             file=source or None)
+        half = 0.5 * track_width
+        jl, tl = _lateral_weights(y, np.array([half, -half]))
+        tracks = z[:, jl] * (1.0 - tl) + z[:, jl + 1] * tl
+        return cls(x=x, left=tracks[:, 0], right=tracks[:, 1], track_width=track_width,
+                   y=y, z=z, heading=heading, name=name, source=source)
+
+    # ----------------------------------------------------------------- properties
+    @property
+    def length(self) -> float:
+        """Covered distance ``x[-1] - x[0]`` (m)."""
+        return float(self.x[-1] - self.x[0])
+
+    @property
+    def dx(self) -> float:
+        """Sample spacing if uniform, else the mean spacing (m)."""
+        return float((self.x[-1] - self.x[0]) / (self.x.size - 1))
+
+    # ----------------------------------------------------------------- evaluation
+    def _along(self, s):
+        """Index ``i`` and fraction ``t`` so that s lies between x[i] and x[i+1] (held ends)."""
+        s = np.asarray(s, dtype=float)
+        n = self.x.size
+        if self._dx:
+            f = np.clip((s - self.x[0]) / self._dx, 0.0, n - 1)
+        else:
+            f = np.interp(s, self.x, np.arange(n, dtype=float))
+        i = np.minimum(f.astype(np.intp), n - 2)
+        return i, f - i
+
+    def left_height(self, s):
+        """Height under the left track at distance ``s`` (scalar or array, m)."""
+        return np.interp(s, self.x, self.left)
+
+    def right_height(self, s):
+        """Height under the right track at distance ``s`` (scalar or array, m)."""
+        return np.interp(s, self.x, self.right)
+
+    def height(self, s, lateral=0.0):
+        """Road height at distance ``s`` and lateral offset ``lateral`` (positive left).
+
+        Parameters
+        ----------
+        s, lateral : float or array_like
+            Broadcast against each other (m).
+
+        Returns
+        -------
+        float or ndarray
+            Height (m); see the module notes for the interpolation and end rules.
+        """
+        if type(s) in _SCALARS and type(lateral) in _SCALARS:
+            return self._height_scalar(float(s), float(lateral))
+        if self.z is None:
+            w = np.clip(np.asarray(lateral, dtype=float) / self.track_width + 0.5, 0.0, 1.0)
+            return (1.0 - w) * self.right_height(s) + w * self.left_height(s)
+        s, lateral = np.broadcast_arrays(np.asarray(s, dtype=float),
+                                         np.asarray(lateral, dtype=float))
+        i, t = self._along(s)
+        j, u = _lateral_weights(self.y, lateral)
+        z = self.z
+        h = ((1.0 - t) * ((1.0 - u) * z[i, j] + u * z[i, j + 1])
+             + t * ((1.0 - u) * z[i + 1, j] + u * z[i + 1, j + 1]))
+        return h[()] if h.ndim == 0 else h
+
+    def _height_scalar(self, s: float, lateral: float) -> float:
+        """:meth:`height` for one point without array overhead (same rules)."""
+        x = self.x
+        n = x.size
+        if self._dx:
+            f = (s - x[0]) / self._dx
+            f = 0.0 if f < 0.0 else (n - 1.0 if f > n - 1.0 else f)
+            i = min(int(f), n - 2)
+            t = f - i
+        elif s <= x[0]:
+            i, t = 0, 0.0
+        elif s >= x[-1]:
+            i, t = n - 2, 1.0
+        else:
+            i = bisect.bisect_right(x, s) - 1
+            t = (s - x[i]) / (x[i + 1] - x[i])
+        if self.z is None:
+            w = lateral / self.track_width + 0.5
+            w = 0.0 if w < 0.0 else (1.0 if w > 1.0 else w)
+            left = self.left[i] + t * (self.left[i + 1] - self.left[i])
+            right = self.right[i] + t * (self.right[i + 1] - self.right[i])
+            return float(right + w * (left - right))
+        y = self.y
+        if lateral <= y[0]:
+            j, u = 0, 0.0
+        elif lateral >= y[-1]:
+            j, u = y.size - 2, 1.0
+        else:
+            j = bisect.bisect_right(y, lateral) - 1
+            u = (lateral - y[j]) / (y[j + 1] - y[j])
+        z0 = self.z[i]
+        z1 = self.z[i + 1]
+        a = z0[j] + u * (z0[j + 1] - z0[j])
+        b = z1[j] + u * (z1[j + 1] - z1[j])
+        return float(a + t * (b - a))
+
+    def slope(self, s, lateral=0.0):
+        """Longitudinal slope dh/ds at ``(s, lateral)`` (zero beyond the ends)."""
+        s = np.asarray(s, dtype=float)
+        i, _ = self._along(s)
+        inside = (s >= self.x[0]) & (s <= self.x[-1])
+        h0 = self.height(self.x[i], lateral)
+        h1 = self.height(self.x[i + 1], lateral)
+        g = np.where(inside, (h1 - h0) / (self.x[i + 1] - self.x[i]), 0.0)
+        return g[()] if np.ndim(g) == 0 else g
+
+    def require_length(self, distance_needed: float, *, what: str = "the run",
+                       start: float | None = None) -> None:
+        """Raise :class:`InputError` unless the road covers ``distance_needed`` metres.
+
+        Parameters
+        ----------
+        distance_needed : float
+            Distance the vehicle will travel (m).
+        what : str
+            Description of the run, used in the message.
+        start : float, optional
+            Distance at which the run starts; defaults to ``x[0]``.
+        """
+        start = self.x[0] if start is None else float(start)
+        end = start + float(distance_needed)
+        if end > self.x[-1] + 1e-9 or start < self.x[0] - 1e-9:
+            raise InputError(
+                f"road '{self.name}' covers {self.x[0]:g} .. {self.x[-1]:g} m but {what} "
+                f"needs {start:g} .. {end:g} m; use a longer road or a shorter run",
+                file=self.source or None)
+
+    def reference_line(self):
+        """Plan coordinates ``(X, Y)`` of the reference line (straight unless ``heading``)."""
+        if self.heading is None:
+            return self.x - self.x[0], np.zeros_like(self.x)
+        ds = np.diff(self.x)
+        # OpenCRG: the heading at sample i is the direction from sample i-1 to sample i
+        X = np.concatenate([[0.0], np.cumsum(ds * np.cos(self.heading[1:]))])
+        Y = np.concatenate([[0.0], np.cumsum(ds * np.sin(self.heading[1:]))])
+        return X, Y
+
+    # ----------------------------------------------------------------- output
+    def to_csv(self, path) -> None:
+        """Write ``distance_m,left_m,right_m`` rows to ``path`` atomically."""
+        path = pathlib.Path(path)
+        data = np.column_stack([self.x, self.left, self.right])
+        with atomic_path(path) as tmp:
+            with open(tmp, "w") as fh:
+                fh.write(f"# flexpipe road '{self.name}' track_width_m={self.track_width:g}\n")
+                fh.write("distance_m,left_m,right_m\n")
+                np.savetxt(fh, data, delimiter=",", fmt="%.10g")
+
+
+def _lateral_weights(y: np.ndarray, lateral):
+    """Cell index ``j`` and fraction ``u`` of ``lateral`` in grid ``y`` (held borders)."""
+    f = np.interp(lateral, y, np.arange(y.size, dtype=float))
+    j = np.minimum(np.asarray(f).astype(np.intp), y.size - 2)
+    return j, f - j
+
+
+def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road:
+    """Read a road from a CSV file.
+
+    The file holds one sample per line: ``distance, left, right`` (m), or
+    ``distance, height`` for the same height under both tracks.  Lines starting with ``#``
+    and blank lines are ignored; the first other line may be a header of column names.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file.
+    track_width : float
+        Lateral distance between the two tracks (m).
+    name : str, optional
+        Road name (default: the file stem).
+
+    Returns
+    -------
+    Road
+
+    Raises
+    ------
+    InputError
+        Naming the file and line: a non-numeric or non-finite value, a wrong number of
+        columns, a distance that does not increase strictly, fewer than two samples.
+    """
+    path = pathlib.Path(path)
+    try:
+        lines = path.read_text().splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read the road file ({exc})", file=path) from None
+    rows, line_no = [], []
+    ncol = None
+    header_allowed = True
+    for k, raw in enumerate(lines, start=1):
+        text = raw.strip()
+        if not text or text.startswith("#"):
+            continue
+        fields = [f.strip() for f in (text.split(",") if "," in text else text.split())]
+        try:
+            values = [float(f) for f in fields]
+        except ValueError:
+            if header_allowed:
+                header_allowed = False
+                continue
+            raise InputError(f"not a number in {text!r}; expected 'distance, left, right' "
+                             "in metres", file=path, line=k) from None
+        header_allowed = False
+        if ncol is None:
+            ncol = len(values)
+            if ncol not in (2, 3):
+                raise InputError(f"{ncol} columns; expected 3 (distance, left, right) or 2 "
+                                 "(distance, height)", file=path, line=k)
+        elif len(values) != ncol:
+            raise InputError(f"{len(values)} columns where earlier lines have {ncol}",
+                             file=path, line=k)
+        if not all(math.isfinite(v) for v in values):
+            raise InputError(f"non-finite value in {text!r}; every distance and height "
+                             "must be a finite number", file=path, line=k)
+        if rows and values[0] <= rows[-1][0]:
+            raise InputError(f"distance {values[0]:g} m does not increase (previous sample "
+                             f"{rows[-1][0]:g} m on line {line_no[-1]}); distances must "
+                             "increase strictly", file=path, line=k)
+        rows.append(values)
+        line_no.append(k)
+    if len(rows) < 2:
+        raise InputError(f"{len(rows)} data line(s); a road needs at least 2 samples",
+                         file=path)
+    data = np.array(rows)
+    right = data[:, 2] if ncol == 3 else data[:, 1]
+    return Road(x=data[:, 0], left=data[:, 1], right=right, track_width=track_width,
+                name=path.stem if name is None else name, source=str(path))

@@ -1,0 +1,131 @@
+"""PAC2002 tyre model (vertical + Magic Formula + relaxation) and the model factory."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexpipe.errors import InputError
+from flexpipe.tires.contact import TireModel
+from flexpipe.tires.fiala import FialaTire
+from flexpipe.tires.pac2002 import MagicFormula, SlipForces
+from flexpipe.tires.tir import TireProperties, read_tir
+from flexpipe.tires.vertical import VerticalModel
+
+
+@dataclass(frozen=True)
+class Pac2002Tire(TireModel):
+    """PAC2002 Magic Formula tyre with the :class:`TireModel` interface.
+
+    Attributes
+    ----------
+    mf : MagicFormula
+        Steady-state slip forces (USE_MODE honoured).
+    vertical : VerticalModel
+        Vertical force law.
+    unloaded_radius : float
+        R0, m.
+    relaxation : bool
+        First-order slip relaxation (USE_MODE >= 10) when a state is passed.
+    vxlow : float
+        Speed floor of the kinematic slip denominators, m/s (VXLOW).
+    tyre_side : str
+        TYRESIDE of the file ('LEFT', 'RIGHT' or 'SYMMETRIC').
+    mirror_all : bool
+        True for a negative USE_MODE.
+    breff, dreff, freff : float or None
+        Effective rolling radius coefficients (None: use ``R0 - rho/3``).
+    """
+
+    mf: MagicFormula
+    vertical: VerticalModel
+    unloaded_radius: float
+    relaxation: bool = False
+    vxlow: float = 1.0
+    tyre_side: str = "LEFT"
+    mirror_all: bool = False
+    breff: float | None = None
+    dreff: float | None = None
+    freff: float | None = None
+
+    @classmethod
+    def from_properties(cls, props: TireProperties, *, use_mode: int | None = None,
+                        relaxation: bool | None = None, vertical_law: str = "auto"
+                        ) -> Pac2002Tire:
+        """Build from a ``PAC2002`` :class:`TireProperties`.
+
+        Parameters
+        ----------
+        props : TireProperties
+        use_mode : int, optional
+            Override of the slip part of USE_MODE (0-4).
+        relaxation : bool, optional
+            Override of ``abs(USE_MODE) >= 10``.
+        vertical_law : {"auto", "linear", "duffing"}
+            See :meth:`VerticalModel.from_properties`.
+        """
+        if props.property_file_format != "PAC2002":
+            raise InputError(f"PROPERTY_FILE_FORMAT is '{props.property_file_format}', the "
+                             "PAC2002 model needs 'PAC2002'", file=props.path,
+                             line=props.lines.get(("MODEL", "PROPERTY_FILE_FORMAT")),
+                             key="PROPERTY_FILE_FORMAT")
+        refs = [props.get("VERTICAL", k) for k in ("BREFF", "DREFF", "FREFF")]
+        have = any(r is not None for r in refs)
+        return cls(
+            mf=MagicFormula.from_properties(props, use_mode=use_mode),
+            vertical=VerticalModel.from_properties(props, law=vertical_law),
+            unloaded_radius=props.unloaded_radius,
+            relaxation=(abs(props.use_mode) >= 10) if relaxation is None else relaxation,
+            vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
+            tyre_side=props.tyre_side, mirror_all=props.use_mode < 0,
+            breff=(refs[0] or 0.0) if have else None, dreff=(refs[1] or 0.0) if have else None,
+            freff=(refs[2] or 0.0) if have else None)
+
+    def effective_rolling_radius(self, deflection):
+        """PAC2002 ``Re = R0 - rho_Fz0 (DREFF atan(BREFF rho_d) + FREFF rho_d)``, m.
+
+        ``rho_Fz0 = FNOMIN / k`` and ``rho_d = rho / rho_Fz0``; ``R0 - rho/3`` when the file has
+        none of BREFF, DREFF, FREFF.
+        """
+        rho = np.maximum(deflection, 0.0)
+        if self.breff is None:
+            return self.unloaded_radius - rho / 3.0
+        rho0 = self.mf.fnomin / self.vertical.k
+        rd = rho / rho0
+        return self.unloaded_radius - rho0 * (self.dreff * np.arctan(self.breff * rd)
+                                              + self.freff * rd)
+
+    def relaxation_lengths(self, Fz, gamma=0.0):
+        """(sigma_kappa, sigma_alpha), m, from PTX*/PTY* (nan where absent)."""
+        return self.mf.relaxation_lengths(Fz, gamma)
+
+    def slip_forces(self, kappa, alpha, Fz, gamma=0.0, *, vx=None, mirror=False,
+                    mu_scale=1.0) -> SlipForces:
+        """Steady-state contact forces/moments, W-axes (see :meth:`MagicFormula.forces`)."""
+        return self.mf.forces(kappa, alpha, Fz, gamma, vx=vx, mirror=mirror, mu_scale=mu_scale)
+
+
+def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
+    """Read a ``.tir`` file and build a tyre model.
+
+    Parameters
+    ----------
+    path : str or Path
+        Tyre property file.
+    model : {"pac2002", "fiala"}
+        ``pac2002`` needs a PAC2002 file; ``fiala`` accepts a FIALA file or derives
+        its parameters from a PAC2002 file.
+    **options
+        Passed to :meth:`Pac2002Tire.from_properties` / :meth:`FialaTire.from_properties`
+        (``relaxation``, ``vertical_law``, and ``use_mode`` for PAC2002).
+
+    Returns
+    -------
+    TireModel
+    """
+    builders = {"pac2002": Pac2002Tire.from_properties, "fiala": FialaTire.from_properties}
+    if model not in builders:
+        raise InputError(f"unknown tyre model {model!r}; valid: {sorted(builders)}", file=path,
+                         key="model")
+    return builders[model](read_tir(path), **options)

@@ -1,0 +1,451 @@
+"""Reader for Adams-style TeimOrbit tyre property files (``.tir``).
+
+Format handled
+--------------
+* ``$ ...`` comments anywhere on a line, ``! ...`` comments anywhere outside quotes;
+* ``[SECTION]`` headers (names are case-insensitive and stored upper case);
+* ``KEY = value`` with a number (``1.2``, ``-3.7604e-005``, Fortran ``1.0D+05``), a quoted
+  string (``'meter'`` or ``"meter"``) or a bare word (kept as a string);
+* tables: a ``{col1 col2 ...}`` header inside a section followed by rows of numbers, e.g.
+  ``[DEFLECTION_LOAD_CURVE] {pen fz}`` or ``[SHAPE] {radial width}``; kept as read-only
+  arrays in :attr:`TireProperties.tables`.
+
+Checks (all raise :class:`~flexpipe.errors.InputError` naming the file and line): a line
+that is neither a section, key, table header nor table row; a key before the first
+section; a duplicate key; a non-numeric value in a coefficient section; an unknown key in
+a coefficient section of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file);
+an unknown unit name.  Missing required sections raise naming the file and the section.
+Unknown sections are kept and produce a :class:`UserWarning`.
+
+Units
+-----
+Dimensional keys listed in :data:`flexpipe.tires._keys.UNIT_DIMENSIONS` and the columns of
+known tables are converted to SI (m, N, rad, kg, s, Pa) from the ``[UNITS]`` section.
+Magic Formula coefficients are non-dimensional (radian-based) and are used as written.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import MappingProxyType
+
+import numpy as np
+
+from flexpipe.errors import InputError
+from flexpipe.tires import _keys
+
+_SECTION_RE = re.compile(r"^\[\s*([A-Za-z0-9_\- ]+?)\s*\]$")
+_KEY_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
+_TABLE_RE = re.compile(r"^\{(.*)\}$")
+_NUMBER_RE = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?$")
+
+#: USE_MODE values honoured (sign = mirroring, tens = transient behaviour).
+VALID_USE_MODES = frozenset(s * (t + u) for s in (1, -1) for t in (0, 10, 20)
+                            for u in range(5))
+
+
+@dataclass(frozen=True)
+class TirTable:
+    """A ``{...}`` table of a ``.tir`` section.
+
+    Attributes
+    ----------
+    columns : tuple of str
+        Column names from the ``{...}`` header (lower case).
+    data : ndarray, shape (n_rows, n_columns)
+        Read-only values, converted to SI for known tables.
+    line : int
+        Line number of the ``{...}`` header.
+    """
+
+    columns: tuple[str, ...]
+    data: np.ndarray
+    line: int
+
+    def column(self, name: str) -> np.ndarray:
+        """Return the column ``name`` (case-insensitive)."""
+        try:
+            return self.data[:, self.columns.index(name.lower())]
+        except ValueError:
+            raise InputError(
+                f"table has no column '{name}'; columns are {list(self.columns)}", key=name
+            ) from None
+
+
+@dataclass(frozen=True)
+class TireProperties:
+    """Contents of a ``.tir`` file, with dimensional data in SI units.
+
+    Attributes
+    ----------
+    path : Path
+        File that was read.
+    sections : Mapping[str, Mapping[str, float | str]]
+        Read-only ``{SECTION: {KEY: value}}``; numbers are floats (SI where dimensional).
+    tables : Mapping[str, TirTable]
+        Read-only ``{SECTION: table}``.
+    lines : Mapping[tuple[str, str], int]
+        Line number of every ``(SECTION, KEY)`` and of every ``(SECTION, "")`` header.
+    """
+
+    path: Path
+    sections: Mapping[str, Mapping[str, float | str]]
+    tables: Mapping[str, TirTable]
+    lines: Mapping[tuple[str, str], int] = field(repr=False)
+
+    # ------------------------------------------------------------------ generic access
+    def has(self, section: str, key: str | None = None) -> bool:
+        """True if ``[section]`` (and ``key`` in it, when given) is present."""
+        sec = self.sections.get(section.upper())
+        return sec is not None and (key is None or key.upper() in sec)
+
+    def section(self, name: str) -> Mapping[str, float | str]:
+        """Return ``[name]``; raise :class:`InputError` naming the file if absent."""
+        try:
+            return self.sections[name.upper()]
+        except KeyError:
+            raise InputError(
+                f"section [{name.upper()}] is missing; sections present: "
+                f"{', '.join('[' + s + ']' for s in self.sections)}",
+                file=self.path,
+            ) from None
+
+    def get(self, section: str, key: str, default=None):
+        """Value of ``key`` in ``[section]``, or ``default`` if either is absent."""
+        return self.sections.get(section.upper(), {}).get(key.upper(), default)
+
+    def number(self, section: str, key: str, default: float | None = None) -> float:
+        """Numeric value of ``key`` in ``[section]``.
+
+        Raises :class:`InputError` naming the file, section and key when the key is absent
+        and no ``default`` is given, or when the value is not a number.
+        """
+        sec = self.section(section)
+        value = sec.get(key.upper())
+        if value is None:
+            if default is not None:
+                return float(default)
+            raise InputError(f"[{section.upper()}] has no {key.upper()}", file=self.path,
+                             key=key.upper())
+        if isinstance(value, str):
+            raise InputError(f"[{section.upper()}] {key.upper()} must be a number, got "
+                             f"'{value}'", file=self.path,
+                             line=self.lines.get((section.upper(), key.upper())),
+                             key=key.upper())
+        return value
+
+    # ------------------------------------------------------------------ typed accessors
+    @property
+    def property_file_format(self) -> str:
+        """``[MODEL] PROPERTY_FILE_FORMAT`` upper case, e.g. ``'PAC2002'`` or ``'FIALA'``."""
+        return str(self.get("MODEL", "PROPERTY_FILE_FORMAT", "")).upper()
+
+    @property
+    def use_mode(self) -> int:
+        """``[MODEL] USE_MODE`` (default 4): see :mod:`flexpipe.tires` for the meaning."""
+        return int(self.get("MODEL", "USE_MODE", 4))
+
+    @property
+    def tyre_side(self) -> str:
+        """``[MODEL] TYRESIDE`` upper case (``'LEFT'`` if absent)."""
+        return str(self.get("MODEL", "TYRESIDE", "LEFT")).upper()
+
+    @property
+    def unloaded_radius(self) -> float:
+        """Free tyre radius R0, m."""
+        return self.number("DIMENSION", "UNLOADED_RADIUS")
+
+    @property
+    def width(self) -> float:
+        """Nominal section width, m."""
+        return self.number("DIMENSION", "WIDTH")
+
+    @property
+    def vertical_stiffness(self) -> float:
+        """Vertical stiffness, N/m (times the scaling factor LCZ when present)."""
+        return self.number("VERTICAL", "VERTICAL_STIFFNESS") * float(
+            self.get("SCALING_COEFFICIENTS", "LCZ", 1.0))
+
+    @property
+    def vertical_damping(self) -> float:
+        """Vertical damping, N s/m (0 if absent)."""
+        return self.number("VERTICAL", "VERTICAL_DAMPING", 0.0)
+
+    @property
+    def vertical_stiffness_cubic(self) -> float | None:
+        """flexpipe extension ``VERTICAL_STIFFNESS_CUBIC`` (Duffing term), N/m^3, or None."""
+        v = self.get("VERTICAL", "VERTICAL_STIFFNESS_CUBIC")
+        return None if v is None else self.number("VERTICAL", "VERTICAL_STIFFNESS_CUBIC")
+
+    @property
+    def fnomin(self) -> float:
+        """Nominal wheel load FNOMIN, N."""
+        return self.number("VERTICAL", "FNOMIN")
+
+    def coefficients(self, section: str) -> Mapping[str, float]:
+        """Read-only numeric coefficients of ``[section]`` (empty mapping if absent)."""
+        return self.sections.get(section.upper(), MappingProxyType({}))
+
+    def relaxation_length_longitudinal(self, Fz: float | None = None) -> float | None:
+        """Longitudinal relaxation length sigma_kappa, m, at load ``Fz`` (default FNOMIN).
+
+        From ``PTX1..PTX3`` (MF 5.2: ``Fz (PTX1 + PTX2 dfz) exp(-PTX3 dfz) R0/FNOMIN LSGKP``)
+        or ``[PARAMETER] RELAX_LENGTH_X``; None if neither is given.
+        """
+        if self.has("PARAMETER", "RELAX_LENGTH_X"):
+            return self.number("PARAMETER", "RELAX_LENGTH_X")
+        c, s = self.coefficients("LONGITUDINAL_COEFFICIENTS"), self.coefficients(
+            "SCALING_COEFFICIENTS")
+        if not c.get("PTX1"):
+            return None
+        fnom = self.fnomin
+        Fz = fnom if Fz is None else Fz
+        fz0 = fnom * s.get("LFZO", 1.0)
+        dfz = (Fz - fz0) / fz0
+        return (Fz * (c["PTX1"] + c.get("PTX2", 0.0) * dfz) * math.exp(-c.get("PTX3", 0.0) * dfz)
+                * self.unloaded_radius / fnom * s.get("LSGKP", 1.0))
+
+    def relaxation_length_lateral(self, Fz: float | None = None, gamma: float = 0.0
+                                  ) -> float | None:
+        """Lateral relaxation length sigma_alpha, m, at load ``Fz`` (default FNOMIN).
+
+        From ``PTY1, PTY2`` (MF 5.2: ``PTY1 sin(2 atan(Fz/(PTY2 Fz0'))) (1 - PKY3|gamma|)
+        R0 LFZO LSGAL``) or ``[PARAMETER] RELAX_LENGTH_Y``; None if neither is given.
+        """
+        if self.has("PARAMETER", "RELAX_LENGTH_Y"):
+            return self.number("PARAMETER", "RELAX_LENGTH_Y")
+        c, s = self.coefficients("LATERAL_COEFFICIENTS"), self.coefficients(
+            "SCALING_COEFFICIENTS")
+        if not c.get("PTY1") or not c.get("PTY2"):
+            return None
+        fnom = self.fnomin
+        Fz = fnom if Fz is None else Fz
+        lfzo = s.get("LFZO", 1.0)
+        return (c["PTY1"] * math.sin(2.0 * math.atan(Fz / (c["PTY2"] * fnom * lfzo)))
+                * (1.0 - c.get("PKY3", 0.0) * abs(gamma)) * self.unloaded_radius * lfzo
+                * s.get("LSGAL", 1.0))
+
+
+# ====================================================================== parsing
+def _strip_comment(text: str) -> str:
+    """Remove a ``$`` or ``!`` comment that is not inside quotes."""
+    quote = None
+    for i, ch in enumerate(text):
+        if quote:
+            if ch == quote:
+                quote = None
+        elif ch in "'\"":
+            quote = ch
+        elif ch in "$!":
+            return text[:i]
+    return text
+
+
+def _parse_value(raw: str):
+    raw = raw.strip()
+    if len(raw) >= 2 and raw[0] == raw[-1] and raw[0] in "'\"":
+        return raw[1:-1].strip()
+    if _NUMBER_RE.match(raw):
+        return float(raw.replace("d", "e").replace("D", "E"))
+    return raw
+
+
+def _unit_factors(path, units: dict, lines: dict) -> dict[str, float]:
+    factors = {}
+    for quantity in _keys.UNIT_QUANTITIES:
+        name = units.get(quantity)
+        if name is None:
+            factors[quantity] = 1.0
+            continue
+        table = _keys.UNIT_FACTORS[quantity]
+        key = str(name).strip().lower()
+        if key not in table:
+            raise InputError(
+                f"[UNITS] {quantity} = '{name}' is not a known unit; valid: "
+                f"{', '.join(sorted(table))}", file=path, line=lines.get(("UNITS", quantity)),
+                key=quantity)
+        factors[quantity] = table[key]
+    return factors
+
+
+def _scale(exponents, factors) -> float:
+    return math.prod(factors[q] ** e for q, e in zip(_keys.UNIT_QUANTITIES, exponents, strict=True)
+                     if e)
+
+
+def _check_keys(path, fmt, sections, lines):
+    strict = {"PAC2002": _keys.PAC2002_STRICT, "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
+    for name, sec in sections.items():
+        allowed = strict.get(name)
+        if allowed is None:
+            allowed = _keys.KNOWN_SECTIONS.get(name)
+            if allowed is None:
+                if name not in _keys.FREE_SECTIONS and name not in _keys.PAC2002_STRICT:
+                    warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
+                                  " kept but not used", UserWarning, stacklevel=4)
+                continue
+            for key in sec:
+                if key not in allowed:
+                    warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
+                                  f"known entry of [{name}]; ignored", UserWarning,
+                                  stacklevel=4)
+            continue
+        for key in sec:
+            if key not in allowed:
+                close = difflib.get_close_matches(key, sorted(allowed), n=3, cutoff=0.6)
+                hint = f" (did you mean {' or '.join(close)}?)" if close else ""
+                raise InputError(
+                    f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
+                    f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
+
+
+#: Sections a PAC2002 file needs, by USE_MODE % 10.
+def _required_sections(fmt: str, use_mode: int) -> list[str]:
+    if fmt == "FIALA":
+        return ["MODEL", "DIMENSION", "VERTICAL", "PARAMETER"]
+    if fmt != "PAC2002":
+        return ["MODEL"]
+    req = ["MODEL", "DIMENSION", "VERTICAL"]
+    mode = abs(use_mode) % 10
+    if mode in (1, 3, 4):
+        req.append("LONGITUDINAL_COEFFICIENTS")
+    if mode in (2, 3, 4):
+        req += ["LATERAL_COEFFICIENTS", "ALIGNING_COEFFICIENTS"]
+    return req
+
+
+def read_tir(path) -> TireProperties:
+    """Read a TeimOrbit ``.tir`` tyre property file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.tir`` file.
+
+    Returns
+    -------
+    TireProperties
+        Sections (SI where dimensional) and tables.
+
+    Raises
+    ------
+    InputError
+        Unreadable file, malformed or unknown entry (naming file and line), unknown unit,
+        invalid USE_MODE, or a missing required section (naming file and section).
+    """
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read tyre property file: {exc.strerror}", file=path) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = raw.decode("latin-1")
+
+    sections: dict[str, dict] = {}
+    lines: dict[tuple[str, str], int] = {}
+    tables: dict[str, tuple[tuple[str, ...], list, int]] = {}
+    current = None
+    table_open = None
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        body = _strip_comment(line).strip()
+        if not body:
+            continue
+        m = _SECTION_RE.match(body)
+        if m:
+            current = m.group(1).strip().upper().replace(" ", "_")
+            sections.setdefault(current, {})
+            lines.setdefault((current, ""), lineno)
+            table_open = None
+            continue
+        if current is None:
+            raise InputError(f"entry '{body}' appears before the first [SECTION] header",
+                             file=path, line=lineno)
+        m = _KEY_RE.match(body)
+        if m:
+            key, value = m.group(1).upper(), _parse_value(m.group(2))
+            table_open = None
+            if value == "":
+                raise InputError(f"[{current}] {key} has no value", file=path, line=lineno,
+                                 key=key)
+            if key in sections[current]:
+                raise InputError(f"[{current}] {key} is given twice (first on line "
+                                 f"{lines[(current, key)]})", file=path, line=lineno, key=key)
+            if current in _keys.NUMERIC_SECTIONS and isinstance(value, str):
+                raise InputError(f"[{current}] {key} must be a number, got '{m.group(2).strip()}'",
+                                 file=path, line=lineno, key=key)
+            sections[current][key] = value
+            lines[(current, key)] = lineno
+            continue
+        m = _TABLE_RE.match(body)
+        if m:
+            cols = tuple(c.lower() for c in m.group(1).split())
+            if not cols or current in tables:
+                why = "an empty table header" if not cols else "a second table in the section"
+                raise InputError(f"[{current}] has {why}", file=path, line=lineno)
+            tables[current] = (cols, [], lineno)
+            table_open = current
+            continue
+        if table_open is not None:
+            cols, rows, _ = tables[table_open]
+            parts = body.replace(",", " ").split()
+            if len(parts) != len(cols) or not all(_NUMBER_RE.match(p) for p in parts):
+                raise InputError(f"[{current}] table row '{body}' must hold {len(cols)} numbers "
+                                 f"({' '.join(cols)})", file=path, line=lineno)
+            rows.append([float(p.replace("d", "e").replace("D", "E")) for p in parts])
+            continue
+        raise InputError(f"cannot parse '{body}' in [{current}]: expected KEY = value, "
+                         "a [SECTION] header or a {{table}} header", file=path, line=lineno)
+
+    if not sections:
+        raise InputError("no [SECTION] found: not a TeimOrbit tyre property file", file=path)
+    fmt = str(sections.get("MODEL", {}).get("PROPERTY_FILE_FORMAT", "")).upper()
+    use_mode = sections.get("MODEL", {}).get("USE_MODE", 4.0)
+    if not isinstance(use_mode, float) or use_mode != int(use_mode) or \
+            int(use_mode) not in VALID_USE_MODES:
+        raise InputError(f"[MODEL] USE_MODE = {use_mode!r} is not valid; valid: 0..4, 10..14, "
+                         "20..24 (negative = mirrored)", file=path,
+                         line=lines.get(("MODEL", "USE_MODE")), key="USE_MODE")
+    for name in _required_sections(fmt, int(use_mode)):
+        if name not in sections:
+            raise InputError(f"required section [{name}] is missing for a {fmt or 'tyre'} "
+                             f"file with USE_MODE {int(use_mode)}", file=path, key=name)
+    if "PROPERTY_FILE_FORMAT" not in sections["MODEL"]:
+        raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002' or 'FIALA')",
+                         file=path, line=lines[("MODEL", "")], key="PROPERTY_FILE_FORMAT")
+    _check_keys(path, fmt, sections, lines)
+
+    factors = _unit_factors(path, sections.get("UNITS", {}), lines)
+    if fmt == "PAC2002" and factors["ANGLE"] != 1.0:
+        warnings.warn(f"{path}: [UNITS] ANGLE is not radian; Magic Formula coefficients are "
+                      "still interpreted as radian-based", UserWarning, stacklevel=2)
+    for (sec, key), dims in _keys.UNIT_DIMENSIONS.items():
+        value = sections.get(sec, {}).get(key)
+        if isinstance(value, float):
+            sections[sec][key] = value * _scale(dims, factors)
+
+    frozen_tables = {}
+    for name, (cols, rows, lineno) in tables.items():
+        if not rows:
+            raise InputError(f"[{name}] table {{{' '.join(cols)}}} has no rows", file=path,
+                             line=lineno)
+        data = np.array(rows, dtype=float)
+        dims = _keys.TABLE_DIMENSIONS.get(name)
+        if dims is not None and len(dims) == data.shape[1]:
+            data = data * np.array([_scale(d, factors) for d in dims])
+        data.setflags(write=False)
+        frozen_tables[name] = TirTable(cols, data, lineno)
+
+    return TireProperties(
+        path=path,
+        sections=MappingProxyType({k: MappingProxyType(v) for k, v in sections.items()}),
+        tables=MappingProxyType(frozen_tables),
+        lines=MappingProxyType(lines),
+    )

@@ -1,0 +1,126 @@
+"""Vertical tyre force: linear or Duffing (cubic) spring with damping and lift-off."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexpipe.errors import InputError
+
+
+@dataclass(frozen=True)
+class VerticalModel:
+    """Radial tyre spring-damper that can only push.
+
+    ``Fz = max(0, k d + k3 d^3 + c d_dot)`` for deflection ``d > 0`` and ``Fz = 0`` when the
+    tyre has lifted off (``d <= 0``).  Clipping at zero also keeps a fast rebound from
+    letting the damper pull the wheel onto the road.
+
+    Parameters
+    ----------
+    k : float
+        Linear stiffness, N/m (> 0).
+    c : float
+        Damping, N s/m (>= 0).
+    k3 : float
+        Cubic (Duffing) stiffness, N/m^3; 0 for a linear tyre.  Negative values soften and
+        must keep the spring force monotonic up to ``d_max``.
+    d_max : float
+        Deflection up to which a softening ``k3 < 0`` must keep ``dF/dd > 0``, m.
+    """
+
+    k: float
+    c: float = 0.0
+    k3: float = 0.0
+    d_max: float = 0.1
+
+    def __post_init__(self):
+        if not self.k > 0:
+            raise InputError(f"vertical stiffness must be > 0 N/m, got {self.k}", key="k")
+        if not self.c >= 0:
+            raise InputError(f"vertical damping must be >= 0 N s/m, got {self.c}", key="c")
+        if self.k + 3.0 * self.k3 * self.d_max ** 2 <= 0:
+            raise InputError(f"cubic stiffness k3 = {self.k3} N/m^3 makes the tyre spring "
+                             f"lose stiffness before d_max = {self.d_max} m", key="k3")
+
+    @property
+    def is_linear(self) -> bool:
+        """True when there is no cubic term."""
+        return self.k3 == 0.0
+
+    def spring_force(self, d):
+        """Elastic part ``k d + k3 d^3`` for ``d > 0``, else 0 (N)."""
+        d = np.maximum(np.asarray(d, dtype=float), 0.0)
+        return self.k * d + self.k3 * d ** 3
+
+    def force(self, d, d_dot=0.0):
+        """Vertical force, N, >= 0.
+
+        Parameters
+        ----------
+        d : float or array
+            Radial deflection (compression positive), m.
+        d_dot : float or array
+            Deflection rate, m/s.
+        """
+        d = np.asarray(d, dtype=float)
+        f = self.k * d + self.k3 * d ** 3 + self.c * np.asarray(d_dot, dtype=float)
+        return np.where(d > 0.0, np.maximum(f, 0.0), 0.0)
+
+    def static_deflection(self, Fz: float) -> float:
+        """Deflection carrying ``Fz`` at rest (solves ``k d + k3 d^3 = Fz``), m."""
+        if self.k3 == 0.0:
+            return Fz / self.k
+        roots = np.roots([self.k3, 0.0, self.k, -Fz])
+        real = roots[np.abs(roots.imag) < 1e-9 * max(1.0, abs(Fz))].real
+        return float(np.min(real[real >= 0]))
+
+    @classmethod
+    def from_properties(cls, props, *, law: str = "auto") -> VerticalModel:
+        """Build from a ``.tir`` file.
+
+        Parameters
+        ----------
+        props : TireProperties
+        law : {"auto", "linear", "duffing"}
+            ``linear``: ``VERTICAL_STIFFNESS`` (times LCZ) and ``VERTICAL_DAMPING``.
+            ``duffing``: ``k, k3`` from ``VERTICAL_STIFFNESS_CUBIC`` (flexpipe extension, with
+            ``VERTICAL_STIFFNESS``) or else a least-squares fit ``Fz = k d + k3 d^3`` of the
+            ``[DEFLECTION_LOAD_CURVE] {pen fz}`` table.  ``auto``: duffing when either is
+            present, else linear.
+        """
+        if law not in ("auto", "linear", "duffing"):
+            raise InputError(f"law must be 'auto', 'linear' or 'duffing', got {law!r}", key="law")
+        c = props.vertical_damping
+        cubic = props.vertical_stiffness_cubic
+        table = props.tables.get("DEFLECTION_LOAD_CURVE")
+        if law == "linear" or (law == "auto" and cubic is None and table is None):
+            return cls(k=props.vertical_stiffness, c=c)
+        if cubic is not None:
+            return cls(k=props.vertical_stiffness, c=c, k3=cubic)
+        if table is None:
+            raise InputError("a Duffing tyre needs [VERTICAL] VERTICAL_STIFFNESS_CUBIC or a "
+                             "[DEFLECTION_LOAD_CURVE] {pen fz} table", file=props.path,
+                             key="DEFLECTION_LOAD_CURVE")
+        k, k3 = fit_duffing(table.column("pen"), table.column("fz"))
+        lcz = float(props.get("SCALING_COEFFICIENTS", "LCZ", 1.0))
+        d_max = float(np.max(table.column("pen")))
+        return cls(k=k * lcz, c=c, k3=k3 * lcz, d_max=d_max)
+
+
+def fit_duffing(d, Fz) -> tuple[float, float]:
+    """Least-squares ``(k, k3)`` of ``Fz = k d + k3 d^3`` through the origin.
+
+    Parameters
+    ----------
+    d, Fz : array_like
+        Deflections (m) and loads (N); at least two points with ``d > 0``.
+    """
+    d = np.asarray(d, dtype=float)
+    Fz = np.asarray(Fz, dtype=float)
+    if np.count_nonzero(d > 0) < 2:
+        raise InputError("a load-deflection curve needs at least two points with d > 0")
+    A = np.column_stack([d, d ** 3])
+    (k, k3), *_ = np.linalg.lstsq(A, Fz, rcond=None)
+    return float(k), float(k3)

@@ -1,0 +1,170 @@
+"""Checked reading of the car TOML file: typed values, ranges, unknown-key detection.
+
+Every error is an :class:`~flexpipe.errors.InputError` naming the file, the line (found by
+a light scan of the text, since :mod:`tomllib` keeps no positions), the dotted key and what
+would be valid.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import InputError
+
+_MISSING = object()
+
+
+def parse(path: Path) -> tuple[dict, list[str]]:
+    """Parse ``path``; returns the document and its text lines (for line lookup)."""
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise InputError(f"cannot read the car file ({exc.strerror}); give the path of a "
+                         "TOML car file such as cars/sedan.toml", file=path) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text ({exc.reason})", file=path) from None
+    try:
+        return tomllib.loads(text), text.splitlines()
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"line (\d+)", str(exc))
+        raise InputError(f"TOML syntax error: {exc}", file=path,
+                         line=int(m.group(1)) if m else None) from None
+
+
+class Table:
+    """Typed access to one TOML table; :meth:`finish` rejects keys never asked for.
+
+    Parameters
+    ----------
+    data : dict
+        The table.
+    name : str
+        Dotted name in the file (``"corners.fl"``).
+    file : Path
+        The car file.
+    lines : list of str
+        Its text, to report line numbers.
+    """
+
+    def __init__(self, data, name: str, file: Path, lines: list[str]):
+        self.name = name
+        self.file = file
+        self.lines = lines
+        if not isinstance(data, dict):
+            raise InputError(f"expected a table [{name}], got {type(data).__name__}",
+                             file=file, key=name, line=self._line(None))
+        self.data = data
+        self._known: set[str] = set()
+
+    # ------------------------------------------------------------------ messages
+    def _line(self, key: str | None) -> int | None:
+        """1-based line of ``key`` inside this table's header, or of the header."""
+        parts = self.name.split(".") if self.name else []
+        header = None
+        for i, text in enumerate(self.lines):
+            s = text.strip()
+            if s.startswith("[") and s.strip("[] ").replace(" ", "") == self.name:
+                header = i
+                break
+        start = header if header is not None else 0
+        if key is None:
+            return None if header is None else header + 1
+        pat = re.compile(rf"^\s*\"?{re.escape(key)}\"?\s*=")
+        for i in range(start + 1 if header is not None else 0, len(self.lines)):
+            s = self.lines[i].strip()
+            if header is not None and i > start and s.startswith("["):
+                break
+            if pat.match(self.lines[i]):
+                return i + 1
+        if not parts:
+            return None
+        return None if header is None else header + 1
+
+    def key(self, key: str) -> str:
+        """Dotted name of ``key``."""
+        return f"{self.name}.{key}" if self.name else key
+
+    def error(self, key: str | None, message: str) -> InputError:
+        """An :class:`InputError` about ``key`` (or the table itself)."""
+        return InputError(message, file=self.file, line=self._line(key),
+                          key=self.key(key) if key else self.name)
+
+    # ------------------------------------------------------------------ access
+    def has(self, key: str) -> bool:
+        """Whether ``key`` is present (also marks it as a known key)."""
+        self._known.add(key)
+        return key in self.data
+
+    def raw(self, key: str, default=_MISSING, *, doc: str = ""):
+        """Value of ``key`` unconverted; missing required keys raise."""
+        self._known.add(key)
+        if key not in self.data:
+            if default is _MISSING:
+                hint = f" ({doc})" if doc else ""
+                raise self.error(None, f"missing required key '{key}'{hint}")
+            return default
+        return self.data[key]
+
+    def number(self, key: str, default=_MISSING, *, lo=None, hi=None, lo_open=False,
+               doc: str = "") -> float:
+        """A finite number, range-checked (``lo`` inclusive unless ``lo_open``)."""
+        v = self.raw(key, default, doc=doc)
+        if v is default and default is not _MISSING:
+            return v
+        if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+            raise self.error(key, f"expected a finite number, got {v!r}")
+        v = float(v)
+        if lo is not None and (v < lo or (lo_open and v == lo)):
+            rel = ">" if lo_open else ">="
+            raise self.error(key, f"must be {rel} {lo:g}, got {v:g}")
+        if hi is not None and v > hi:
+            raise self.error(key, f"must be <= {hi:g}, got {v:g}")
+        return v
+
+    def string(self, key: str, default=_MISSING, *, choices=None, doc: str = "") -> str:
+        """A string, optionally one of ``choices``."""
+        v = self.raw(key, default, doc=doc)
+        if v is default and default is not _MISSING:
+            return v
+        if not isinstance(v, str):
+            raise self.error(key, f"expected a string, got {v!r}")
+        if choices is not None and v not in choices:
+            raise self.error(key, f"got {v!r}; valid: {', '.join(map(repr, choices))}")
+        return v
+
+    def vector(self, key: str, n: int = 3, default=_MISSING, *, doc: str = "") -> np.ndarray:
+        """A list of ``n`` finite numbers."""
+        v = self.raw(key, default, doc=doc)
+        if v is default and default is not _MISSING:
+            return v
+        ok = (isinstance(v, list) and len(v) == n and all(
+            not isinstance(x, bool) and isinstance(x, int | float) and math.isfinite(x)
+            for x in v))
+        if not ok:
+            raise self.error(key, f"expected a list of {n} finite numbers, got {v!r}")
+        return np.array(v, dtype=float)
+
+    def sub(self, key: str, default=_MISSING) -> Table | None:
+        """Sub-table ``key`` as a :class:`Table` (``None`` when absent and optional)."""
+        v = self.raw(key, default)
+        if v is default and default is not _MISSING:
+            return v
+        return Table(v, self.key(key), self.file, self.lines)
+
+    def finish(self) -> None:
+        """Raise for keys of this table that no reader asked for (misspellings)."""
+        unknown = sorted(set(self.data) - self._known)
+        if unknown:
+            k = unknown[0]
+            close = difflib.get_close_matches(k, sorted(self._known), n=1)
+            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            raise self.error(k, f"unknown key{hint}; valid keys in [{self.name or 'top level'}]"
+                                f": {', '.join(sorted(self._known))}")

@@ -1,0 +1,356 @@
+"""Generate ``meshes/sedan_biw.bdf``: a sedan body-in-white concept model (shells + beams).
+
+Run ``python meshes/make_sedan_biw.py`` to rewrite the file, ``--check`` to also assemble
+it, print its mass and its free-free modes, and (with ``--car cars/sedan.toml``) the modes
+of the trimmed body (the car file's non-structural masses added).
+
+Geometry (ISO 8855 axes: x forward, y left, z up; z = 0 is the ground in the design
+position; front axle at x = 0, rear axle at x = -2.75 m; overall 4.60 x 1.50 (body
+structure, 1.80 over the tyres) x 1.40 m).  Panels are CQUAD4 shells on a 50 mm grid
+(PSHELL), the body-side frame and the rails are CBAR beams (PBAR, thin-walled box
+sections) sharing nodes with the panels:
+
+* floor pan with a closed tunnel, heel kick, raised rear floor;
+* dash panel (bulkhead), rear seat-back panel, parcel shelf, rear wheelhouse inner walls
+  carrying the rear damper mounts;
+* front strut towers (wall + top plate) between the front rails and the upper (apron)
+  rails, carrying the front strut mounts; the bolted engine cradle (subframe) as a plate
+  between the front rails; the rear (back) panel;
+* sills, hinge pillars, A-, B-, C-pillars, roof rails, headers, roof bow, roof panel;
+* front rails with kick-down floor longitudinals, rear rails, bumper beams, radiator
+  support, floor cross members, cowl beam.
+
+Panels not modelled as structure (outer body side skins, wheelhouse outers, reinforcements,
+sealer, spot-weld flanges) are carried as non-structural CONM2 masses on the side frame so
+that the BIW mass is realistic (~300 kg for a steel mid-size sedan).
+
+Targets (sources): global first torsion and bending of a steel sedan BIW at roughly
+25-45 Hz and 30-50 Hz; once trimmed (powertrain, interior, closures, occupants as
+masses) the global modes fall to roughly 15-30 Hz.  BMW's NVH practice (Ludke, quoted in
+Crolla (ed.), *Automotive Engineering: Powertrain, Chassis System and Vehicle Body*,
+Butterworth-Heinemann 2009, ch. 18.1) puts the complete vehicle's first bending/torsion at
+26/29 Hz, in an "idle frequency window" between engine orders.
+
+The suspension mounts (hardpoints) are written as comments ``$ HARDPOINT name x y z`` and
+as ``SET1`` node lists (one per mount, patch within 0.10 m) with a ``$ SET name`` comment.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+H = 0.05  # grid spacing, m
+STEEL = dict(E=210e9, nu=0.3, rho=7850.0)
+
+#: suspension mount points (body coordinates, m)
+HARDPOINTS = {
+    "strut_fl": (0.00, 0.65, 0.85),
+    "strut_fr": (0.00, -0.65, 0.85),
+    "damper_rl": (-2.75, 0.55, 0.65),
+    "damper_rr": (-2.75, -0.55, 0.65),
+}
+
+#: shell properties: name -> (sheet gauge in m, bending factor beta).  Beaded and crowned
+#: sheet is modelled as an equivalent flat shell of thickness beta * gauge with E and rho
+#: divided by beta: same mass and membrane stiffness as the sheet, bending stiffness
+#: raised by beta^2 (beads, crown, local stiffeners), which keeps local panel modes
+#: above the global ones as in a real body.
+SHELLS = {
+    "floor": (0.0008, 8.0), "tunnel": (0.0010, 4.0), "heel_kick": (0.0010, 4.0),
+    "rear_floor": (0.0008, 8.0), "dash": (0.0009, 8.0), "seat_back": (0.0008, 8.0),
+    "parcel_shelf": (0.0008, 8.0), "wheelhouse": (0.0010, 6.0), "tower": (0.0025, 3.0),
+    "roof": (0.0007, 10.0), "subframe": (0.0020, 4.0), "rear_panel": (0.0010, 6.0),
+}
+
+#: beam properties: name -> thin-walled box (width, height, wall) in m
+BEAMS = {
+    "sill": (0.11, 0.17, 0.0030), "hinge_pillar": (0.10, 0.14, 0.0025),
+    "a_pillar": (0.07, 0.09, 0.0022), "b_pillar": (0.08, 0.15, 0.0025),
+    "c_pillar": (0.09, 0.11, 0.0020), "roof_rail": (0.07, 0.09, 0.0020),
+    "header": (0.06, 0.07, 0.0015), "front_rail": (0.08, 0.13, 0.0025),
+    "upper_rail": (0.06, 0.09, 0.0020), "rear_rail": (0.08, 0.11, 0.0022),
+    "cross_member": (0.07, 0.08, 0.0018), "bumper": (0.06, 0.11, 0.0022),
+    "cowl": (0.08, 0.10, 0.0018), "quarter": (0.06, 0.08, 0.0018),
+}
+#: non-structural mass smeared on the side frame (outer skins, reinforcements), kg
+NONSTRUCTURAL_KG = 95.0
+
+
+def shell_equivalent(name):
+    """(E, rho, thickness) of the equivalent shell of panel ``name``."""
+    gauge, beta = SHELLS[name]
+    return STEEL["E"] / beta, STEEL["rho"] / beta, gauge * beta
+
+
+def box_section(b, h, t):
+    """Area, I_y (about local y, bending in x-z), I_z (about z), J of a thin box."""
+    bi, hi = b - 2 * t, h - 2 * t
+    A = b * h - bi * hi
+    Iz = (b * h**3 - bi * hi**3) / 12  # height along local y
+    Iy = (h * b**3 - hi * bi**3) / 12
+    J = 4 * ((b - t) * (h - t)) ** 2 * t / (2 * ((b - t) + (h - t)))
+    return A, Iy, Iz, J
+
+
+class Builder:
+    """Accumulates nodes (merged on a 1 µm lattice), quads, bars and point masses."""
+
+    def __init__(self):
+        self.key = {}
+        self.points = []
+        self.quads, self.quad_pid = [], []
+        self.bars, self.bar_pid, self.bar_v = [], [], []
+        self.pids = {}
+
+    def node(self, p) -> int:
+        k = tuple(np.round(np.asarray(p, dtype=float) * 1e6).astype(np.int64))
+        if k not in self.key:
+            self.key[k] = len(self.points)
+            self.points.append(np.asarray(k, dtype=float) * 1e-6)
+        return self.key[k]
+
+    def pid(self, name) -> int:
+        return self.pids.setdefault(name, len(self.pids) + 1)
+
+    def panel(self, name, origin, u, v):
+        """Planar patch origin + a u + b v, a, b in [0, 1], meshed at spacing H."""
+        o, u, v = (np.asarray(a, dtype=float) for a in (origin, u, v))
+        nu = max(1, round(np.linalg.norm(u) / H))
+        nv = max(1, round(np.linalg.norm(v) / H))
+        ids = np.empty((nu + 1, nv + 1), dtype=np.int64)
+        for i in range(nu + 1):
+            for j in range(nv + 1):
+                ids[i, j] = self.node(o + u * i / nu + v * j / nv)
+        pid = self.pid(name)
+        for i in range(nu):
+            for j in range(nv):
+                self.quads.append((ids[i, j], ids[i + 1, j], ids[i + 1, j + 1], ids[i, j + 1]))
+                self.quad_pid.append(pid)
+
+    def beam(self, name, *pts, orient=None):
+        """Polyline through ``pts`` split into pieces of about H."""
+        pid = self.pid(name)
+        pts = [np.asarray(p, dtype=float) for p in pts]
+        for a, b in zip(pts[:-1], pts[1:]):
+            n = max(1, round(np.linalg.norm(b - a) / H))
+            d = (b - a) / np.linalg.norm(b - a)
+            if orient is not None:
+                v = np.asarray(orient, dtype=float)
+            else:  # vertical-ish members: orientation along x; others: along z
+                v = np.array([1.0, 0, 0]) if abs(d[2]) > 0.7 else np.array([0, 0, 1.0])
+            ids = [self.node(a + (b - a) * k / n) for k in range(n + 1)]
+            for i0, i1 in zip(ids[:-1], ids[1:]):
+                self.bars.append((i0, i1))
+                self.bar_pid.append(pid)
+                self.bar_v.append(v)
+
+
+def build():
+    """Return the :class:`Builder` holding the body-in-white."""
+    B = Builder()
+    P = B.panel
+    # ---- floor, tunnel, heel kick, rear floor
+    P("floor", (-2.40, -0.75, 0.20), (1.90, 0, 0), (0, 1.50, 0))
+    for y in (-0.10, 0.10):
+        P("tunnel", (-2.40, y, 0.20), (1.90, 0, 0), (0, 0, 0.20))
+    P("tunnel", (-2.40, -0.10, 0.40), (1.90, 0, 0), (0, 0.20, 0))
+    P("heel_kick", (-2.40, -0.75, 0.20), (0, 1.50, 0), (0, 0, 0.15))
+    P("rear_floor", (-3.75, -0.55, 0.35), (1.35, 0, 0), (0, 1.10, 0))
+    # ---- bulkheads and rear structure
+    P("dash", (-0.50, -0.75, 0.20), (0, 1.50, 0), (0, 0, 0.75))
+    P("seat_back", (-2.60, -0.55, 0.35), (0, 1.10, 0), (0, 0, 0.60))
+    P("parcel_shelf", (-3.10, -0.55, 0.95), (0.50, 0, 0), (0, 1.10, 0))
+    for y in (-0.55, 0.55):
+        P("wheelhouse", (-3.10, y, 0.35), (0.70, 0, 0), (0, 0, 0.60))
+    # ---- front strut towers: wall between front rail and apron, top plate to upper rail
+    for s in (-1, 1):
+        P("tower", (-0.25, 0.55 * s, 0.40), (0.50, 0, 0), (0, 0, 0.45))
+        P("tower", (-0.25, 0.55 * s, 0.85), (0.50, 0, 0), (0, 0.20 * s, 0))
+    P("roof", (-2.55, -0.65, 1.40), (1.30, 0, 0), (0, 1.30, 0))
+    # engine cradle (bolted subframe) as a plate between the front rails; rear panel
+    P("subframe", (-0.50, -0.55, 0.40), (0.85, 0, 0), (0, 1.10, 0))
+    P("rear_panel", (-3.75, -0.55, 0.35), (0, 1.10, 0), (0, 0, 0.40))
+    # ---- beams
+    for s in (-1, 1):
+        B.beam("sill", (-2.40, 0.75 * s, 0.20), (-0.50, 0.75 * s, 0.20))
+        B.beam("hinge_pillar", (-0.50, 0.75 * s, 0.20), (-0.50, 0.75 * s, 0.95))
+        B.beam("a_pillar", (-0.50, 0.75 * s, 0.95), (-1.25, 0.65 * s, 1.40))
+        B.beam("b_pillar", (-1.60, 0.75 * s, 0.20), (-1.60, 0.65 * s, 1.40))
+        B.beam("roof_rail", (-1.25, 0.65 * s, 1.40), (-2.55, 0.65 * s, 1.40))
+        # C-pillar: heel-kick corner up to the roof, with a node at belt height (z 0.95)
+        zc = 0.95
+        tc = (zc - 0.35) / (1.40 - 0.35)
+        pc = np.array([-2.40, 0.75 * s, 0.35]) + tc * np.array([-0.15, -0.10 * s, 1.05])
+        B.beam("c_pillar", (-2.40, 0.75 * s, 0.35), pc, (-2.55, 0.65 * s, 1.40))
+        B.beam("quarter", pc, (-2.40, 0.55 * s, 0.95))
+        B.beam("c_pillar", (-2.55, 0.65 * s, 1.40), (-3.10, 0.55 * s, 0.95))
+        B.beam("sill", (-2.40, 0.75 * s, 0.20), (-2.40, 0.75 * s, 0.35))
+        B.beam("quarter", (-3.10, 0.55 * s, 0.95), (-3.75, 0.55 * s, 0.75),
+               (-3.75, 0.55 * s, 0.35))
+        # front: rails, kick-down into floor longitudinals, apron upper rails, posts
+        B.beam("front_rail", (0.85, 0.55 * s, 0.40), (-0.50, 0.55 * s, 0.40))
+        B.beam("front_rail", (-0.50, 0.55 * s, 0.40), (-0.90, 0.55 * s, 0.20),
+               (-2.40, 0.55 * s, 0.20))
+        B.beam("upper_rail", (0.70, 0.75 * s, 0.85), (-0.50, 0.75 * s, 0.85))
+        B.beam("cross_member", (0.70, 0.55 * s, 0.40), (0.70, 0.55 * s, 0.85))
+        B.beam("rear_rail", (-2.40, 0.55 * s, 0.35), (-3.75, 0.55 * s, 0.35))
+    B.beam("header", (-1.25, -0.65, 1.40), (-1.25, 0.65, 1.40))
+    B.beam("header", (-2.55, -0.65, 1.40), (-2.55, 0.65, 1.40))
+    B.beam("header", (-1.90, -0.65, 1.40), (-1.90, 0.65, 1.40))
+    B.beam("cowl", (-0.50, -0.75, 0.95), (-0.50, 0.75, 0.95))
+    B.beam("cross_member", (-1.20, -0.75, 0.20), (-1.20, 0.75, 0.20))
+    B.beam("cross_member", (-2.00, -0.75, 0.20), (-2.00, 0.75, 0.20))
+    B.beam("cross_member", (0.70, -0.75, 0.85), (0.70, 0.75, 0.85))
+    B.beam("bumper", (0.85, -0.55, 0.40), (0.85, 0.55, 0.40))
+    B.beam("bumper", (-3.75, -0.55, 0.35), (-3.75, 0.55, 0.35))
+    B.beam("cross_member", (-3.75, -0.55, 0.75), (-3.75, 0.55, 0.75))
+    return B
+
+
+def structural_mass(B) -> float:
+    """Mass of shells and beams from geometry (independent of the FE assembly)."""
+    X = np.array(B.points)
+    q = np.array(B.quads)
+    d1 = X[q[:, 2]] - X[q[:, 0]]
+    d2 = X[q[:, 3]] - X[q[:, 1]]
+    area = 0.5 * np.linalg.norm(np.cross(d1, d2), axis=1)
+    inv = {v: k for k, v in B.pids.items()}
+    t = np.array([SHELLS[inv[p]][0] for p in B.quad_pid])
+    b = np.array(B.bars)
+    L = np.linalg.norm(X[b[:, 1]] - X[b[:, 0]], axis=1)
+    A = np.array([box_section(*BEAMS[inv[p]])[0] for p in B.bar_pid])
+    return float(STEEL["rho"] * (area @ t + L @ A))
+
+
+def nonstructural_nodes(B) -> np.ndarray:
+    """Nodes of the body-side frame that carry the smeared non-structural mass."""
+    inv = {v: k for k, v in B.pids.items()}
+    names = {"sill", "hinge_pillar", "a_pillar", "b_pillar", "c_pillar", "roof_rail",
+             "quarter", "upper_rail"}
+    nodes = {n for (a, b), p in zip(B.bars, B.bar_pid) if inv[p] in names for n in (a, b)}
+    return np.array(sorted(nodes))
+
+
+def _f8(v: float) -> str:
+    """``v`` in at most 8 characters (Nastran small field), the most precise spelling."""
+    v = float(v)
+    if v == 0:
+        return "0."
+    best, err = None, np.inf
+    cands = [f"{v:.{p}f}" for p in range(0, 8)]
+    cands += [f"{v:.{p}E}".replace("E+0", "E+").replace("E-0", "E-") for p in range(0, 6)]
+    for s in cands:
+        if "." not in s:
+            s = s.replace("E", ".E") if "E" in s else s + "."
+        if s.startswith("0.") and len(s) > 8:
+            s = s[1:]
+        if s.startswith("-0.") and len(s) > 8:
+            s = "-" + s[2:]
+        if len(s) > 8:
+            continue
+        e = abs(float(s) - v) / abs(v)
+        if e < err:
+            best, err = s, e
+    if best is None or err > 1e-3:
+        raise ValueError(f"cannot write {v!r} in 8 characters")
+    return best
+
+
+def _card(*fields) -> str:
+    head, rest = fields[0], fields[1:]
+    out = f"{head:<8s}"
+    lines = []
+    for i, f in enumerate(rest):
+        if i and i % 8 == 0:
+            lines.append(out)
+            out = f"{'+':<8s}"
+        s = f if isinstance(f, str) else (_f8(f) if isinstance(f, float) else str(f))
+        if len(s) > 8:
+            raise ValueError(f"field {s!r} of {head} longer than 8 characters")
+        out += f"{s:>8s}"
+    lines.append(out)
+    return "\n".join(lines)
+
+
+def write_bdf(B, path: Path) -> dict:
+    """Write the Nastran bulk-data file; returns a summary dict."""
+    X = np.array(B.points)
+    ns_nodes = nonstructural_nodes(B)
+    lines = [
+        "$ sedan body-in-white concept model, written by meshes/make_sedan_biw.py",
+        "$ units: m, kg, s, N, Pa.  Axes ISO 8855 (x forward, y left, z up), z = 0 ground",
+    ]
+    for name, p in HARDPOINTS.items():
+        lines.append(f"$ HARDPOINT {name} {p[0]:.4f} {p[1]:.4f} {p[2]:.4f}")
+    lines.append("BEGIN BULK")
+    lines.append(_card("MAT1", 1, STEEL["E"], "", STEEL["nu"], STEEL["rho"]))
+    inv = {v: k for k, v in B.pids.items()}
+    for pid in sorted(inv):
+        name = inv[pid]
+        lines.append(f"$ property {pid}: {name}")
+        if name in SHELLS:
+            E, rho, t = shell_equivalent(name)
+            mid = 100 + pid
+            lines.append(f"$ equivalent sheet: gauge {SHELLS[name][0] * 1e3:.2f} mm, "
+                         f"bending factor {SHELLS[name][1]:g}")
+            lines.append(_card("MAT1", mid, E, "", STEEL["nu"], rho))
+            lines.append(_card("PSHELL", pid, mid, t, mid, "", mid))
+        else:
+            A, Iy, Iz, J = box_section(*BEAMS[name])
+            # PBAR I1 = bending in plane 1 (local x-y, about local z), I2 about local y
+            lines.append(_card("PBAR", pid, 1, A, Iz, Iy, J))
+    for i, p in enumerate(X):
+        lines.append(_card("GRID", i + 1, "", float(p[0]), float(p[1]), float(p[2])))
+    eid = 0
+    for q, pid in zip(B.quads, B.quad_pid):
+        eid += 1
+        lines.append(_card("CQUAD4", eid, pid, *(int(n) + 1 for n in q)))
+    for (a, b), pid, v in zip(B.bars, B.bar_pid, B.bar_v):
+        eid += 1
+        lines.append(_card("CBAR", eid, pid, a + 1, b + 1, float(v[0]), float(v[1]),
+                           float(v[2])))
+    m_each = NONSTRUCTURAL_KG / len(ns_nodes)
+    lines.append(f"$ non-structural mass {NONSTRUCTURAL_KG} kg on {len(ns_nodes)} side-frame "
+                 "nodes")
+    for n in ns_nodes:
+        eid += 1
+        lines.append(_card("CONM2", eid, int(n) + 1, 0, round(m_each, 6)))
+    for k, (name, p) in enumerate(HARDPOINTS.items()):
+        near = np.flatnonzero(np.linalg.norm(X - np.asarray(p), axis=1) <= 0.10 + 1e-9)
+        lines.append(f"$ SET {name}")
+        lines.append(_card("SET1", k + 1, *(int(n) + 1 for n in near)))
+    lines.append("ENDDATA")
+    text = "\n".join(lines) + "\n"
+    tmp = path.with_suffix(".tmp")
+    tmp.write_text(text)
+    tmp.replace(path)
+    return {"nodes": len(X), "quads": len(B.quads), "bars": len(B.bars),
+            "dof": 6 * len(X), "structural_mass_kg": structural_mass(B),
+            "nonstructural_mass_kg": NONSTRUCTURAL_KG, "bytes": len(text)}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default=str(Path(__file__).with_name("sedan_biw.bdf")))
+    ap.add_argument("--check", action="store_true", help="assemble and print modes")
+    ap.add_argument("--car", default=None, help="car file whose added masses trim the body")
+    args = ap.parse_args(argv)
+    B = build()
+    info = write_bdf(B, Path(args.out))
+    print(f"wrote {args.out}: {info['nodes']} nodes ({info['dof']} DOF), {info['quads']} "
+          f"CQUAD4, {info['bars']} CBAR, {info['bytes'] / 1e6:.2f} MB; BIW mass "
+          f"{info['structural_mass_kg'] + info['nonstructural_mass_kg']:.1f} kg "
+          f"(structure {info['structural_mass_kg']:.1f} kg)")
+    if args.check:
+        sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+        from flexpipe.vehicle.bodymodel import describe_modes
+
+        print(describe_modes(Path(args.out), car=args.car))
+
+
+if __name__ == "__main__":
+    main()
