@@ -60,24 +60,25 @@ HARDPOINTS = {
 #: raised by beta^2 (beads, crown, local stiffeners), which keeps local panel modes
 #: above the global ones as in a real body.
 SHELLS = {
-    "floor": (0.0008, 8.0), "tunnel": (0.0010, 4.0), "heel_kick": (0.0010, 4.0),
-    "rear_floor": (0.0008, 8.0), "dash": (0.0009, 8.0), "seat_back": (0.0008, 8.0),
-    "parcel_shelf": (0.0008, 8.0), "wheelhouse": (0.0010, 6.0), "tower": (0.0025, 3.0),
-    "roof": (0.0007, 10.0), "subframe": (0.0020, 4.0), "rear_panel": (0.0010, 6.0),
+    "floor": (0.0007, 8.0), "tunnel": (0.0008, 4.0), "heel_kick": (0.0010, 4.0),
+    "rear_floor": (0.0008, 8.0), "dash": (0.0008, 8.0), "seat_back": (0.0007, 8.0),
+    "parcel_shelf": (0.0008, 8.0), "wheelhouse": (0.0010, 6.0), "tower": (0.0020, 3.0),
+    "roof": (0.0006, 10.0), "subframe": (0.0015, 4.0), "rear_panel": (0.0010, 6.0),
 }
 
 #: beam properties: name -> thin-walled box (width, height, wall) in m
 BEAMS = {
-    "sill": (0.11, 0.17, 0.0030), "hinge_pillar": (0.10, 0.14, 0.0025),
-    "a_pillar": (0.07, 0.09, 0.0022), "b_pillar": (0.08, 0.15, 0.0025),
-    "c_pillar": (0.09, 0.11, 0.0020), "roof_rail": (0.07, 0.09, 0.0020),
-    "header": (0.06, 0.07, 0.0015), "front_rail": (0.08, 0.13, 0.0025),
-    "upper_rail": (0.06, 0.09, 0.0020), "rear_rail": (0.08, 0.11, 0.0022),
-    "cross_member": (0.07, 0.08, 0.0018), "bumper": (0.06, 0.11, 0.0022),
-    "cowl": (0.08, 0.10, 0.0018), "quarter": (0.06, 0.08, 0.0018),
+    "sill": (0.10, 0.10, 0.0013), "hinge_pillar": (0.09, 0.11, 0.0015),
+    "a_pillar": (0.07, 0.08, 0.0015), "b_pillar": (0.07, 0.10, 0.0014),
+    "c_pillar": (0.10, 0.12, 0.0015), "backlight": (0.08, 0.10, 0.0015),
+    "roof_rail": (0.06, 0.07, 0.0012), "header": (0.06, 0.07, 0.0012),
+    "front_rail": (0.07, 0.09, 0.0015), "upper_rail": (0.06, 0.08, 0.0015),
+    "rear_rail": (0.07, 0.09, 0.0015), "cross_member": (0.07, 0.08, 0.0013),
+    "bumper": (0.06, 0.10, 0.0018), "cowl": (0.08, 0.10, 0.0015),
+    "quarter": (0.06, 0.08, 0.0015),
 }
 #: non-structural mass smeared on the side frame (outer skins, reinforcements), kg
-NONSTRUCTURAL_KG = 95.0
+NONSTRUCTURAL_KG = 60.0
 
 
 def shell_equivalent(name):
@@ -164,8 +165,9 @@ def build():
     P("dash", (-0.50, -0.75, 0.20), (0, 1.50, 0), (0, 0, 0.75))
     P("seat_back", (-2.60, -0.55, 0.35), (0, 1.10, 0), (0, 0, 0.60))
     P("parcel_shelf", (-3.10, -0.55, 0.95), (0.50, 0, 0), (0, 1.10, 0))
-    for y in (-0.55, 0.55):
-        P("wheelhouse", (-3.10, y, 0.35), (0.70, 0, 0), (0, 0, 0.60))
+    for y in (-0.55, 0.55):  # rear wheelhouse / quarter inner walls
+        P("wheelhouse", (-3.75, y, 0.35), (1.35, 0, 0), (0, 0, 0.40))
+        P("wheelhouse", (-3.10, y, 0.75), (0.70, 0, 0), (0, 0, 0.20))
     # ---- front strut towers: wall between front rail and apron, top plate to upper rail
     for s in (-1, 1):
         P("tower", (-0.25, 0.55 * s, 0.40), (0.50, 0, 0), (0, 0, 0.45))
@@ -187,7 +189,8 @@ def build():
         pc = np.array([-2.40, 0.75 * s, 0.35]) + tc * np.array([-0.15, -0.10 * s, 1.05])
         B.beam("c_pillar", (-2.40, 0.75 * s, 0.35), pc, (-2.55, 0.65 * s, 1.40))
         B.beam("quarter", pc, (-2.40, 0.55 * s, 0.95))
-        B.beam("c_pillar", (-2.55, 0.65 * s, 1.40), (-3.10, 0.55 * s, 0.95))
+        B.beam("quarter", (-2.40, 0.75 * s, 0.35), (-2.40, 0.55 * s, 0.35))
+        B.beam("backlight", (-2.55, 0.65 * s, 1.40), (-3.10, 0.55 * s, 0.95))
         B.beam("sill", (-2.40, 0.75 * s, 0.20), (-2.40, 0.75 * s, 0.35))
         B.beam("quarter", (-3.10, 0.55 * s, 0.95), (-3.75, 0.55 * s, 0.75),
                (-3.75, 0.55 * s, 0.35))
@@ -206,6 +209,7 @@ def build():
     B.beam("cross_member", (-2.00, -0.75, 0.20), (-2.00, 0.75, 0.20))
     B.beam("cross_member", (0.70, -0.75, 0.85), (0.70, 0.75, 0.85))
     B.beam("bumper", (0.85, -0.55, 0.40), (0.85, 0.55, 0.40))
+    B.beam("cross_member", (0.35, -0.55, 0.40), (0.35, 0.55, 0.40))
     B.beam("bumper", (-3.75, -0.55, 0.35), (-3.75, 0.55, 0.35))
     B.beam("cross_member", (-3.75, -0.55, 0.75), (-3.75, 0.55, 0.75))
     return B
@@ -229,10 +233,18 @@ def structural_mass(B) -> float:
 def nonstructural_nodes(B) -> np.ndarray:
     """Nodes of the body-side frame that carry the smeared non-structural mass."""
     inv = {v: k for k, v in B.pids.items()}
-    names = {"sill", "hinge_pillar", "a_pillar", "b_pillar", "c_pillar", "roof_rail",
-             "quarter", "upper_rail"}
+    names = {"sill", "hinge_pillar", "b_pillar", "roof_rail"}
     nodes = {n for (a, b), p in zip(B.bars, B.bar_pid) if inv[p] in names for n in (a, b)}
     return np.array(sorted(nodes))
+
+
+def _read8(s: str) -> float:
+    """Value of a Nastran real field, including the implied-exponent form ``1.5+3``."""
+    body = s.lstrip("+-")
+    k = max(body.rfind("+"), body.rfind("-"))
+    if "E" not in body and k > 0:
+        s = s[: len(s) - len(body) + k] + "E" + body[k:]
+    return float(s)
 
 
 def _f8(v: float) -> str:
@@ -243,16 +255,19 @@ def _f8(v: float) -> str:
     best, err = None, np.inf
     cands = [f"{v:.{p}f}" for p in range(0, 8)]
     cands += [f"{v:.{p}E}".replace("E+0", "E+").replace("E-0", "E-") for p in range(0, 6)]
+    # Nastran's implied exponent, e.g. 2.625+10
+    cands += [f"{v:.{p}E}".replace("E+0", "+").replace("E-0", "-").replace("E", "")
+              for p in range(0, 6)]
     for s in cands:
         if "." not in s:
-            s = s.replace("E", ".E") if "E" in s else s + "."
+            continue
         if s.startswith("0.") and len(s) > 8:
             s = s[1:]
         if s.startswith("-0.") and len(s) > 8:
             s = "-" + s[2:]
         if len(s) > 8:
             continue
-        e = abs(float(s) - v) / abs(v)
+        e = abs(_read8(s) - v) / abs(v)
         if e < err:
             best, err = s, e
     if best is None or err > 1e-3:

@@ -57,17 +57,22 @@ def isotropic_stiffness(G: np.ndarray, wdet: np.ndarray, lam, mu) -> np.ndarray:
     Returns
     -------
     ndarray, shape (ne, 3 nn, 3 nn)
-        Node-major DOF order.
+        Node-major DOF order.  With one integration point (``nq == 1``) the result is
+        symmetric bit for bit.
     """
     ne, nq, nn, _ = G.shape
-    Gf = G.reshape(ne, nq, 3 * nn)
-    S = np.matmul((Gf * wdet[:, :, None]).transpose(0, 2, 1), Gf)
+    Gs = G.reshape(ne, nq, 3 * nn) * np.sqrt(wdet)[:, :, None]
+    if nq == 1:  # outer product: bitwise symmetric
+        S = Gs[:, 0, :, None] * Gs[:, 0, None, :]
+    else:
+        S = np.matmul(Gs.transpose(0, 2, 1), Gs)
     S = S.reshape(ne, nn, 3, nn, 3)                       # S[a, j, b, k] = int g_aj g_bk
-    dot = np.einsum("eajbj->eab", S)                      # int g_a . g_b
+    dot = S[:, :, 0, :, 0] + S[:, :, 1, :, 1] + S[:, :, 2, :, 2]   # int g_a . g_b
     K = lam[:, None, None, None, None] * S
     K += mu[:, None, None, None, None] * S.transpose(0, 1, 4, 3, 2)
+    mdot = mu[:, None, None] * dot
     for j in range(3):
-        K[:, :, j, :, j] += mu[:, None, None] * dot
+        K[:, :, j, :, j] += mdot
     return K.reshape(ne, 3 * nn, 3 * nn)
 
 

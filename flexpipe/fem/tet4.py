@@ -15,6 +15,8 @@ from flexpipe.fem._element import BadElements
 
 TYPE = "tetra"
 DOFS_PER_NODE = 3
+#: element matrices are symmetric bit for bit (the assembler need not symmetrize them)
+SYMMETRIC = True
 
 _DN = np.array([[-1.0, -1.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
 _M4 = (np.ones((4, 4)) + np.eye(4)) / 20.0

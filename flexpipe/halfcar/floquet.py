@@ -40,8 +40,11 @@ def eval_series(Z: np.ndarray, omega: float, t: np.ndarray) -> np.ndarray:
 
 
 def kink_times(laws: CornerLaws, Zy: np.ndarray, Zd: np.ndarray, omega: float,
-               *, n_grid: int = KINK_GRID, n_bisect: int = 60) -> np.ndarray:
+               *, n_grid: int = KINK_GRID, max_iter: int = 60) -> np.ndarray:
     """Sorted times in ``(0, T)`` where a corner law switches branch.
+
+    Sign changes of the kink functions are bracketed on a grid of ``n_grid`` points
+    and refined by the Illinois (modified regula falsi) method to machine precision.
 
     Parameters
     ----------
@@ -64,18 +67,33 @@ def kink_times(laws: CornerLaws, Zy: np.ndarray, Zd: np.ndarray, omega: float,
     row, j = np.nonzero(np.signbit(s[:, :-1]) != np.signbit(s[:, 1:]))
     if row.size == 0:
         return np.zeros(0)
-    lo, hi = t[j].copy(), t[j + 1].copy()
-    s_lo = s[row, j]
-    for _ in range(n_bisect):
-        mid = 0.5 * (lo + hi)
-        s_mid = kinks(mid)[row, np.arange(row.size)]
-        same = np.signbit(s_mid) == np.signbit(s_lo)
-        lo = np.where(same, mid, lo)
-        hi = np.where(same, hi, mid)
-        s_lo = np.where(same, s_mid, s_lo)
-        if np.all(hi - lo <= 4 * np.finfo(float).eps * T):
+    a, b = t[j].copy(), t[j + 1].copy()
+    fa, fb = s[row, j].copy(), s[row, j + 1].copy()
+    idx = np.arange(row.size)
+    side = np.zeros(row.size, dtype=int)
+    for _ in range(max_iter):
+        c = np.where(fb != fa, (a * fb - b * fa) / np.where(fb != fa, fb - fa, 1.0),
+                     0.5 * (a + b))
+        fc = kinks(c)[row, idx]
+        left = np.signbit(fc) == np.signbit(fa)  # root in [c, b]
+        # Illinois: halve the stale end's value when the same end is kept twice
+        fb = np.where(left & (side == 1), 0.5 * fb, fb)
+        fa = np.where(~left & (side == -1), 0.5 * fa, fa)
+        side = np.where(left, 1, -1)
+        a, fa = np.where(left, c, a), np.where(left, fc, fa)
+        b, fb = np.where(left, b, c), np.where(left, fb, fc)
+        if np.all((b - a <= 8 * np.finfo(float).eps * T) | (fc == 0.0)):
             break
-    return np.sort(0.5 * (lo + hi))
+    return np.sort(np.where(fa == 0.0, a, np.where(fb == 0.0, b, 0.5 * (a + b))))
+
+
+def _state_matrices(Minv, K_eff, C_eff):
+    n = Minv.shape[0]
+    A = np.zeros((K_eff.shape[0], 2 * n, 2 * n))
+    A[:, :n, n:] = np.eye(n)
+    A[:, n:, :n] = -Minv @ K_eff
+    A[:, n:, n:] = -Minv @ C_eff
+    return A
 
 
 def monodromy(M, K_ref, C_ref, D, E, laws: CornerLaws, Zy, Zd, omega: float, *,
@@ -101,6 +119,15 @@ def monodromy(M, K_ref, C_ref, D, E, laws: CornerLaws, Zy, Zd, omega: float, *,
     -------
     ndarray, shape (2 n, 2 n)
         ``Phi(T)`` with ``x(T) = Phi x(0)`` for perturbations of the state ``[q, q']``.
+
+    Notes
+    -----
+    With piecewise-constant slopes each piece is propagated by ``expm(A h)``.  With
+    smoothly varying tire slopes the tire part ``N(t)`` of ``A`` (stiffness only, so
+    ``N^2 = 0`` and ``expm(N h) = I + N h``) is split off symmetrically (Strang):
+    ``expm(A_0 h / 2) (I + N(t_mid) h) expm(A_0 h / 2)``, second order like the
+    exponential midpoint rule, with one exponential per distinct step instead of one
+    per segment.
     """
     T = 2.0 * np.pi / omega
     if n_segments is None:
@@ -111,15 +138,23 @@ def monodromy(M, K_ref, C_ref, D, E, laws: CornerLaws, Zy, Zd, omega: float, *,
     h, mid = h[keep], (edges[:-1] + 0.5 * np.diff(edges))[keep]
     Zv = Zy * (1j * omega * np.arange(Zy.shape[-1]))
     _, s_d, _, s_t = laws.deviations(eval_series(Zv, omega, mid), eval_series(Zd, omega, mid))
-    K_eff = K_ref[None] + np.einsum("ij,jm,kj->mik", E, s_t, E)
-    C_eff = C_ref[None] + np.einsum("ij,jm,kj->mik", D, s_d, D)
-    n = M.shape[0]
     Minv = np.linalg.inv(M)
-    A = np.zeros((h.size, 2 * n, 2 * n))
-    A[:, :n, n:] = np.eye(n)
-    A[:, n:, :n] = -Minv @ K_eff
-    A[:, n:, n:] = -Minv @ C_eff
-    steps = sla.expm(h[:, None, None] * A)
+    C_eff = C_ref[None] + np.einsum("ij,jm,kj->mik", D, s_d, D)
+    if laws.smooth_slopes:
+        K_eff = K_ref[None] + np.einsum("ij,jm,kj->mik", E, s_t, E)
+        steps = sla.expm(h[:, None, None] * _state_matrices(Minv, K_eff, C_eff))
+    else:
+        # one exponential per distinct (damper slopes, step) pair
+        key = np.column_stack([s_d.T, np.round(h / T, 12) * T])
+        uniq, inv = np.unique(key, axis=0, return_inverse=True)
+        C_u = C_ref[None] + np.einsum("ij,mj,kj->mik", D, uniq[:, :2], D)
+        A_u = _state_matrices(Minv, np.broadcast_to(K_ref, C_u.shape), C_u)
+        half = sla.expm(0.5 * uniq[:, 2, None, None] * A_u)[inv.ravel()]
+        n = M.shape[0]
+        N_q = -np.einsum("ab,bj,jm,kj->mak", Minv, E, s_t, E)  # (m, n, n): dv/dq block
+        mid_step = np.broadcast_to(np.eye(2 * n), (h.size, 2 * n, 2 * n)).copy()
+        mid_step[:, n:, :n] += h[:, None, None] * N_q
+        steps = half @ mid_step @ half
     Phi = steps[0]
     for S in steps[1:]:
         Phi = S @ Phi

@@ -27,6 +27,7 @@ import numpy as np
 from tqdm import tqdm
 
 from flexpipe.errors import SolverError
+from flexpipe.halfcar._blas import single_threaded_blas
 from flexpipe.halfcar.elements import CornerLaws, Nonlinearity
 from flexpipe.halfcar.floquet import monodromy
 from flexpipe.halfcar.linear import Spectrum, road_amplitudes
@@ -273,6 +274,13 @@ def sweep(model: HalfCarModel, nl: Nonlinearity, freq_Hz, *, label=None, stabili
     -------
     Spectrum
     """
+    with single_threaded_blas():
+        return _sweep(model, nl, freq_Hz, label=label, stability=stability, progress=progress,
+                      harmonics=harmonics, samples=samples, max_halvings=max_halvings)
+
+
+def _sweep(model, nl, freq_Hz, *, label, stability, progress, harmonics, samples,
+           max_halvings):
     f = np.asarray(freq_Hz, dtype=float)
     hb = HarmonicBalance(model, nl, harmonics=harmonics, samples=samples)
     out = {k: [] for k in ("acc", "travel", "tire", "mu", "it")}

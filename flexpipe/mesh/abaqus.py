@@ -419,7 +419,8 @@ def _masses(deck, cells_of, index, where_e):
         for elset, value, f, ln in items:
             _, members = cells_of(elset, f, ln, f"*{kind.upper()}")
             for k in members.get("mass", []):
-                node = int(index([deck.conn["mass"][k][0]], lambda _: (f, ln), "*MASS")[0])
+                node = int(index([deck.conn["mass"][k][0]], lambda _, f=f, ln=ln: (f, ln),
+                                 "*MASS")[0])
                 eid = deck.eids["mass"][k]
                 if kind == "mass":
                     out.append(PointMass(node, float(value), id=eid))
@@ -431,7 +432,8 @@ def _masses(deck, cells_of, index, where_e):
 def _couplings(deck, index):
     links = []
     for ref, rows, f, ln in deck.couplings:
-        master = int(index([ref], lambda _: (f, ln), "*KINEMATIC COUPLING REF NODE")[0])
+        master = int(index([ref], lambda _, f=f, ln=ln: (f, ln),
+                           "*KINEMATIC COUPLING REF NODE")[0])
         by_dofs = defaultdict(list)
         for tok, first, last, lf, lln in rows:
             if tok.isdigit():
@@ -452,6 +454,6 @@ def _couplings(deck, index):
         for n, dofs in node_dofs.items():
             groups[dofs].append(n)
         for dofs, nodes in groups.items():
-            slaves = index(nodes, lambda _: (f, ln), "*KINEMATIC COUPLING")
+            slaves = index(nodes, lambda _, f=f, ln=ln: (f, ln), "*KINEMATIC COUPLING")
             links.append(RigidLink(master, slaves, dofs, 0))
     return tuple(links)

@@ -8,9 +8,9 @@ positions in :attr:`Mesh.points`; the ids users see in their files are kept in
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import Mapping
 
 import numpy as np
 
@@ -81,8 +81,9 @@ class CellBlock:
 class PointMass:
     """A concentrated mass (Nastran CONM2) at node index ``node``.
 
-    ``inertia`` is the 3x3 rotary inertia about the node (kg m^2); ``offset`` the
-    position of the mass centre relative to the node (m).
+    ``inertia`` is the 3x3 rotary inertia tensor about the mass centre (kg m^2; the
+    assembler adds the parallel-axis term for the offset); ``offset`` the position of
+    the mass centre relative to the node (m).
     """
 
     node: int
@@ -165,7 +166,8 @@ class Mesh:
         object.__setattr__(self, "rigid_links", tuple(self.rigid_links))
         object.__setattr__(
             self, "sections",
-            MappingProxyType({k: MappingProxyType(dict(v)) for k, v in dict(self.sections).items()}),
+            MappingProxyType({k: MappingProxyType(dict(v))
+                              for k, v in dict(self.sections).items()}),
         )
 
     @property
@@ -193,8 +195,32 @@ class Mesh:
         x, y, z = self.points[index]
         return f"node {int(self.node_ids[index])} at ({x:.4g}, {y:.4g}, {z:.4g}) m"
 
-    def scaled(self, factor: float) -> Mesh:
-        """Return a copy with coordinates multiplied by ``factor`` (e.g. 1e-3 for mm)."""
-        from dataclasses import replace
+    def nodes_of(self, name: str) -> np.ndarray:
+        """Node indices of the node set ``name``, or of all cells of the cell set ``name``.
 
-        return replace(self, points=self.points * factor)
+        Raises
+        ------
+        InputError
+            When neither a node set nor a cell set has that name (message lists both).
+        """
+        if name in self.node_sets:
+            return np.asarray(self.node_sets[name])
+        if name in self.cell_sets:
+            parts = [self.blocks[bi].cells[c].ravel() for bi, c in self.cell_sets[name].items()]
+            return np.unique(np.concatenate(parts)) if parts else np.zeros(0, dtype=np.int64)
+        from flexpipe.errors import InputError
+
+        raise InputError(
+            f"no node set or cell set '{name}'; node sets: {sorted(self.node_sets)}, "
+            f"cell sets: {sorted(self.cell_sets)}", file=self.source or None, key=name,
+        )
+
+    def scaled(self, factor: float) -> Mesh:
+        """Return a copy with all lengths multiplied by ``factor`` (e.g. 1e-3 for mm).
+
+        Coordinates, offsets, shell thickness, beam A (factor^2) and I, J (factor^4) are
+        scaled; materials, masses and inertias are not (see :mod:`flexpipe.mesh.units`).
+        """
+        from flexpipe.mesh.units import UnitSystem, convert
+
+        return convert(self, UnitSystem(length=float(factor)), materials=False)

@@ -13,6 +13,7 @@ import warnings
 
 import numpy as np
 
+from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh._common import cell_section_index, default_orientation, unique_ids
 from flexpipe.mesh.mesh import Mesh
 from flexpipe.mesh.validate import MeshWarning
@@ -23,19 +24,33 @@ _PID = re.compile(r"^PID(\d+)$")
 
 
 def real16(x: float) -> str:
-    """Most precise Nastran real that fits 16 characters."""
+    """Most precise Nastran real that fits 16 characters (always with a decimal point)."""
     x = float(x)
     if x == 0.0:
         return "0."
     s = repr(x)
     if "e" not in s and len(s) <= 16:
         return s if "." in s else s + "."
-    for p in range(15, 0, -1):
+    cands = []
+    for p in range(15, 0, -1):  # exponent form without the E: 1.2345-3
         m, e = f"{x:.{p}e}".split("e")
         t = f"{m}{int(e):+d}"
         if len(t) <= 16:
-            return t
-    raise ValueError(f"cannot format {x} in 16 characters")
+            cands.append(t)
+            break
+    if abs(x) < 1e15:  # fixed point, leading zero dropped: -.0001234567890123
+        for p in range(16, 0, -1):
+            t = f"{x:.{p}f}".replace("0.", ".", 1) if abs(x) < 1 else f"{x:.{p}f}"
+            if len(t) <= 16 and float(t) != 0.0:
+                cands.append(t)
+                break
+    if not cands:
+        raise ValueError(f"cannot format {x} in 16 characters")
+    return min(cands, key=lambda t: abs(_value(t) - x))
+
+
+def _value(t: str) -> float:
+    return parse_real(t)
 
 
 def _field(v, width):

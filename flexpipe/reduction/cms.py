@@ -32,7 +32,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from flexpipe.errors import InputError, ModelError
-from flexpipe.reduction.eigen import DENSE_LIMIT, factor_spd, lowest_modes
+from flexpipe.reduction.eigen import DENSE_LIMIT, factor_spd, lowest_modes, modes_up_to
 
 #: a mode is rigid when its frequency is below this fraction of the first elastic one
 RIGID_RATIO = 1e-3
@@ -115,7 +115,8 @@ def detect_rigid_modes(omega, *, ratio: float = RIGID_RATIO, max_rigid: int = MA
 
 
 # ---------------------------------------------------------------------------- bases
-def craig_bampton_basis(M, K, boundary_dofs, n_fixed, *, backend=None, tol=None):
+def craig_bampton_basis(M, K, boundary_dofs, n_fixed=None, *, f_max=None, backend=None,
+                        tol=None):
     """Craig-Bampton basis: constraint modes plus fixed-interface normal modes.
 
     Parameters
@@ -124,13 +125,14 @@ def craig_bampton_basis(M, K, boundary_dofs, n_fixed, *, backend=None, tol=None)
         Symmetric mass and stiffness.
     boundary_dofs : array_like of int
         Indices of the boundary (interface) DOF, ``n_b`` of them.
-    n_fixed : int
+    n_fixed : int, optional
         Number of fixed-interface normal modes (may be 0).
+    f_max : float, optional
+        Instead of ``n_fixed``: keep every fixed-interface mode up to ``f_max`` Hz.
     backend : {"pardiso", "superlu"}, optional
         Sparse factorization backend.
     tol : float, optional
-        Relative eigen-residual tolerance of the sparse eigensolver (default: see
-        :func:`flexpipe.reduction.eigen.lowest_modes`).
+        Relative tolerance of the sparse eigensolver (default: machine precision).
 
     Returns
     -------
@@ -147,19 +149,33 @@ def craig_bampton_basis(M, K, boundary_dofs, n_fixed, *, backend=None, tol=None)
     InputError
         Bad indices or more modes than interior DOF.
     """
+    return _craig_bampton(M, K, boundary_dofs, n_fixed, f_max=f_max, backend=backend,
+                          tol=tol)[0]
+
+
+def _select(n, f_max, name):
+    if n is None and f_max is None:
+        raise InputError(f"give {name} or f_max", key=name)
+    if n is not None and f_max is not None:
+        raise InputError(f"give {name} or f_max, not both", key=name)
+    return None if n is None else _count(n, name)
+
+
+def _craig_bampton(M, K, boundary_dofs, n_fixed, *, f_max=None, backend=None, tol=None):
+    """Craig-Bampton basis and the fixed-interface eigenvalues."""
     M, K = _check_pair(M, K)
     n = K.shape[0]
     b = _boundary(boundary_dofs, n)
-    n_fixed = _count(n_fixed, "n_fixed")
+    n_fixed = _select(n_fixed, f_max, "n_fixed")
     interior = np.setdiff1d(np.arange(n), b)
     ni, nb = interior.size, b.size
-    if n_fixed > ni:
+    if n_fixed is not None and n_fixed > ni:
         raise InputError(f"n_fixed={n_fixed} but only {ni} interior DOF exist "
-                         f"({n} DOF, {nb} on the boundary); valid: 0..{ni}")
-    Psi = np.zeros((n, nb + n_fixed))
-    Psi[b, np.arange(nb)] = 1.0
+                         f"({n} DOF, {nb} on the boundary); valid: 0..{ni}", key="n_fixed")
     if ni == 0:
-        return Psi
+        Psi = np.zeros((n, nb))
+        Psi[b, np.arange(nb)] = 1.0
+        return Psi, np.zeros(0)
     if sp.issparse(K):
         Kii = K[interior][:, interior]
         Kib = K[interior][:, b]
@@ -176,23 +192,54 @@ def craig_bampton_basis(M, K, boundary_dofs, n_fixed, *, backend=None, tol=None)
             "the structure against rigid-body motion, or part of it is a mechanism or "
             "disconnected"
         ) from None
-    Psi[interior, :nb] = -fac.solve(_dense(Kib))
-    if n_fixed:
-        _, Phi = lowest_modes(Kii, Mii, n_fixed, sigma=0.0, factor=fac, backend=backend,
-                              tol=tol)
-        Psi[interior, nb:] = Phi
-    return Psi
+    static = -fac.solve(_dense(Kib))
+    if n_fixed is None:
+        lam, Phi = modes_up_to(Kii, Mii, f_max, sigma=0.0, factor=fac, backend=backend, tol=tol)
+        keep = lam <= (2 * np.pi * f_max) ** 2
+        lam, Phi = lam[keep], Phi[:, keep]
+    elif n_fixed:
+        lam, Phi = lowest_modes(Kii, Mii, n_fixed, sigma=0.0, factor=fac, backend=backend,
+                                tol=tol)
+    else:
+        lam, Phi = np.zeros(0), np.zeros((ni, 0))
+    Psi = np.zeros((n, nb + Phi.shape[1]))
+    Psi[b, np.arange(nb)] = 1.0
+    Psi[interior, :nb] = static
+    Psi[interior, nb:] = Phi
+    return Psi, lam
 
 
-def _free_modes(M, K, n_modes, *, backend=None, tol=None):
-    """Lowest ``n_modes`` free-free eigenpairs and the shifted factor used to get them."""
-    lam, Phi, fac, sigma = lowest_modes(K, M, n_modes, sigma=None, backend=backend, tol=tol,
-                                        return_factor=True)
-    return lam, Phi, fac, sigma
+def _free_modes(M, K, n_modes, *, f_max=None, n_rigid=None, backend=None, tol=None):
+    """Lowest free-free eigenpairs: ``n_rigid`` (detected when None) + ``n_modes`` elastic,
+    or all up to ``f_max`` Hz.  Returns ``(lam, Phi, n_rigid, lam_next, factor, sigma)``
+    with ``lam_next`` the first eigenvalue not kept (None when unknown)."""
+    n = K.shape[0]
+    if n_modes is None:
+        lam, Phi, fac, sigma = modes_up_to(K, M, f_max, backend=backend, tol=tol,
+                                           start=max(12, (n_rigid or MAX_RIGID) + 6),
+                                           return_factor=True)
+        if n_rigid is None:
+            n_rigid = detect_rigid_modes(np.sqrt(np.clip(lam, 0, None)))
+        n_keep = max(int(np.count_nonzero(lam <= (2 * np.pi * f_max) ** 2)), n_rigid)
+    else:
+        n_ask = min(n, (n_rigid if n_rigid is not None else MAX_RIGID) + n_modes + 1)
+        if n_rigid is not None and n_rigid + n_modes > n:
+            raise InputError(f"{n_rigid} rigid + {n_modes} elastic modes exceed the {n} DOF",
+                             key="n_modes")
+        lam, Phi, fac, sigma = lowest_modes(K, M, n_ask, backend=backend, tol=tol,
+                                            return_factor=True)
+        if n_rigid is None:
+            n_rigid = detect_rigid_modes(np.sqrt(np.clip(lam, 0, None)))
+        n_keep = n_rigid + n_modes
+        if n_keep > len(lam):
+            raise InputError(f"{n_rigid} rigid + {n_modes} elastic modes requested but the "
+                             f"model has only {n} DOF", key="n_modes")
+    lam_next = lam[n_keep] if len(lam) > n_keep else None
+    return lam[:n_keep], Phi[:, :n_keep], n_rigid, lam_next, fac, sigma
 
 
-def residual_flexibility_basis(M, K, boundary_dofs, n_normal, *, n_rigid=None, backend=None,
-                               tol=None):
+def residual_flexibility_basis(M, K, boundary_dofs, n_normal=None, *, f_max=None, n_rigid=None,
+                               backend=None, tol=None):
     """Free-interface modes plus residual-flexibility attachment modes.
 
     Parameters
@@ -202,8 +249,10 @@ def residual_flexibility_basis(M, K, boundary_dofs, n_normal, *, n_rigid=None, b
     boundary_dofs : array_like of int
         DOF that carry external loads or connect the component to others; one
         attachment mode is built for each.
-    n_normal : int
+    n_normal : int, optional
         Number of elastic free-interface normal modes to keep.
+    f_max : float, optional
+        Instead of ``n_normal``: keep every free-interface mode up to ``f_max`` Hz.
     n_rigid : int, optional
         Number of rigid-body modes.  Detected when omitted: modes whose frequency lies
         below :data:`RIGID_RATIO` times the first elastic one.
@@ -232,32 +281,26 @@ def residual_flexibility_basis(M, K, boundary_dofs, n_normal, *, n_rigid=None, b
     ``Phi_0 = [Phi_r, Phi_k]``, converges for every deleted mode with the factor
     ``|sigma| / (omega_j^2 - sigma)``; sigma is re-chosen when that bound is poor.
     """
+    return _residual_flexibility(M, K, boundary_dofs, n_normal, f_max=f_max, n_rigid=n_rigid,
+                                 backend=backend, tol=tol)[0]
+
+
+def _residual_flexibility(M, K, boundary_dofs, n_normal, *, f_max=None, n_rigid=None,
+                          backend=None, tol=None):
     M, K = _check_pair(M, K)
     n = K.shape[0]
     b = _boundary(boundary_dofs, n)
-    n_normal = _count(n_normal, "n_normal")
+    n_normal = _select(n_normal, f_max, "n_normal")
     if n_rigid is not None:
         n_rigid = _count(n_rigid, "n_rigid")
-    n_known = (n_rigid if n_rigid is not None else MAX_RIGID) + n_normal
-    n_ask = min(n, n_known + (1 if n_rigid is None else 0))
-    if n_rigid is not None and n_rigid + n_normal > n:
-        raise InputError(f"n_rigid + n_normal = {n_rigid + n_normal} exceeds the {n} DOF")
-    lam, Phi, fac, sigma = _free_modes(M, K, max(n_ask, 1), backend=backend, tol=tol)
-    omega = np.sqrt(np.clip(lam, 0.0, None))
-    if n_rigid is None:
-        n_rigid = detect_rigid_modes(omega)
-    n_keep = n_rigid + n_normal
-    if n_keep > len(lam):
-        raise InputError(f"{n_rigid} rigid + n_normal={n_normal} modes requested but the "
-                         f"model has only {n} DOF")
-    Phi0 = Phi[:, :n_keep]
+    lam, Phi0, n_rigid, lam_next, fac, sigma = _free_modes(
+        M, K, n_normal, f_max=f_max, n_rigid=n_rigid, backend=backend, tol=tol)
+    if lam_next is None and lam.size > n_rigid:
+        lam_next = lam[-1]  # the deleted eigenvalues are at least the last kept one
     F = np.zeros((n, b.size))
     F[b, np.arange(b.size)] = 1.0
-    # lower bound of the deleted eigenvalues: the next computed one, else the last kept
-    lam_next = lam[n_keep] if len(lam) > n_keep else (lam[n_keep - 1] if n_keep > n_rigid
-                                                      else None)
     X = _residual_attachment(M, K, F, Phi0, lam_next, fac, sigma, backend=backend)
-    return np.hstack([Phi0, X])
+    return np.hstack([Phi0, X]), lam, n_rigid
 
 
 def _residual_attachment(M, K, F, Phi0, lam_next, fac, sigma, *, backend=None,
@@ -296,19 +339,22 @@ def _residual_attachment(M, K, F, Phi0, lam_next, fac, sigma, *, backend=None,
     return x
 
 
-def modal_truncation_basis(M, K, n_modes, *, backend=None, tol=None):
-    """The lowest ``n_modes`` free-free modes (rigid-body modes included), mass-normalized.
+def modal_truncation_basis(M, K, n_modes=None, *, f_max=None, backend=None, tol=None):
+    """The lowest ``n_modes`` free-free modes (rigid-body modes included), mass-normalized,
+    or every mode up to ``f_max`` Hz.
 
     Returns
     -------
     Psi : ndarray, shape (n, n_modes)
     """
     M, K = _check_pair(M, K)
-    n_modes = _count(n_modes, "n_modes", minimum=1)
-    if n_modes > K.shape[0]:
-        raise InputError(f"n_modes={n_modes} exceeds the {K.shape[0]} DOF of the model")
-    _, Phi, _, _ = _free_modes(M, K, n_modes, backend=backend, tol=tol)
-    return Phi
+    n_modes = _select(n_modes, f_max, "n_modes")
+    if n_modes is not None:
+        if n_modes < 1 or n_modes > K.shape[0]:
+            raise InputError(f"n_modes={n_modes} must lie in [1, {K.shape[0]}]", key="n_modes")
+        return lowest_modes(K, M, n_modes, backend=backend, tol=tol)[1]
+    lam, Phi = modes_up_to(K, M, f_max, backend=backend, tol=tol)
+    return Phi[:, lam <= (2 * np.pi * f_max) ** 2]
 
 
 def orthonormalize(M, K, Psi, *, tol: float = DEPENDENCE_TOL):

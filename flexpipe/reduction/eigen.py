@@ -124,3 +124,29 @@ def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
     if return_factor:
         return lam, X, factor, sigma
     return lam, X
+
+
+def modes_up_to(K, M, f_max_hz, *, sigma=None, factor=None, backend=None, tol=None,
+                start=12, return_factor=False):
+    """All eigenpairs with frequency <= ``f_max_hz`` (plus the next one, for gap tests).
+
+    Computes the lowest ``start`` modes and doubles the count until one lies above
+    ``f_max_hz`` (or all modes are found).  Returns like :func:`lowest_modes`; the last
+    returned pair is the first one above ``f_max_hz`` when it exists.
+    """
+    if not (np.isfinite(f_max_hz) and f_max_hz > 0):
+        raise InputError(f"f_max must be a positive frequency in Hz, got {f_max_hz!r}",
+                         key="f_max")
+    n = K.shape[0]
+    lam_max = (2 * np.pi * f_max_hz) ** 2
+    k = min(n, start)
+    while True:
+        res = lowest_modes(K, M, k, sigma=sigma, factor=factor, backend=backend, tol=tol,
+                           return_factor=True)
+        lam, X, factor, sigma = res
+        if lam[-1] > lam_max or k == n:
+            break
+        k = min(n, 2 * k)
+    count = min(len(lam), int(np.count_nonzero(lam <= lam_max)) + 1)
+    lam, X = lam[:count], X[:, :count]
+    return (lam, X, factor, sigma) if return_factor else (lam, X)

@@ -30,6 +30,10 @@ import numpy as np
 from flexpipe.errors import InputError
 from flexpipe.tires.relaxation import relax_slip_velocity
 
+#: Bounds of the relaxed slips kept in :class:`SlipState` (beyond full sliding).
+KAPPA_STATE_MAX = 1.5
+TAN_ALPHA_STATE_MAX = 10.0
+
 
 @dataclass(frozen=True)
 class SlipState:
@@ -189,7 +193,9 @@ class TireModel:
             Road friction factor.
         state : SlipState, optional
             Relaxed slips from the previous step; relaxation is applied only when the model
-            has ``relaxation=True`` and ``state`` and ``dt`` are given.
+            has ``relaxation=True`` and ``state`` and ``dt`` are given (otherwise the returned
+            state holds the kinematic slips).  Lifted wheels get a zero state; the state is
+            bounded to ``|kappa'| <= 1.5``, ``|tan alpha'| <= 10``.
         dt : float, optional
             Step length, s (needed with ``state``).
 
@@ -244,16 +250,20 @@ class TireModel:
             has_a = sa > 0
             k_new = relax_slip_velocity(state.kappa, -Vsx, Vcx, np.where(has_k, sk, 1.0), dt)
             t_new = relax_slip_velocity(state.tan_alpha, Vcy, Vcx, np.where(has_a, sa, 1.0), dt)
-            kappa = np.where(has_k, k_new, kappa)
-            tan_a = np.where(has_a, t_new, tan_a)
+            # a lifted tyre has no carcass deflection; bound the state so that a wheel
+            # spinning at standstill (no decay, |Vx| = 0) cannot wind it up without limit
+            touch = Fz > 0.0
+            kappa = np.where(has_k, np.where(touch, np.clip(k_new, -KAPPA_STATE_MAX,
+                                                            KAPPA_STATE_MAX), 0.0), kappa)
+            tan_a = np.where(has_a, np.where(touch, np.clip(t_new, -TAN_ALPHA_STATE_MAX,
+                                                            TAN_ALPHA_STATE_MAX), 0.0), tan_a)
             new_state = SlipState(kappa, tan_a)
         elif state is not None:
             new_state = SlipState(kappa, tan_a)
         alpha = np.arctan(tan_a)
 
         sf = self.slip_forces(kappa, alpha, Fz, gamma, vx=Vcx, mirror=mirror, mu_scale=mu_scale)
-        Fx, Fy, Mz, Mx, My = (np.broadcast_to(a, Fz.shape) for a in
-                              (sf.Fx, sf.Fy, sf.Mz, sf.Mx, sf.My))
+        Fx, Fy, Mz, Mx, My = sf.Fx, sf.Fy, sf.Mz, sf.Mx, sf.My
         F = Fx[:, None] * ex + Fy[:, None] * ey + Fz[:, None] * n
         M = _cross(P - C, F) + Mx[:, None] * ex + My[:, None] * ey + Mz[:, None] * n
         return WheelForces(

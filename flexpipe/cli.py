@@ -1,0 +1,103 @@
+"""The ``flexpipe`` command line: ``flexpipe COMMAND [options]``.
+
+Subcommands live in their own modules, listed in :data:`COMMANDS` as
+``(name, module, one-line help)`` and imported only when used, so ``flexpipe --help``
+stays fast.  A command module provides
+
+``add_arguments(parser)``
+    add its options to an :class:`argparse.ArgumentParser` (``prog`` is already
+    ``flexpipe NAME``);
+``run(args) -> int | None``
+    do the work; the return value is the exit code (None means 0).
+
+Any :class:`~flexpipe.errors.FlexpipeError` or ``OSError`` a command raises is printed
+as a one-line message without traceback, with exit code 2 (argparse usage errors also
+exit with 2).  To add a command, append a line to :data:`COMMANDS`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import importlib.util
+import sys
+
+#: (name, module, help) of every subcommand; modules that are not installed are hidden
+COMMANDS = (
+    ("modes", "flexpipe.cli_modes", "natural frequencies and mode shapes of a mesh (.vtu)"),
+    ("info", "flexpipe.cli_info", "summary of a mesh, body or car model file"),
+    ("reduce", "flexpipe.cli_reduce", "component mode synthesis of a mesh into a flexible body"),
+    ("run", "flexpipe.cli_run", "simulate a car scenario"),
+)
+EXIT_ERROR = 2
+
+
+def _available():
+    out = []
+    for name, module, text in COMMANDS:
+        try:
+            found = importlib.util.find_spec(module) is not None
+        except (ImportError, ValueError):
+            found = False
+        if found:
+            out.append((name, module, text))
+    return out
+
+
+def _top_parser(commands) -> argparse.ArgumentParser:
+    from flexpipe import __version__
+
+    listing = "\n".join(f"  {name:<10}{text}" for name, _, text in commands) or "  (none)"
+    p = argparse.ArgumentParser(
+        prog="flexpipe",
+        description="flexpipe: meshed car body -> FE -> component mode synthesis -> "
+                    "Exudyn flexible body -> full car.",
+        epilog=f"commands:\n{listing}\n\nRun 'flexpipe COMMAND --help' for a command's options.",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("--version", action="version", version=f"flexpipe {__version__}")
+    p.add_argument("command", metavar="COMMAND", choices=[c[0] for c in commands],
+                   help="one of: " + ", ".join(c[0] for c in commands))
+    return p
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc) or type(exc).__name__
+    if isinstance(exc, OSError) and exc.filename:
+        text = f"{exc.filename}: {exc.strerror or text}"
+    return " ".join(text.split())
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``flexpipe`` console script; returns the exit code."""
+    from flexpipe.errors import FlexpipeError
+
+    argv = list(sys.argv[1:] if argv is None else argv)
+    commands = _available()
+    top = _top_parser(commands)
+    try:
+        ns = top.parse_args(argv[:1] if argv and not argv[0].startswith("-") else argv)
+    except SystemExit as exc:
+        return int(exc.code or 0)
+    name = ns.command
+    module_name, text = next((m, t) for n, m, t in commands if n == name)
+    module = importlib.import_module(module_name)
+    parser = argparse.ArgumentParser(prog=f"flexpipe {name}", description=text)
+    module.add_arguments(parser)
+    try:
+        args = parser.parse_args(argv[1:])
+    except SystemExit as exc:
+        return int(exc.code or 0)
+    try:
+        code = module.run(args)
+    except (FlexpipeError, OSError) as exc:
+        print(f"flexpipe {name}: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        print(f"flexpipe {name}: interrupted", file=sys.stderr)
+        return 130
+    return int(code or 0)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

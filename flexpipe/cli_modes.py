@@ -1,0 +1,134 @@
+"""``flexpipe modes MESH``: natural frequencies and mode shapes of a mesh.
+
+Prints the frequency table and writes ``modes.vtu`` (all modes as point-data vectors,
+frequencies as field data) and ``frequencies.csv`` into ``--out`` (default
+``out/modes/<mesh stem>/``); ``--per-mode`` adds ``mode_01.vtu`` ... for animation.
+
+Example::
+
+    flexpipe modes meshes/plate_quad.msh --material steel --thickness 0.002 --n 20
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import write_text_atomic
+from flexpipe.errors import InputError
+
+
+def add_arguments(p) -> None:
+    """Options of ``flexpipe modes``."""
+    p.add_argument("mesh", help="mesh file (.msh .inp .bdf/.nas/.dat .vtu/.vtk .stl/.obj/.ply)")
+    p.add_argument("--material", help="library material: steel, aluminium, magnesium "
+                   "(default: the materials the file carries, e.g. Nastran MAT1)")
+    p.add_argument("--E", type=float, help="Young's modulus in Pa (overrides --material)")
+    p.add_argument("--nu", type=float, help="Poisson's ratio (overrides --material)")
+    p.add_argument("--rho", type=float, help="density in kg/m^3 (overrides --material)")
+    p.add_argument("--thickness", type=float,
+                   help="shell thickness in m for shells the file gives none")
+    p.add_argument("--n", type=int, default=20, help="number of modes (default 20)")
+    p.add_argument("--fixed", action="append", default=[], metavar="SET",
+                   help="node set or cell set whose nodes are clamped (repeatable)")
+    p.add_argument("--scale", type=float, default=1.0,
+                   help="length factor of the mesh geometry, e.g. 0.001 for mm")
+    p.add_argument("--units", help="unit system of a solver deck, e.g. mm-t-s (converts "
+                   "lengths, E, rho and masses)")
+    p.add_argument("--keep", action="append", default=[], metavar="TYPE",
+                   help="Gmsh: keep lower-dimensional cells of this type (e.g. line)")
+    p.add_argument("--prune", action="store_true", help="drop nodes no element uses")
+    p.add_argument("--allow-disconnected", action="store_true",
+                   help="accept several unconnected parts")
+    p.add_argument("-o", "--out", help="output directory (default out/modes/<mesh stem>)")
+    p.add_argument("--per-mode", action="store_true", help="also write one .vtu per mode")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
+
+
+@contextmanager
+def _step(text: str, quiet: bool):
+    t0 = time.perf_counter()
+    if not quiet:
+        print(f"{text} ...", file=sys.stderr, flush=True)
+    yield
+    if not quiet:
+        print(f"  done in {time.perf_counter() - t0:.2f} s", file=sys.stderr, flush=True)
+
+
+def _material(args):
+    from flexpipe.fem.material import Material
+
+    over = {k: getattr(args, k) for k in ("E", "nu", "rho") if getattr(args, k) is not None}
+    if args.material is None and not over:
+        return None
+    if args.material is not None:
+        base = Material.named(args.material)
+        vals = {"E": base.E, "nu": base.nu, "rho": base.rho, **over}
+        return Material(vals["E"], vals["nu"], vals["rho"], base.name)
+    if len(over) < 3:
+        missing = [f"--{k}" for k in ("E", "nu", "rho") if k not in over]
+        raise InputError(f"give --material NAME or all of --E, --nu, --rho (missing "
+                         f"{', '.join(missing)})")
+    return Material(over["E"], over["nu"], over["rho"])
+
+
+def _check_file_materials(mesh) -> None:
+    for bi, b in enumerate(mesh.blocks):
+        if b.type == "vertex" or len(b) == 0:
+            continue
+        covered = np.zeros(len(b), dtype=bool)
+        for name, props in mesh.sections.items():
+            if all(k in props for k in ("E", "nu", "rho")) and bi in mesh.cell_sets.get(name, {}):
+                covered[mesh.cell_sets[name][bi]] = True
+        if not covered.all():
+            ids = b.ids[~covered][:5].tolist()
+            raise InputError(
+                f"{int((~covered).sum())} {b.type} element(s) have no material in the file "
+                f"(e.g. ids {ids}); give --material steel|aluminium|magnesium or --E --nu --rho",
+                file=mesh.source)
+
+
+def run(args) -> int:
+    """Run ``flexpipe modes``."""
+    from flexpipe.fem import assemble, eigenmodes
+    from flexpipe.mesh import read_mesh
+    from flexpipe.mesh.vtu import write_modes
+
+    if args.n < 1:
+        raise InputError(f"--n must be a positive number of modes, got {args.n}", key="--n")
+    material = _material(args)
+    path = Path(args.mesh)
+    with _step(f"reading {path}", args.quiet):
+        mesh = read_mesh(path, args.scale, units=args.units, thickness=args.thickness,
+                         keep=tuple(args.keep), prune_unreferenced=args.prune)
+    if material is None:
+        _check_file_materials(mesh)
+    with _step("assembling", args.quiet):
+        fe = assemble(mesh, material, allow_disconnected=args.allow_disconnected,
+                      progress=not args.quiet)
+    fixed = None
+    if args.fixed:
+        nodes = np.unique(np.concatenate([mesh.nodes_of(name) for name in args.fixed]))
+        dpn = fe.dofs_per_node
+        fixed = (nodes[:, None] * dpn + np.arange(dpn)).ravel()
+    with _step(f"solving for {args.n} modes ({fe.Kr.shape[0]} DOF)", args.quiet):
+        freqs, shapes = eigenmodes(fe, args.n, fixed_dofs=fixed)
+    out = Path(args.out) if args.out else Path("out") / "modes" / path.stem
+    written = write_modes(out / "modes.vtu", mesh, freqs, shapes,
+                          per_mode_dir=out if args.per_mode else None)
+    csv = "mode,frequency_hz\n" + "".join(f"{k + 1},{f:.10g}\n" for k, f in enumerate(freqs))
+    write_text_atomic(out / "frequencies.csv", csv)
+    counts = ", ".join(f"{b.type} {len(b)}" for b in mesh.blocks)
+    print(f"{path}: {mesh.n_nodes} nodes, {counts}; {fe.Kr.shape[0]} DOF; "
+          f"mass {fe.total_mass:.6g} kg" + (f"; fixed: {', '.join(args.fixed)}"
+                                             if args.fixed else ""))
+    print(f"{'mode':>5}  {'frequency [Hz]':>16}")
+    for k, f in enumerate(freqs):
+        print(f"{k + 1:>5}  {f:>16.6g}")
+    print(f"wrote {written[0]} ({len(freqs)} modes) and {out / 'frequencies.csv'}"
+          + (f" and {len(written) - 1} per-mode files" if args.per_mode else ""))
+    return 0

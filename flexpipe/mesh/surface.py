@@ -1,0 +1,72 @@
+"""Surface meshes (``.stl``, ``.obj``, ``.ply``, ``.off``) through trimesh, as shell mid-surfaces.
+
+The triangles become ``triangle`` shell cells; the thickness is not in these formats, so
+give it with ``read_mesh(path, thickness=...)`` (metres) or to
+:func:`~flexpipe.fem.assemble`.  Vertices that coincide (STL stores every triangle
+separately; OBJ splits vertices at texture seams) are merged, zero-area triangles are
+dropped with a warning.  Each named geometry of a multi-object file (OBJ ``o``/``g``)
+becomes a cell set of that name; the cell set ``surface`` holds all triangles.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from flexpipe.errors import MeshError
+from flexpipe.mesh.mesh import CellBlock, Mesh
+from flexpipe.mesh.validate import MeshWarning
+
+SURFACE_SUFFIXES = (".stl", ".obj", ".ply", ".off")
+
+
+def read_surface(path) -> Mesh:
+    """Read a triangulated surface as a shell mesh (units of the file)."""
+    import trimesh
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            scene = trimesh.load_scene(str(path), process=False)
+    except Exception as exc:  # trimesh raises many types on corrupt input
+        raise MeshError(f"cannot read surface mesh ({str(exc).strip() or type(exc).__name__})",
+                        file=str(path)) from None
+    verts, faces, names, counts = [], [], [], []
+    offset = 0
+    for node in scene.graph.nodes_geometry:
+        transform, geom_name = scene.graph[node]
+        g = scene.geometry.get(geom_name)
+        if not isinstance(g, trimesh.Trimesh) or len(g.faces) == 0:
+            continue
+        v = trimesh.transform_points(np.asarray(g.vertices, dtype=float), transform)
+        verts.append(v)
+        faces.append(np.asarray(g.faces, dtype=np.int64) + offset)
+        offset += len(v)
+        names.append(str(node))
+        counts.append(len(g.faces))
+    if not faces:
+        raise MeshError("no triangles found in the file", file=str(path))
+    merged = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=False)
+    merged.merge_vertices(merge_tex=True, merge_norm=True)
+    F = np.asarray(merged.faces, dtype=np.int64)
+    P = np.asarray(merged.vertices, dtype=float)
+    ids = np.arange(1, len(F) + 1)
+    group = np.repeat(np.arange(len(counts)), counts)
+    area = np.linalg.norm(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]), axis=1)
+    degenerate = ~(area > 1e-12 * max(float(np.ptp(P, axis=0).max()), 1e-300) ** 2)
+    degenerate |= (F[:, 0] == F[:, 1]) | (F[:, 1] == F[:, 2]) | (F[:, 0] == F[:, 2])
+    if degenerate.any():
+        warnings.warn(MeshWarning(
+            f"{path}: dropped {int(degenerate.sum())} zero-area triangle(s), e.g. ids "
+            f"{ids[degenerate][:10].tolist()}"), stacklevel=3)
+        F, ids, group = F[~degenerate], ids[~degenerate], group[~degenerate]
+    used = np.unique(F)
+    new_of = np.full(len(P), -1, dtype=np.int64)
+    new_of[used] = np.arange(len(used))
+    cell_sets = {"surface": {0: np.arange(len(F))}}
+    if len(names) > 1:
+        for k, n in enumerate(names):
+            cell_sets.setdefault(n, {0: np.flatnonzero(group == k)})
+    return Mesh(points=P[used], blocks=(CellBlock("triangle", new_of[F], ids),),
+                cell_sets=cell_sets, source=str(path))

@@ -1,0 +1,275 @@
+"""Interfaces: hardpoints tied to mesh nodes by a rigid spider (RBE2), and the constraint
+map that turns them into 6 boundary DOF each.
+
+An interface is resolved against an :class:`~flexpipe.fem.FEModel` into a set of mesh
+nodes: those within ``radius`` of the point, a named node set of the mesh, explicit
+node indices, or -- when none is given -- the 6-DOF (shell/beam) node at the point,
+which is then the interface itself.  The spider is applied on the independent DOF of
+the model: every tied node DOF is replaced by the rigid motion of the hardpoint,
+``u = u_h + theta_h x (x - x_h)`` and ``theta = theta_h``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import KW_ONLY, dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from flexpipe.errors import InputError
+from flexpipe.fem.model import FEModel
+from flexpipe.flexbody.invariants import skew
+
+
+@dataclass(frozen=True)
+class Interface:
+    """A hardpoint and the mesh nodes rigidly tied to it (RBE2 spider, 6 DOF).
+
+    Parameters
+    ----------
+    point : (3,) array_like
+        Hardpoint in mesh coordinates, m.
+    radius : float, optional
+        Tie every node within this distance of ``point``, m.
+    nodes : array_like of int, optional
+        Tie these nodes (0-based indices into the mesh points, as in ``Mesh.node_sets``).
+    name : str, optional
+        Interface name (markers, messages); default ``"if1"``, ``"if2"``, ...
+    node_set : str, optional
+        Tie the nodes of this named node set of the mesh.
+
+    Notes
+    -----
+    Give at most one of ``radius``, ``nodes``, ``node_set``.  With none of them the
+    point must coincide with a mesh node that has its own rotations (shell or beam
+    node): that node's 6 DOF are the interface.
+    """
+
+    point: tuple
+    radius: float | None = None
+    nodes: tuple | None = None
+    _: KW_ONLY
+    name: str | None = None
+    node_set: str | None = None
+
+    def __post_init__(self):
+        p = np.asarray(self.point, dtype=float).reshape(-1)
+        if p.shape != (3,) or not np.all(np.isfinite(p)):
+            raise InputError(f"interface point must be 3 finite numbers, got {self.point!r}",
+                             key=self.name or "point")
+        object.__setattr__(self, "point", tuple(float(v) for v in p))
+        given = [k for k in ("radius", "nodes", "node_set") if getattr(self, k) is not None]
+        if len(given) > 1:
+            raise InputError(f"give only one of radius, nodes, node_set (got {given})",
+                             key=self.name or "interface")
+        if self.radius is not None and not (np.isfinite(self.radius) and self.radius > 0):
+            raise InputError(f"radius must be a positive length in m, got {self.radius!r}",
+                             key=self.name or "radius")
+        if self.nodes is not None:
+            object.__setattr__(self, "nodes",
+                               tuple(int(i) for i in np.asarray(self.nodes).reshape(-1)))
+
+
+@dataclass(frozen=True)
+class ResolvedInterface:
+    """An interface bound to a model: its name, hardpoint, node indices and kind."""
+
+    name: str
+    point: np.ndarray
+    nodes: np.ndarray
+    kind: str  # "rbe2" (new 6-DOF hardpoint) or "node" (a 6-DOF mesh node)
+
+
+def _describe(fe: FEModel, i: int) -> str:
+    if fe.mesh is not None:
+        return fe.mesh.describe_node(int(i))
+    x, y, z = fe.nodes[i]
+    return f"node index {int(i)} at ({x:.4g}, {y:.4g}, {z:.4g}) m"
+
+
+def _has_rotations(fe: FEModel, nodes) -> np.ndarray:
+    """Per node: True when all three rotation DOF are independent DOF of the model."""
+    if fe.dofs_per_node < 6:
+        return np.zeros(len(nodes), dtype=bool)
+    rot = np.asarray(nodes)[:, None] * 6 + np.arange(3, 6)
+    return (fe.independent_of_dof[rot] >= 0).all(axis=1)
+
+
+def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
+    """Bind interfaces to the nodes of ``fe``; check they are valid and disjoint.
+
+    Raises
+    ------
+    InputError
+        Naming the interface: a radius that catches no node, an unknown node set,
+        node indices out of range, a point without a 6-DOF node, nodes that cannot
+        carry a rotation (collinear solid nodes), overlapping interfaces, duplicate
+        names.
+    """
+    if isinstance(interfaces, Interface):
+        interfaces = [interfaces]
+    interfaces = list(interfaces)
+    if not interfaces:
+        raise InputError("at least one interface is needed", key="interfaces")
+    size = float(np.ptp(fe.nodes, axis=0).max()) if fe.n_nodes else 1.0
+    tol = 1e-9 * max(size, 1e-12)
+    out: list[ResolvedInterface] = []
+    for k, itf in enumerate(interfaces):
+        if not isinstance(itf, Interface):
+            raise InputError(f"interfaces[{k}] must be a flexpipe.Interface, got "
+                             f"{type(itf).__name__}", key="interfaces")
+        name = itf.name or f"if{k + 1}"
+        p = np.asarray(itf.point)
+        dist = np.linalg.norm(fe.nodes - p, axis=1)
+        nearest = int(dist.argmin())
+        kind = "rbe2"
+        if itf.radius is not None:
+            nodes = np.flatnonzero(dist <= itf.radius + tol)
+            if nodes.size == 0:
+                raise InputError(
+                    f"interface '{name}': no mesh node within radius {itf.radius:g} m of "
+                    f"{tuple(p)}; the nearest is {_describe(fe, nearest)}, "
+                    f"{dist[nearest]:.4g} m away", key=name)
+        elif itf.node_set is not None:
+            sets = fe.mesh.node_sets if fe.mesh is not None else {}
+            if itf.node_set not in sets:
+                raise InputError(f"interface '{name}': the mesh has no node set "
+                                 f"'{itf.node_set}'; valid: {sorted(sets)}", key=name)
+            nodes = np.unique(np.asarray(sets[itf.node_set], dtype=np.int64))
+            if nodes.size == 0:
+                raise InputError(f"interface '{name}': node set '{itf.node_set}' is empty",
+                                 key=name)
+        elif itf.nodes is not None:
+            nodes = np.unique(np.asarray(itf.nodes, dtype=np.int64))
+            if nodes.size == 0 or nodes.min() < 0 or nodes.max() >= fe.n_nodes:
+                raise InputError(f"interface '{name}': node indices must lie in "
+                                 f"[0, {fe.n_nodes}), got {list(itf.nodes)[:10]}", key=name)
+        else:
+            if dist[nearest] > max(tol, 1e-9):
+                raise InputError(
+                    f"interface '{name}': no mesh node at {tuple(p)} (nearest: "
+                    f"{_describe(fe, nearest)}, {dist[nearest]:.4g} m away); give radius=, "
+                    "node_set= or nodes=", key=name)
+            nodes = np.array([nearest])
+            if not _has_rotations(fe, nodes)[0]:
+                raise InputError(
+                    f"interface '{name}': {_describe(fe, nearest)} has no rotational DOF "
+                    "(solid node), so it cannot be a 6-DOF interface on its own; give "
+                    "radius=, node_set= or nodes= to build a rigid spider", key=name)
+            kind = "node"
+        if kind == "rbe2":
+            _check_spider(fe, name, p, nodes)
+            if nodes.size == 1 and dist[nodes[0]] <= max(tol, 1e-9) and \
+                    _has_rotations(fe, nodes)[0]:
+                kind = "node"
+        out.append(ResolvedInterface(name=name, point=p.copy(), nodes=nodes, kind=kind))
+    names = [r.name for r in out]
+    dup = {n for n in names if names.count(n) > 1}
+    if dup:
+        raise InputError(f"interface names must be unique; repeated: {sorted(dup)}",
+                         key="interfaces")
+    owner = {}
+    for r in out:
+        for i in r.nodes.tolist():
+            if i in owner:
+                raise InputError(
+                    f"interfaces '{owner[i]}' and '{r.name}' overlap: both tie "
+                    f"{_describe(fe, i)}; reduce a radius or split the node sets", key=r.name)
+            owner[i] = r.name
+    return out
+
+
+def _check_spider(fe, name, p, nodes):
+    """The tied nodes must hold all six hardpoint motions."""
+    if _has_rotations(fe, nodes).any():
+        return
+    d = fe.nodes[nodes] - p
+    G = np.concatenate([np.broadcast_to(np.eye(3), (len(nodes), 3, 3)), -skew(d)], axis=2)
+    s = np.linalg.svd(G.reshape(-1, 6), compute_uv=False)
+    scale = max(np.abs(d).max(), 1e-12)
+    if s[-1] <= 1e-8 * max(s[0], scale):
+        raise InputError(
+            f"interface '{name}': its {len(nodes)} solid node(s) lie on one line or point, "
+            "so the spider cannot carry a rotation about that line; enlarge the radius or "
+            "add nodes", key=name)
+
+
+@dataclass(frozen=True)
+class InterfaceSystem:
+    """Model with interfaces applied: ``q_all = E @ x`` for the new coordinates ``x``.
+
+    Attributes
+    ----------
+    K, M : scipy.sparse.csr_matrix
+        Stiffness and mass on ``x``.
+    E : scipy.sparse.csr_matrix (n_dof, n_x)
+        Map to all DOF of the model.
+    boundary : list of ndarray
+        Per interface, its 6 coordinates in ``x`` (ux, uy, uz, rx, ry, rz).
+    """
+
+    K: sp.csr_matrix
+    M: sp.csr_matrix
+    E: sp.csr_matrix
+    boundary: list
+
+
+def interface_system(fe: FEModel, resolved: list[ResolvedInterface]) -> InterfaceSystem:
+    """Apply the interfaces to the independent DOF of ``fe`` (see module docstring)."""
+    dpn = fe.dofs_per_node
+    n_q = fe.T.shape[1]
+    col_of = fe.independent_of_dof
+    drop, rows, cols, vals = [], [], [], []
+    boundary_cols = []  # per interface: ("old", cols) or ("new", offset)
+    n_new = 0
+    for r in resolved:
+        if r.kind == "node":
+            c = col_of[r.nodes[0] * dpn + np.arange(6)]
+            if (c < 0).any():
+                raise InputError(f"interface '{r.name}': {_describe(fe, r.nodes[0])} is tied "
+                                 "by a rigid link of the mesh; use its master node", key=r.name)
+            boundary_cols.append(("old", c))
+            continue
+        dofs = r.nodes[:, None] * dpn + np.arange(dpn)
+        cidx = col_of[dofs]  # (k, dpn), -1 where not independent
+        tied = np.abs(fe.T[dofs.ravel()]).sum(axis=1).A.ravel().reshape(dofs.shape) > 0
+        bad = tied & (cidx < 0)
+        if bad.any():
+            i = int(r.nodes[np.flatnonzero(bad.any(axis=1))[0]])
+            raise InputError(f"interface '{r.name}': {_describe(fe, i)} is already tied by a "
+                             "rigid link of the mesh (RBE2 slave); use its master node", key=r.name)
+        d = fe.nodes[r.nodes] - r.point
+        base = n_new
+        n_new += 6
+        boundary_cols.append(("new", base))
+        for c in range(dpn):
+            ok = cidx[:, c] >= 0
+            q = cidx[ok, c]
+            drop.append(q)
+            rows.append(q)
+            cols.append(np.full(q.size, base + c))
+            vals.append(np.ones(q.size))
+            if c < 3:  # u_c += (theta x d)_c = -(S(d) theta)_c
+                S = -skew(d[ok])  # (k, 3, 3)
+                for k in range(3):
+                    rows.append(q)
+                    cols.append(np.full(q.size, base + 3 + k))
+                    vals.append(S[:, c, k])
+    drop = np.unique(np.concatenate(drop)) if drop else np.zeros(0, dtype=np.int64)
+    keep = np.setdiff1d(np.arange(n_q), drop)
+    n_x = keep.size + n_new
+    new_index = np.full(n_q, -1, dtype=np.int64)
+    new_index[keep] = np.arange(keep.size)
+    rows = [keep] + rows
+    cols = [np.arange(keep.size)] + [c + keep.size for c in cols]
+    vals = [np.ones(keep.size)] + vals
+    Ti = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                       shape=(n_q, n_x))
+    Ti.eliminate_zeros()
+    boundary = []
+    for kind, c in boundary_cols:
+        boundary.append(new_index[c] if kind == "old" else keep.size + c + np.arange(6))
+    K = sp.csr_matrix(Ti.T @ fe.Kr @ Ti)
+    M = sp.csr_matrix(Ti.T @ fe.Mr @ Ti)
+    E = sp.csr_matrix(fe.T @ Ti)
+    return InterfaceSystem(K=K, M=M, E=E, boundary=boundary)
