@@ -13,6 +13,8 @@ __version__ = "0.1.0"
 _EXPORTS = {
     "read_mesh": "flexpipe.mesh",
     "Mesh": "flexpipe.mesh",
+    "write_mesh": "flexpipe.mesh",
+    "MeshWarning": "flexpipe.mesh",
     "Material": "flexpipe.fem",
     "BeamSection": "flexpipe.fem",
     "FEModel": "flexpipe.fem",

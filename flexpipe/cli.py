@@ -12,7 +12,8 @@ stays fast.  A command module provides
 
 Any :class:`~flexpipe.errors.FlexpipeError` or ``OSError`` a command raises is printed
 as a one-line message without traceback, with exit code 2 (argparse usage errors also
-exit with 2).  To add a command, append a line to :data:`COMMANDS`.
+exit with 2); warnings are printed as one line each.  To add a command, append a line
+to :data:`COMMANDS`.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import argparse
 import importlib
 import importlib.util
 import sys
+import warnings
 
 #: (name, module, help) of every subcommand; modules that are not installed are hidden
 COMMANDS = (
@@ -88,8 +90,13 @@ def main(argv=None) -> int:
         args = parser.parse_args(argv[1:])
     except SystemExit as exc:
         return int(exc.code or 0)
+    def show_warning(message, category, filename, lineno, file=None, line=None):
+        print(f"flexpipe {name}: warning: {' '.join(str(message).split())}", file=sys.stderr)
+
     try:
-        code = module.run(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = show_warning
+            code = module.run(args)
     except (FlexpipeError, OSError) as exc:
         print(f"flexpipe {name}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR

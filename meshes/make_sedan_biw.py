@@ -61,9 +61,9 @@ HARDPOINTS = {
 #: above the global ones as in a real body.
 SHELLS = {
     "floor": (0.0007, 8.0), "tunnel": (0.0008, 4.0), "heel_kick": (0.0010, 4.0),
-    "rear_floor": (0.0008, 8.0), "dash": (0.0008, 8.0), "seat_back": (0.0007, 8.0),
+    "rear_floor": (0.0008, 10.0), "dash": (0.0008, 8.0), "seat_back": (0.0007, 8.0),
     "parcel_shelf": (0.0008, 8.0), "wheelhouse": (0.0010, 6.0), "tower": (0.0020, 3.0),
-    "roof": (0.0006, 10.0), "subframe": (0.0015, 4.0), "rear_panel": (0.0010, 6.0),
+    "roof": (0.0006, 10.0), "subframe": (0.0025, 5.0), "rear_panel": (0.0010, 6.0),
 }
 
 #: beam properties: name -> thin-walled box (width, height, wall) in m
@@ -210,6 +210,10 @@ def build():
     B.beam("cross_member", (0.70, -0.75, 0.85), (0.70, 0.75, 0.85))
     B.beam("bumper", (0.85, -0.55, 0.40), (0.85, 0.55, 0.40))
     B.beam("cross_member", (0.35, -0.55, 0.40), (0.35, 0.55, 0.40))
+    B.beam("cross_member", (0.00, -0.55, 0.40), (0.00, 0.55, 0.40))  # suspension cross
+    B.beam("cross_member", (-3.10, -0.55, 0.95), (-3.10, 0.55, 0.95))  # backlight lower
+    B.beam("cross_member", (-2.90, -0.55, 0.35), (-2.90, 0.55, 0.35))  # rear floor
+    B.beam("cross_member", (-3.30, -0.55, 0.35), (-3.30, 0.55, 0.35))
     B.beam("bumper", (-3.75, -0.55, 0.35), (-3.75, 0.55, 0.35))
     B.beam("cross_member", (-3.75, -0.55, 0.75), (-3.75, 0.55, 0.75))
     return B

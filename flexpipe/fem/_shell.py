@@ -13,11 +13,13 @@ Each element is treated in its own flat local frame ``(e1, e2, n)``:
 * **local DOF** - per node ``u, v, w, theta_x, theta_y, theta_z`` (rotation-vector
   components).  Through-thickness kinematics ``u(z) = z theta_y``, ``v(z) = -z theta_x``,
   i.e. section rotations ``beta_x = theta_y``, ``beta_y = -theta_x``.
-* **drilling** - ``theta_z`` gets a penalty spring tying it to the in-plane rotation
-  ``omega = (dv/dx - du/dy) / 2`` at the element centre (Hughes-Brezzi penalty, nodal
-  quadrature): energy ``1/2 sum_a k_d (theta_z,a - omega)^2`` with
-  ``k_d = DRILL_ALPHA * G * t * area / n_nodes``.  It vanishes for rigid rotation and
-  constant strain, so it neither spoils rigid modes nor the membrane patch test.
+* **drilling** - both families use an Allman-type membrane, in which the drilling
+  rotation ``theta_z`` shapes the in-plane field (mid-side displacements), plus a
+  penalty ``1/2 sum_a k_d (theta_z,a - omega_a)^2`` tying it to the rotation
+  ``omega = (dv/dx - du/dy) / 2`` of that field at each corner (Hughes-Brezzi type,
+  ``k_d = alpha G t area / n_nodes``, ``alpha`` set per family).  The penalty vanishes
+  for rigid rotation and constant strain, so it spoils neither rigid modes nor the
+  membrane patch test.
 * **mass** - consistent (quad: bilinear, 2x2 Gauss; triangle: linear) translational
   mass ``rho t`` and rotary inertia ``rho t^3 / 12`` on all three rotations (the drilling
   share is negligible, ``t^2 / 12`` of the in-plane inertia, and keeps M definite).
@@ -30,8 +32,6 @@ import numpy as np
 from flexpipe.fem._element import BadElements
 
 DOFS_PER_NODE = 6
-#: drilling penalty factor (fraction of ``G t area``)
-DRILL_ALPHA = 1e-3
 #: transverse shear correction factor of Reissner-Mindlin plates
 SHEAR_FACTOR = 5.0 / 6.0
 #: largest accepted quad warp, max corner distance from the mean plane / sqrt(area)
@@ -145,36 +145,37 @@ def btdb(B, D, w):
     return np.matmul(B.reshape(ne, ng * nr, nd).transpose(0, 2, 1), DB.reshape(ne, ng * nr, nd))
 
 
-def combine(Km, Kb, omega_row, k_drill):
-    """Local 6-DOF element matrix from membrane, bending and drilling parts.
+def add_drilling(Km: np.ndarray, omega: np.ndarray, k_drill: np.ndarray) -> np.ndarray:
+    """Add the drilling penalty ``1/2 sum_a k_d (theta_z,a - omega_a)^2`` to a membrane matrix.
+
+    ``Km`` (ne, 3 nn, 3 nn) acts on ``u, v, theta_z`` per node; ``omega`` (ne, nn, 3 nn)
+    gives, in the same DOF, the in-plane rotation ``(v,x - u,y) / 2`` of the membrane
+    field at each node ``a``.
+    """
+    nn = omega.shape[1]
+    g = -omega.copy()
+    g[:, np.arange(nn), 3 * np.arange(nn) + 2] += 1.0
+    return Km + np.matmul(g.transpose(0, 2, 1), g) * k_drill[:, None, None]
+
+
+def combine(Km: np.ndarray, Kb: np.ndarray) -> np.ndarray:
+    """Local 6-DOF element matrix from membrane and plate parts.
 
     Parameters
     ----------
-    Km : (ne, 2 nn, 2 nn)
-        Membrane stiffness on ``u, v`` per node.
+    Km : (ne, 3 nn, 3 nn)
+        Membrane stiffness (incl. drilling) on ``u, v, theta_z`` per node.
     Kb : (ne, 3 nn, 3 nn)
         Bending + transverse shear stiffness on ``w, theta_x, theta_y`` per node.
-    omega_row : (ne, 2 nn)
-        In-plane rotation at the centre in terms of the membrane DOF.
-    k_drill : (ne,)
-        Drilling spring per node.
     """
-    ne, nm = omega_row.shape
-    nn = nm // 2
+    ne, nm, _ = Km.shape
+    nn = nm // 3
     node = np.arange(nn)
-    im = (6 * node[:, None] + np.arange(2)).ravel()
+    im = (6 * node[:, None] + np.array([0, 1, 5])).ravel()
     ib = (6 * node[:, None] + 2 + np.arange(3)).ravel()
     K = np.zeros((ne, 6 * nn, 6 * nn))
     K[:, im[:, None], im] = Km
     K[:, ib[:, None], ib] = Kb
-    # drilling: g_a = e(theta_z,a) - omega_row, K += k_d sum_a g_a g_a^T
-    iz = 6 * node + 5
-    K[:, im[:, None], im] += (nn * k_drill)[:, None, None] * np.einsum(
-        "ei,ej->eij", omega_row, omega_row)
-    cross = -k_drill[:, None, None] * np.broadcast_to(omega_row[:, :, None], (ne, nm, nn))
-    K[:, im[:, None], iz] += cross
-    K[:, iz[:, None], im] += cross.transpose(0, 2, 1)
-    K[:, iz, iz] += k_drill[:, None]
     return K
 
 
@@ -183,7 +184,9 @@ def consistent_mass(NN, rho, t):
     ne, nn, _ = NN.shape
     diag = np.concatenate([np.repeat((rho * t)[:, None], 3, axis=1),
                            np.repeat((rho * t**3 / 12.0)[:, None], 3, axis=1)], axis=1)
-    M = np.einsum("eab,ec,cd->eacbd", NN, diag, np.eye(6))
+    M = np.zeros((ne, nn, 6, nn, 6))
+    for c in range(6):
+        M[:, :, c, :, c] = NN * diag[:, c, None, None]
     return M.reshape(ne, 6 * nn, 6 * nn)
 
 
@@ -219,20 +222,16 @@ def to_global(K: np.ndarray, R: np.ndarray, h: np.ndarray, *,
 
 
 def in_sub_batches(fn, geometry, E, nu, rho, t, *, size: int = SUB_BATCH):
-    """Run ``fn(*geometry_slice, E, nu, rho, t) -> (K, M)`` over cache-sized sub-batches.
+    """Run ``fn(R, xy, h, E, nu, rho, t) -> (K, M)`` over cache-sized sub-batches.
 
     Element matrices are written into preallocated outputs, so the temporaries stay
     small (a few MB) whatever the batch size handed over by the assembler.
     """
-    ne = len(geometry[0])
+    ne, nn = geometry[1].shape[:2]
     E, nu, rho, t = (np.broadcast_to(np.asarray(v, dtype=float), (ne,)) for v in (E, nu, rho, t))
-    K = M = None
+    K = np.empty((ne, 6 * nn, 6 * nn))
+    M = np.empty((ne, 6 * nn, 6 * nn))
     for s in range(0, ne, size):
         sl = slice(s, s + size)
-        k, m = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl])
-        if K is None:
-            K = np.empty((ne,) + k.shape[1:])
-            M = np.empty((ne,) + m.shape[1:])
-        K[sl] = k
-        M[sl] = m
+        K[sl], M[sl] = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl])
     return K, M

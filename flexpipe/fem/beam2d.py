@@ -125,8 +125,8 @@ class PlanarBeam:
     def w_dof(self, node: int) -> int:
         """Global index of the transverse displacement of ``node``."""
         if not 0 <= node < self.x.shape[0]:
-            raise InputError(f"node {node} does not exist; valid nodes are 0..{self.x.shape[0] - 1}",
-                             key="node")
+            raise InputError(f"node {node} does not exist; valid nodes are "
+                             f"0..{self.x.shape[0] - 1}", key="node")
         return 2 * int(node)
 
     def theta_dof(self, node: int) -> int:

@@ -17,7 +17,9 @@ DEFAULT_SIGMA = -(2 * np.pi * 1.0) ** 2
 def _fixed_columns(fe: FEModel, fixed_dofs) -> np.ndarray:
     fixed = np.unique(np.asarray(fixed_dofs, dtype=np.int64).ravel())
     if fixed.size and (fixed.min() < 0 or fixed.max() >= fe.n_dof):
-        raise InputError(f"fixed_dofs must lie in [0, {fe.n_dof}); got {fixed.min()}..{fixed.max()}")
+        raise InputError(
+            f"fixed_dofs must lie in [0, {fe.n_dof}); got {fixed.min()}..{fixed.max()}"
+        )
     cols = fe.independent_of_dof[fixed]
     # DOF no element touches have no column: fixing them is a no-op
     untouched = np.asarray(abs(fe.T[fixed]).sum(axis=1)).ravel() == 0
@@ -30,10 +32,82 @@ def _fixed_columns(fe: FEModel, fixed_dofs) -> np.ndarray:
     return np.unique(cols[cols >= 0])
 
 
-def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol=0.0):
+def rigid_body_modes(fe: FEModel) -> np.ndarray:
+    """Six rigid-body motions in the independent coordinates of ``fe``, shape (n_indep, 6).
+
+    Columns: translations x, y, z, then small rotations about x, y, z through the node
+    centroid (rotational DOF, where present, carry the rotation itself).  Rigid links
+    (RBE2) move rigidly too, so every rigid motion lies in the range of ``fe.T``.
+    """
+    X = fe.nodes - fe.nodes.mean(axis=0)
+    dpn = fe.dofs_per_node
+    R = np.zeros((fe.n_nodes, dpn, 6))
+    R[:, [0, 1, 2], [0, 1, 2]] = 1.0
+    x, y, z = X.T
+    R[:, 1, 3], R[:, 2, 3] = -z, y
+    R[:, 0, 4], R[:, 2, 4] = z, -x
+    R[:, 0, 5], R[:, 1, 5] = -y, x
+    if dpn == 6:
+        R[:, [3, 4, 5], [3, 4, 5]] = 1.0
+    R = R.reshape(fe.n_dof, 6)
+    col = fe.independent_of_dof
+    one = col >= 0
+    Rq = np.zeros((fe.T.shape[1], 6))
+    Rq[col[one]] = R[one]
+    return Rq
+
+
+def zero_energy_basis(K, M, R, *, rtol: float = 1e-9) -> np.ndarray:
+    """M-orthonormal basis of the part of span(R) that K does not strain.
+
+    ``R`` (ndof, r) holds candidate motions (e.g. :func:`rigid_body_modes`); directions
+    whose Rayleigh quotient is below ``rtol`` times the typical diagonal ratio
+    ``K_ii / M_ii`` count as zero-energy.  Returns an (ndof, r0) array, r0 <= r.
+    """
+    if R is None or R.shape[1] == 0:
+        return np.zeros((K.shape[0], 0))
+    H = R.T @ (M @ R)
+    s, U = np.linalg.eigh(0.5 * (H + H.T))
+    ok = s > 1e-12 * max(s.max(), 0.0)
+    if not ok.any():
+        return np.zeros((K.shape[0], 0))
+    B = R @ (U[:, ok] / np.sqrt(s[ok]))                    # M-orthonormal
+    G = B.T @ (K @ B)
+    mu, V = np.linalg.eigh(0.5 * (G + G.T))
+    dK, dM = K.diagonal(), M.diagonal()
+    pos = (dM > 0) & (dK > 0)
+    scale = float(np.median(dK[pos] / dM[pos])) if pos.any() else 1.0
+    return B @ V[:, mu < rtol * scale]
+
+
+def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol=0.0,
+                rigid=None):
     """Lowest ``n`` eigenpairs of ``K x = lambda M x`` (sparse, symmetric).
 
-    Returns ``(lam, X)`` ascending with ``X^T M X = I``.
+    Parameters
+    ----------
+    K, M : sparse matrices, shape (ndof, ndof)
+    n : int
+    sigma : float
+        Shift of the shift-invert Lanczos iteration, below the lowest eigenvalue.
+    backend : str, optional
+        Sparse factorization backend.
+    tol : float
+        ARPACK relative tolerance (0: machine precision).
+    rigid : ndarray, shape (ndof, r), optional
+        M-orthonormal basis of known zero-energy modes (``K @ rigid ~ 0``, e.g. from
+        :func:`zero_energy_basis`).  They are returned first and deflated from the
+        Lanczos iteration: with a free structure, ``K - sigma M`` is so ill-conditioned
+        (``-sigma`` against the largest eigenvalue) that the amplified rigid-body
+        components of each solve otherwise swamp the elastic ones, which costs accuracy
+        and iterations.
+
+    Returns
+    -------
+    lam : ndarray, shape (n,)
+        Ascending eigenvalues.
+    X : ndarray, shape (ndof, n)
+        Eigenvectors with ``X^T M X = I``.
     """
     ndof = K.shape[0]
     if n >= ndof - 1 or ndof < 60:
@@ -46,7 +120,15 @@ def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol
             raise InputError(f"asked for {n} modes but the model has only {ndof} free DOF")
         lam, X = sla.eigh(Kd, Md, subset_by_index=[0, n - 1])
         return lam, X
-    A = (sp.csr_matrix(K) - sigma * sp.csr_matrix(M)).tocsr()
+    K = sp.csr_matrix(K)
+    M = sp.csr_matrix(M)
+    R = np.zeros((ndof, 0)) if rigid is None else np.asarray(rigid, dtype=float)
+    r = R.shape[1]
+    lam_r = np.einsum("ij,ij->j", R, K @ R)
+    if n <= r:
+        order = np.argsort(lam_r)[:n]
+        return lam_r[order], R[:, order]
+    A = (K - sigma * M).tocsr()
     try:
         fac = factorize(A, backend=backend)
     except ModelError as exc:
@@ -54,19 +136,38 @@ def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol
             f"{exc}. The stiffness cannot be factorized even after the shift: look for "
             "zero-stiffness DOF, mechanisms, or elements with zero modulus"
         ) from None
-    ncv = min(ndof, max(2 * n + 1, n + 20))
-    lam, X = spla.eigsh(sp.csr_matrix(K), k=n, M=sp.csr_matrix(M), sigma=sigma, which="LM",
-                        OPinv=fac.as_operator(), ncv=ncv, tol=tol)
+    k = n - r
+    if r:
+        MR = M @ R
+
+        def op(b):
+            x = fac.solve(b)
+            return x - R @ (MR.T @ x)        # M-orthogonal projection off span(R)
+
+        OPinv = spla.LinearOperator((ndof, ndof), matvec=op, matmat=op, dtype=float)
+    else:
+        OPinv = fac.as_operator()
+    v0 = np.random.default_rng(12345).uniform(-1.0, 1.0, ndof)
+    if r:
+        v0 -= R @ (MR.T @ v0)
+    ncv = min(ndof - r, max(2 * k + 1, k + 20))
+    lam, X = spla.eigsh(K, k=k, M=M, sigma=sigma, which="LM", OPinv=OPinv, ncv=ncv,
+                        tol=tol, v0=v0)
     order = np.argsort(lam)
     lam, X = lam[order], X[:, order]
     # normalize to unit modal mass (eigsh already does, up to round-off)
     mm = np.einsum("ij,ij->j", X, M @ X)
     X = X / np.sqrt(np.abs(mm))
+    if r:
+        lam = np.concatenate([lam_r, lam])
+        X = np.hstack([R, X])
+        order = np.argsort(lam, kind="stable")
+        lam, X = lam[order], X[:, order]
     return lam, X
 
 
 def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_SIGMA,
-               backend: str | None = None):
+               backend: str | None = None, deflate_rigid: bool = True):
     """Lowest ``n`` natural modes of a free or constrained structure.
 
     Parameters
@@ -81,6 +182,12 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
         eigenvalue (negative for a free structure).
     backend : {"pardiso", "superlu"}, optional
         Sparse factorization (default: fastest available).
+    deflate_rigid : bool
+        Find the rigid-body motions the supports leave free (geometric rigid modes that
+        ``K`` does not strain) and deflate them from the Lanczos iteration (see
+        :func:`solve_eigen`); they are returned as the first modes.  Zero-energy modes
+        that are not rigid-body motions (mechanisms, hourglass modes) are still found
+        by the iteration.
 
     Returns
     -------
@@ -93,14 +200,21 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
         raise InputError(f"n must be a positive integer, got {n!r}")
     Kr, Mr = fe.Kr, fe.Mr
     keep = np.arange(Kr.shape[0])
+    R = rigid_body_modes(fe) if deflate_rigid else None
     if fixed_dofs is not None and len(np.atleast_1d(fixed_dofs)):
         cols = _fixed_columns(fe, fixed_dofs)
         keep = np.setdiff1d(keep, cols)
         Kr = Kr[keep][:, keep]
         Mr = Mr[keep][:, keep]
+        if R is not None and len(cols):
+            # rigid motions that leave every fixed DOF at rest
+            import scipy.linalg as sla
+
+            R = R @ sla.null_space(R[cols], rcond=1e-10)
     if n > Kr.shape[0]:
         raise InputError(f"asked for {n} modes but the model has only {Kr.shape[0]} free DOF")
-    lam, X = solve_eigen(Kr, Mr, n, sigma=sigma, backend=backend)
+    rigid = zero_energy_basis(Kr, Mr, R[keep]) if R is not None else None
+    lam, X = solve_eigen(Kr, Mr, n, sigma=sigma, backend=backend, rigid=rigid)
     Q = np.zeros((fe.T.shape[1], n))
     Q[keep] = X
     shapes = fe.expand(Q)

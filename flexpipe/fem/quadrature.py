@@ -24,7 +24,7 @@ conical product of Gauss-Jacobi rules.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 from scipy.special import roots_jacobi
@@ -37,7 +37,7 @@ def _check(order, name):
         raise InputError(f"{name} must be a positive integer, got {order!r}", key=name)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _gl(n: int):
     x, w = np.polynomial.legendre.leggauss(n)
     x.setflags(write=False)
@@ -99,7 +99,7 @@ def _conical_tri(n: int):
     return np.column_stack([U.ravel(), ((1 - U) * S).ravel()]), np.outer(wu, ws).ravel()
 
 
-@lru_cache(maxsize=None)
+@cache
 def _tet(order: int):
     if order <= 1:
         P, w = np.array([[0.25, 0.25, 0.25]]), np.array([1.0 / 6.0])
@@ -133,7 +133,7 @@ def tet_rule(order: int) -> tuple[np.ndarray, np.ndarray]:
     return P.copy(), w.copy()
 
 
-@lru_cache(maxsize=None)
+@cache
 def _tri(order: int):
     if order <= 1:
         P, w = np.array([[1 / 3, 1 / 3]]), np.array([0.5])

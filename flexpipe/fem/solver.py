@@ -79,6 +79,25 @@ class _SuperLUFactor(Factor):
         return x
 
 
+def _spd_settings(ps):
+    """MKL's defaults for SPD matrices, but without iterative refinement.
+
+    MKL refines each solution by default (two steps in working precision).  On the
+    shifted stiffness ``K - sigma M`` of a free structure, which is very ill-conditioned
+    (rigid-body eigenvalues ``-sigma`` ~ 40 against ~1e13), the refinement stops after a
+    data-dependent number of steps, so the solve is no longer one fixed linear (and
+    symmetric) operator.  Shift-invert Lanczos then returned elastic frequencies of a
+    1k-DOF free tet10 bar 8 % off (Ritz residuals 0.7).  The plain backward-stable
+    solve reproduces dense LAPACK to 1e-9 and is twice as fast (refinement costs a
+    solve per step).
+    """
+    init = ps.libmkl.pardisoinit
+    init.restype = None
+    init(ps.pt.ctypes.data_as(ctypes.POINTER(ps._pt_type[0])), ctypes.byref(ctypes.c_int32(2)),
+         ps.iparm.ctypes.data_as(ctypes.POINTER(ctypes.c_int32)))
+    ps.iparm[7] = 0
+
+
 class _PardisoFactor(Factor):
     backend = "pardiso"
 
@@ -94,7 +113,7 @@ class _PardisoFactor(Factor):
         self._ia = U.indptr.astype(np.int32) + 1
         self._ja = U.indices.astype(np.int32) + 1
         self._ps = _pypardiso.PyPardisoSolver(mtype=2)
-        self._ps.set_iparm(12, 0)
+        _spd_settings(self._ps)
         self._phase(12, np.zeros((A.shape[0], 1)))
 
     def _phase(self, phase, b):

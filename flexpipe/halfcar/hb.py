@@ -51,6 +51,8 @@ class PeriodicSolution:
         Coefficients of the absolute vertical acceleration at point A.
     tire_force : ndarray, complex, shape (2, H + 1)
         Coefficients of the dynamic tire forces (front, rear).
+    G : ndarray, complex, shape (4, H + 1)
+        Coefficients of the law deviations ``g`` (dampers, tires).
     iterations : int
     residual : float
         Final relative residual.
@@ -62,6 +64,7 @@ class PeriodicSolution:
     Z: np.ndarray
     acc_A: np.ndarray
     tire_force: np.ndarray
+    G: np.ndarray
     iterations: int
     residual: float
     multipliers: np.ndarray | None = None
@@ -121,10 +124,11 @@ class HarmonicBalance:
 
     # ------------------------------------------------------------------ packing
     def to_real(self, Zc):
-        H = self.H
+        """Complex coefficients (..., H + 1) -> real ``[a_0, a_1..H, b_1..H]``."""
         return np.concatenate([Zc[..., :1].real, Zc[..., 1:].real, Zc[..., 1:].imag], axis=-1)
 
     def to_complex(self, U):
+        """Inverse of :meth:`to_real`."""
         H = self.H
         Zc = U[..., : H + 1].astype(complex)
         Zc[..., 1:] += 1j * U[..., H + 1:]
@@ -240,8 +244,24 @@ class HarmonicBalance:
         acc = acc_lin - (self.k * omega) ** 2 * np.einsum("kd,dk->k", ra, Gc)
         Ft = np.zeros((2, self.H + 1), dtype=complex)
         Ft[:] = self.laws.k_ref[:, None] * Z[2:] + Gc[2:]
-        return PeriodicSolution(omega=omega, Z=Z, acc_A=acc, tire_force=Ft, iterations=it,
-                                residual=res)
+        return PeriodicSolution(omega=omega, Z=Z, acc_A=acc, tire_force=Ft, G=Gc,
+                                iterations=it, residual=res)
+
+    def state_coefficients(self, sol: PeriodicSolution) -> np.ndarray:
+        """Fourier coefficients ``Q`` (n, H + 1) of all coordinates of a solution.
+
+        ``Q_k = H_k (E k_ref S_k + B G_k)``; the state at ``t`` is
+        ``q = Re sum Q_k e^{i k omega t}``, ``q' = Re sum i k omega Q_k e^{i k omega t}``.
+        """
+        m, omega = self.model, sol.omega
+        kw = self.k * omega
+        Zdyn = (self.K_ref[None] - kw[:, None, None] ** 2 * m.M[None]
+                + 1j * kw[:, None, None] * self.C_ref[None])
+        S = road_amplitudes(m, omega, amplitude=self.amplitude,
+                            wavelength=self.wavelength)[0]
+        F = (m.B @ sol.G).T  # (H+1, n)
+        F[1] += m.E @ (self.laws.k_ref * S)
+        return np.linalg.solve(Zdyn, F[..., None])[..., 0].T
 
     def with_stability(self, sol: PeriodicSolution, *, n_segments=None) -> PeriodicSolution:
         """Return ``sol`` with its Floquet multipliers."""

@@ -115,19 +115,26 @@ def body_basis(variant: str, beam: PlanarBeam, params: HalfCarParams) -> np.ndar
 
     ``reduced``: 2 rigid-body + ``free_interface_modes`` elastic free-interface modes +
     one residual-flexibility attachment mode per boundary DOF (the vertical displacement
-    at each suspension attachment).  ``truncated``: the ``truncated_modes`` lowest
+    at each suspension attachment), orthonormalized (same subspace, so the same reduced
+    model, expressed in its own modal coordinates).  ``truncated``: the ``truncated_modes`` lowest
     free–free modes.  ``rigid``: heave and pitch only.
     """
     if variant == "complete":
         return np.eye(beam.n_dof)
     if variant == "rigid":
         return rigid_body_modes(beam.x, x_ref=0.5 * beam.x[-1])
-    from flexpipe.reduction.cms import modal_truncation_basis, residual_flexibility_basis
+    from flexpipe.reduction.cms import (
+        modal_truncation_basis,
+        orthonormalize,
+        residual_flexibility_basis,
+    )
 
     if variant == "reduced":
         boundary = [beam.w_dof(c.attachment_node) for c in params.corners]
-        return residual_flexibility_basis(beam.M, beam.K, boundary,
-                                          params.free_interface_modes, n_rigid=2)
+        Psi = residual_flexibility_basis(beam.M, beam.K, boundary,
+                                         params.free_interface_modes, n_rigid=2)
+        # same subspace, modal coordinates: well-conditioned reduced matrices
+        return orthonormalize(beam.M, beam.K, Psi)[0]
     if variant == "truncated":
         return modal_truncation_basis(beam.M, beam.K, params.truncated_modes)
     raise InputError(f"unknown half-car variant {variant!r}; valid: {', '.join(VARIANTS)}",

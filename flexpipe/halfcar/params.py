@@ -49,6 +49,8 @@ class HalfCarParams:
         Harmonic road and isolated irregularity ``s0 sin(2 pi z / lambda)``.
     sweep_f_min_Hz, sweep_f_max_Hz, sweep_n_points, harmonics, time_samples
         Response-spectrum sweep and harmonic-balance resolution.
+    refine_band_Hz, refine_points
+        Extra sweep points across the body-bending resonance (figures).
     free_interface_modes, truncated_modes
         Elastic free-interface modes of the reduced body; body modes of the truncated one.
     table1_complete_Hz, table1_reduced_Hz, table1_rigid_Hz
@@ -74,6 +76,8 @@ class HalfCarParams:
     sweep_f_min_Hz: float
     sweep_f_max_Hz: float
     sweep_n_points: int
+    refine_band_Hz: tuple[float, ...]
+    refine_points: int
     harmonics: int
     time_samples: int
     free_interface_modes: int
@@ -197,6 +201,11 @@ def load_params(path=None) -> HalfCarParams:
     if f_min >= f_max:
         raise r.error("sweep", "frequency_max_Hz",
                       f"must exceed frequency_min_Hz = {f_min}, got {f_max}")
+    band = r.get("sweep", "refine_band_Hz", kind=tuple)
+    if len(band) != 2 or not f_min <= band[0] < band[1] <= f_max:
+        raise r.error("sweep", "refine_band_Hz",
+                      f"must be [low, high] with {f_min} <= low < high <= {f_max}, got "
+                      f"{list(band)}")
     n_h = r.get("sweep", "harmonics", kind=int)
     n_t = r.get("sweep", "time_samples", kind=int)
     if n_t < 4 * n_h:
@@ -220,6 +229,8 @@ def load_params(path=None) -> HalfCarParams:
         sweep_f_min_Hz=f_min,
         sweep_f_max_Hz=f_max,
         sweep_n_points=r.get("sweep", "n_points", kind=int),
+        refine_band_Hz=band,
+        refine_points=r.get("sweep", "refine_points", kind=int, allow_zero=True),
         harmonics=n_h,
         time_samples=n_t,
         free_interface_modes=r.get("reduction", "free_interface_modes", kind=int,

@@ -22,6 +22,7 @@ from flexpipe.errors import InputError, SolverError
 from flexpipe.halfcar._blas import single_threaded_blas
 from flexpipe.halfcar.elements import CornerLaws, Nonlinearity
 from flexpipe.halfcar.model import HalfCarModel
+from flexpipe.halfcar.pwlinear import PiecewiseLinear
 
 EVENT_EPS = 1e-9  # m/s
 EVENT_EPS_F = 1e-6  # N
@@ -106,6 +107,20 @@ class _Pieces:
         self.contact = nl.contact
         self._zero = np.zeros((n, n))
 
+    def road_active(self, t):
+        """Whether each wheel is on the sinusoidal part of the road at time ``t``."""
+        z = self.v * t - self.lag
+        if self.road.cycles is None:
+            return np.ones(2, dtype=bool)
+        return (z >= 0.0) & (z < self.road.cycles * self.road.wavelength_m)
+
+    def input_breaks(self):
+        """Times at which a wheel enters or leaves the isolated irregularity."""
+        if self.road.cycles is None:
+            return np.zeros(0)
+        span = self.road.cycles * self.road.wavelength_m
+        return np.concatenate([self.lag / self.v, (self.lag + span) / self.v])
+
     def damper_c(self, branch):
         return np.where(branch > 0, self.laws.c_plus, self.laws.c_minus)
 
@@ -175,7 +190,7 @@ class _Pieces:
 
 
 def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: float,
-             t_end: float, *, t_eval=None, x0=None, method: str = "Radau",
+             t_end: float, *, t_eval=None, x0=None, method: str | None = None,
              rtol: float = 1e-8, atol: float = 1e-12, max_events: int = 100_000) -> Transient:
     """Integrate the half car driving over ``road`` at constant speed.
 
@@ -191,8 +206,11 @@ def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: f
         Output times (default: 2000 points).
     x0 : array_like, shape (2 n,), optional
         Initial state ``[q, q']`` (default: static equilibrium at rest).
-    method : str
-        :func:`scipy.integrate.solve_ivp` method (implicit ones use the exact Jacobian).
+    method : str, optional
+        ``"exact"``: closed-form piecewise-linear propagation
+        (:mod:`flexpipe.halfcar.pwlinear`; dampers and contact, no Duffing term);
+        otherwise a :func:`scipy.integrate.solve_ivp` method (implicit ones get the
+        exact Jacobian).  Default: ``"exact"`` when possible, else ``"Radau"``.
     rtol, atol : float
     max_events : int
         Guard against chattering.
@@ -213,46 +231,23 @@ def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: f
     t_eval = np.linspace(0.0, t_end, 2001) if t_eval is None else np.asarray(t_eval, float)
     x = np.zeros(2 * n) if x0 is None else np.array(x0, dtype=float)
     branch = np.ones(2, dtype=int)
-    v0 = x[n:] @ model.D
-    branch[v0 < 0] = -1
+    branch[x[n:] @ model.D < 0] = -1
     contact = np.ones(2, dtype=bool)
-    t0, n_events = 0.0, 0
-    T, Y, B, Cs = [], [], [], []
+    if method is None:
+        method = "Radau" if P.duffing else "exact"
     cpu0 = time.process_time()
     with single_threaded_blas():
-        while True:
-            rhs, jac, events = P.functions(branch, contact)
-            te = t_eval[(t_eval >= t0) & (t_eval <= t_end)]
-            kw = {"jac": jac} if method in ("Radau", "BDF", "LSODA") else {}
-            sol = solve_ivp(rhs, (t0, t_end), x, method=method, t_eval=te, rtol=rtol,
-                            atol=atol, events=[e[0] for e in events] or None, **kw)
-            if sol.status < 0:
-                raise SolverError(f"time integration failed: {sol.message}", time=t0)
-            ts = np.asarray(sol.t, dtype=float).ravel()
-            T.append(ts)
-            Y.append(np.asarray(sol.y, dtype=float).reshape(2 * n, ts.size).T)
-            B.append(np.broadcast_to(branch, (ts.size, 2)).copy())
-            Cs.append(np.broadcast_to(contact, (ts.size, 2)).copy())
-            if sol.status != 1:
-                break
-            hits = [(te_[0], k) for k, te_ in enumerate(sol.t_events) if te_.size]
-            t_hit, k = min(hits)
-            x = sol.y_events[k][0].copy()
-            _, kind, j = events[k]
-            if kind == "damper":
-                branch[j] = -branch[j]
-            else:
-                contact[j] = not contact[j]
-            t0 = t_hit
-            n_events += 1
-            if n_events > max_events:
-                raise SolverError(f"more than {max_events} law switches: chattering?",
-                                  time=t0)
+        if method == "exact":
+            if P.duffing:
+                raise InputError("method='exact' needs piecewise-linear laws; Duffing tires "
+                                 "need an ODE method such as 'Radau' or 'DOP853'",
+                                 key="method")
+            t, y, br, ct, n_events = PiecewiseLinear(P).run(
+                t_eval, t_end, x, branch, contact, P.input_breaks(), max_events)
+        else:
+            t, y, br, ct, n_events = _run_ivp(P, t_eval, t_end, x, branch, contact, method,
+                                              rtol, atol, max_events)
     cpu = time.process_time() - cpu0
-    t = np.concatenate(T)
-    y = np.concatenate(Y)
-    br = np.concatenate(B)
-    ct = np.concatenate(Cs)
     # drop duplicates at restart times (keep the later, post-switch sample)
     order = np.argsort(t, kind="stable")
     t, y, br, ct = t[order], y[order], br[order], ct[order]
@@ -267,3 +262,41 @@ def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: f
     tire = model.k_t * d + P.tire_extra(d, ct)
     return Transient(t=t, q=q, qd=qd, acc_A=acc @ model.a_A, travel=(q @ model.D).T,
                      tire_force=tire.T, damper_state=br.T, n_events=n_events, cpu_s=cpu)
+
+
+def _run_ivp(P, t_eval, t_end, x, branch, contact, method, rtol, atol, max_events):
+    """Event-driven restarts of :func:`scipy.integrate.solve_ivp` (any law)."""
+    n = P.n
+    branch, contact = branch.copy(), contact.copy()
+    t0, n_events = 0.0, 0
+    T, Y, B, Cs = [], [], [], []
+    while True:
+        rhs, jac, events = P.functions(branch, contact)
+        te = t_eval[(t_eval >= t0) & (t_eval <= t_end)]
+        kw = {"jac": jac} if method in ("Radau", "BDF") else {}
+        sol = solve_ivp(rhs, (t0, t_end), x, method=method, t_eval=te, rtol=rtol,
+                        atol=atol, events=[e[0] for e in events] or None, **kw)
+        if sol.status < 0:
+            raise SolverError(f"time integration failed: {sol.message}", time=t0)
+        ts = np.asarray(sol.t, dtype=float).ravel()
+        T.append(ts)
+        Y.append(np.asarray(sol.y, dtype=float).reshape(2 * n, ts.size).T)
+        B.append(np.broadcast_to(branch, (ts.size, 2)).copy())
+        Cs.append(np.broadcast_to(contact, (ts.size, 2)).copy())
+        if sol.status != 1:
+            break
+        hits = [(te_[0], k) for k, te_ in enumerate(sol.t_events) if te_.size]
+        t_hit, k = min(hits)
+        x = sol.y_events[k][0].copy()
+        _, kind, j = events[k]
+        if kind == "damper":
+            branch[j] = -branch[j]
+        else:
+            contact[j] = not contact[j]
+        t0 = t_hit
+        n_events += 1
+        if n_events > max_events:
+            raise SolverError(f"more than {max_events} law switches: chattering?",
+                              time=t0)
+    return (np.concatenate(T), np.concatenate(Y), np.concatenate(B), np.concatenate(Cs),
+            n_events)

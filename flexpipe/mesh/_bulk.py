@@ -17,6 +17,8 @@ from flexpipe.errors import MeshError
 
 _IMPLIED_EXP = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))([+-]\d+)$")
 _REQUIRED = object()
+_SMALL = tuple(slice(8 + 8 * k, 16 + 8 * k) for k in range(8))
+_LARGE = tuple(slice(8 + 16 * k, 24 + 16 * k) for k in range(4))
 
 
 @dataclass
@@ -96,8 +98,8 @@ def _split(line: str) -> tuple[str, list[str]]:
         return first, data
     first = line[:8].strip()
     if first.endswith("*") or first.startswith("*"):
-        return first, [line[8 + 16 * k: 24 + 16 * k].strip() for k in range(4)]
-    return first, [line[8 + 8 * k: 16 + 8 * k].strip() for k in range(8)]
+        return first, [line[s].strip() for s in _LARGE]
+    return first, [line[s].strip() for s in _SMALL]
 
 
 def _include_target(line: str, path: Path, lineno: int) -> Path:
@@ -140,10 +142,10 @@ def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
             continue
         if "\t" in s:
             s = s.expandtabs(8)
-        head = s.lstrip().upper()
-        if head.startswith("ENDDATA"):
+        head = s.lstrip()[:7].upper() if s[0] in "EeIi " else ""
+        if head == "ENDDATA":
             break
-        if head.startswith("INCLUDE"):
+        if head == "INCLUDE":
             current = None
             target = _include_target(s, path, i + 1)
             cards.extend(read_cards(target, _stack=_stack + (path.resolve(),)))

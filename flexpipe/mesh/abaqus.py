@@ -13,7 +13,8 @@ positioning.  Reading stops at the first ``*STEP``.
 
 Element types: ``C3D4*`` -> tetra, ``C3D10*`` -> tetra10, ``C3D8*`` -> hexahedron,
 ``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad, ``B31*``/``B33*`` -> line (beam local
-1-axis = Abaqus n1 = flexpipe local y).  Every ``*ELSET`` is a cell set, every
+1-axis = Abaqus n1 = flexpipe local y; an optional third beam node gives n1 and is
+dropped after use).  Every ``*ELSET`` is a cell set, every
 ``*NSET`` a node set; sections are stored under their ``ELSET`` name.  Other element
 types and constraints (``*MPC``, ``*TIE``, ``*EQUATION``, ``*COUPLING``) raise
 :class:`~flexpipe.errors.MeshError`: dropping them would change the structure.
@@ -30,6 +31,7 @@ import numpy as np
 from flexpipe.errors import MeshError
 from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
+from flexpipe.mesh.nastran import drop_orientation_nodes
 from flexpipe.mesh.validate import MeshWarning
 
 _TYPES = {"tetra": ("C3D4", "C3D4H"),
@@ -127,12 +129,14 @@ class _Deck:
         self.inertias = []      # (elset, 3x3, file, line)
         self.couplings = []     # (ref node id, [(node or set, first, last)], file, line)
         self.instances = 0
+        self.n1_node: dict[int, int] = {}   # beam element id -> orientation node id
 
     def set_key(self, table: dict, name: str):
-        name = name.split(".")[-1]
-        for k in table:
-            if k.upper() == name.upper():
-                return k
+        """Key of set ``name`` in ``table`` (case-insensitive; ``Instance.name`` allowed)."""
+        for cand in (name, name.split(".")[-1]):
+            for k in table:
+                if k.upper() == cand.upper():
+                    return k
         return None
 
 
@@ -235,6 +239,8 @@ def _parse(path: Path) -> _Deck:
                     raise MeshError(f"element line '{dt[:60]}' must hold integer ids",
                                     file=lf, line=lln) from None
                 first = first or (lf, lln)
+                if t == "line" and len(buf) == 4:  # optional third node: the n1 direction
+                    deck.n1_node[buf[0]] = buf.pop()
                 if len(buf) >= NODES[t] + 1:
                     deck.eids[t].append(buf[0])
                     deck.conn[t].append(buf[1:NODES[t] + 1])
@@ -379,7 +385,9 @@ def read_abaqus(path) -> Mesh:
     cell_sets = {}
     for name in deck.elsets:
         _, members = cells_of(name, str(path), None, "set")
-        cell_sets[name] = {bi_of[t]: np.unique(v) for t, v in members.items() if t in bi_of}
+        members = {bi_of[t]: np.unique(v) for t, v in members.items() if t in bi_of}
+        if members:
+            cell_sets[name] = members
     node_sets = {name: index(ids, lambda k: (str(path), None), f"NSET '{name}'")
                  for name, ids in deck.nsets.items()}
     sections, orient = {}, {}
@@ -399,34 +407,43 @@ def read_abaqus(path) -> Mesh:
             orient.update({c: n1 for c in members["line"]})
     masses = _masses(deck, cells_of, index, where_e)
     links = _couplings(deck, index)
-    out_blocks = []
+    out_blocks, n1_nodes = [], np.zeros(0, dtype=np.int64)
     for t, conn, eids in blocks:
         data = {}
         if t == "line":
             ori = np.full((len(eids), 3), np.nan)
             for c, v in orient.items():
                 ori[c] = v
+            with_node = [(k, deck.n1_node[e]) for k, e in enumerate(eids.tolist())
+                         if e in deck.n1_node]
+            if with_node:
+                k, nodes = (np.array(v) for v in zip(*with_node, strict=True))
+                g = index(nodes, lambda _: (str(path), None), "a beam's n1 node")
+                ori[k] = np.asarray(deck.coords)[g] - np.asarray(deck.coords)[conn[k, 0]]
+                n1_nodes = g
             data["orientation"] = ori
         out_blocks.append(CellBlock(t, conn, eids, np.zeros(len(eids), np.int64), data))
-    return Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
+    mesh = Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
                 node_ids=gid, node_sets=node_sets, cell_sets=cell_sets, point_masses=masses,
                 rigid_links=links, sections=sections, source=str(path))
+    return drop_orientation_nodes(mesh, n1_nodes)
 
 
 def _masses(deck, cells_of, index, where_e):
-    out = []
+    """Point masses: MASS and ROTARYI elements on the same node are combined into one."""
+    acc: dict[int, list] = {}
     for kind, items in (("mass", deck.masses), ("inertia", deck.inertias)):
         for elset, value, f, ln in items:
             _, members = cells_of(elset, f, ln, f"*{kind.upper()}")
             for k in members.get("mass", []):
                 node = int(index([deck.conn["mass"][k][0]], lambda _, f=f, ln=ln: (f, ln),
                                  "*MASS")[0])
-                eid = deck.eids["mass"][k]
+                entry = acc.setdefault(node, [0.0, np.zeros((3, 3)), deck.eids["mass"][k]])
                 if kind == "mass":
-                    out.append(PointMass(node, float(value), id=eid))
+                    entry[0] += float(value)
                 else:
-                    out.append(PointMass(node, 0.0, inertia=value, id=eid))
-    return tuple(out)
+                    entry[1] = entry[1] + value
+    return tuple(PointMass(node, m, I, id=eid) for node, (m, I, eid) in acc.items())
 
 
 def _couplings(deck, index):

@@ -8,6 +8,7 @@ significant digits, so a round trip is exact.
 
 from __future__ import annotations
 
+import re
 import warnings
 
 import numpy as np
@@ -20,6 +21,11 @@ ELEMENT_OF = {"tetra": "C3D4", "tetra10": "C3D10", "hexahedron": "C3D8", "triang
               "quad": "S4", "line": "B31"}
 KIND = {"tetra": "solid", "tetra10": "solid", "hexahedron": "solid", "triangle": "shell",
         "quad": "shell", "line": "beam"}
+
+
+def _q(name: str) -> str:
+    """A set/material name as Abaqus wants it (quoted unless a plain word)."""
+    return name if re.fullmatch(r"[A-Za-z_][\w\-]*", name) else f'"{name}"'
 
 
 def _r(x) -> str:
@@ -87,18 +93,18 @@ def abaqus_text(mesh: Mesh) -> str:
                 for k in range(len(b))]
     next_eid = int(all_ids.max(initial=0)) + 1
     for name, idx in mesh.node_sets.items():
-        out.append(f"*NSET, NSET={name}")
+        out.append(f"*NSET, NSET={_q(name)}")
         out += _id_lines(nid[idx])
     for name, members in mesh.cell_sets.items():
         ids = np.concatenate([eids_of_block[bi][c] for bi, c in members.items()
                               if mesh.blocks[bi].type != "vertex"] + [np.zeros(0, np.int64)])
-        out.append(f"*ELSET, ELSET={name}")
+        out.append(f"*ELSET, ELSET={_q(name)}")
         out += _id_lines(ids)
     materials = {}
     for elset, kind, name, e, n1 in _section_groups(mesh, eids_of_block):
         sec = mesh.sections[name]
         if elset != name:
-            out.append(f"*ELSET, ELSET={elset}")
+            out.append(f"*ELSET, ELSET={_q(elset)}")
             out += _id_lines(e)
         mat = None
         if all(k in sec for k in ("E", "nu", "rho")):
@@ -106,13 +112,13 @@ def abaqus_text(mesh: Mesh) -> str:
             mat = materials.setdefault(key, f"MAT{len(materials) + 1}")
         mpar = f", MATERIAL={mat}" if mat else ""
         if kind == "solid":
-            out.append(f"*SOLID SECTION, ELSET={elset}{mpar}")
+            out.append(f"*SOLID SECTION, ELSET={_q(elset)}{mpar}")
         elif kind == "shell" and "thickness" in sec:
-            out.append(f"*SHELL SECTION, ELSET={elset}{mpar}")
+            out.append(f"*SHELL SECTION, ELSET={_q(elset)}{mpar}")
             out.append(_r(sec["thickness"]))
         elif kind == "beam" and all(k in sec for k in ("A", "Iy", "Iz", "J")):
             dens = f", DENSITY={_r(sec['rho'])}" if mat else ""
-            out.append(f"*BEAM GENERAL SECTION, ELSET={elset}, SECTION=GENERAL{dens}")
+            out.append(f"*BEAM GENERAL SECTION, ELSET={_q(elset)}, SECTION=GENERAL{dens}")
             out.append(f"{_r(sec['A'])}, {_r(sec['Iy'])}, 0., {_r(sec['Iz'])}, {_r(sec['J'])}")
             out.append(", ".join(_r(v) for v in n1))
             if mat:

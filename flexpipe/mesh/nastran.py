@@ -7,7 +7,8 @@ Cards read
 ``G0``), ``CONM2``, ``RBE2``, ``PSHELL`` (``T``, ``MID1``), ``PSOLID``, ``PBAR``,
 ``PBEAM`` (end-A values ``A, I1, I2, J``), ``MAT1`` (``E, G, NU, RHO``), ``CORD2R``.
 
-Every element gets the cell set ``"PID<n>"`` of its property id, and
+GRIDs used only as CBAR/CBEAM ``G0`` orientation nodes are dropped after use.  Every
+element gets the cell set ``"PID<n>"`` of its property id, and
 ``Mesh.sections["PID<n>"]`` holds ``thickness`` (PSHELL T), beam ``A, Iy, Iz, J``
 (Nastran ``I1`` bends in the x-y plane of the element and becomes ``Iz``, ``I2`` becomes
 ``Iy``) and ``E, nu, rho`` of the referenced MAT1, in the units of the file (see
@@ -34,7 +35,7 @@ import numpy as np
 from flexpipe.errors import MeshError
 from flexpipe.mesh._bulk import Card, read_cards
 from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
-from flexpipe.mesh.validate import MeshWarning
+from flexpipe.mesh.validate import MeshWarning, prune, referenced
 
 SUPPORTED = ("CTETRA (4/10 nodes)", "CHEXA (8)", "CQUAD4", "CTRIA3", "CBAR", "CBEAM",
              "CONM2", "RBE2")
@@ -79,7 +80,12 @@ def _element(card: Card, els: _Elements) -> None:
     if card.name in ("CBAR", "CBEAM"):
         g = [card.int(2, "GA"), card.int(3, "GB")]
     else:
-        g = [card.int(first + k, f"G{k + 1}", 0) for k in range(nmax)]
+        raw = card.fields[first:first + nmax]
+        try:  # fast path; on a bad field fall back to the checked parser for its message
+            g = [int(x) if x else 0 for x in raw]
+        except ValueError:
+            g = [card.int(first + k, f"G{k + 1}", 0) for k in range(nmax)]
+        g += [0] * (nmax - len(g))
         if card.name in ("CTETRA", "CHEXA"):
             g = [x for x in g if x]
     n = len(g)
@@ -243,11 +249,13 @@ def read_nastran(path) -> Mesh:
 
     # ---- element ids unique across elements, masses and rigid links
     all_cards = [c for t in els.cards for c in els.cards[t]] + conm2 + rbe2
-    all_ids = np.array([c.int(0, "EID") for c in all_cards], dtype=np.int64)
+    all_ids = np.array([e for t in els.cards for e in els.eid[t]]
+                       + [c.int(0, "EID") for c in conm2 + rbe2], dtype=np.int64)
     _check_unique(all_ids, all_cards, "element")
 
     # ---- cell blocks, PID cell sets, sections
     blocks, cell_sets, sections = [], {}, {}
+    g0_nodes = np.zeros(0, dtype=np.int64)
     for cell_type in els.eid:
         eid = np.array(els.eid[cell_type], dtype=np.int64)
         pid = np.array(els.pid[cell_type], dtype=np.int64)
@@ -260,6 +268,7 @@ def read_nastran(path) -> Mesh:
             if has.size:
                 gi = _index_of(gid, sorter, g0[has], [els.cards["line"][i] for i in has], "G0")
                 ori[has] = X[gi] - X[conn[has, 0]]
+                g0_nodes = gi
             data["orientation"] = ori
             w = np.array(els.offsets, dtype=float)
             if np.any(w):
@@ -297,9 +306,21 @@ def read_nastran(path) -> Mesh:
             off, inertia = R @ off, R @ inertia @ R.T
         masses.append(PointMass(node, c.real(3, "M"), inertia, off, c.int(0, "EID")))
     links = [_rbe2(c, gid, sorter) for c in rbe2]
-    return Mesh(points=X, blocks=tuple(blocks), node_ids=gid, cell_sets=cell_sets,
+    mesh = Mesh(points=X, blocks=tuple(blocks), node_ids=gid, cell_sets=cell_sets,
                 point_masses=tuple(masses), rigid_links=tuple(links), sections=sections,
                 source=str(path))
+    return drop_orientation_nodes(mesh, g0_nodes)
+
+
+def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:
+    """Remove nodes that only orient beams (CBAR G0, Abaqus n1 node): they carry no DOF."""
+    nodes = np.asarray(nodes, dtype=np.int64)
+    if nodes.size == 0:
+        return mesh
+    only = np.zeros(mesh.n_nodes, dtype=bool)
+    only[nodes] = True
+    only &= ~referenced(mesh)
+    return prune(mesh, ~only) if only.any() else mesh
 
 
 def _rbe2(c: Card, gid, sorter) -> RigidLink:

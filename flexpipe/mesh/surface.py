@@ -4,8 +4,9 @@ The triangles become ``triangle`` shell cells; the thickness is not in these for
 give it with ``read_mesh(path, thickness=...)`` (metres) or to
 :func:`~flexpipe.fem.assemble`.  Vertices that coincide (STL stores every triangle
 separately; OBJ splits vertices at texture seams) are merged, zero-area triangles are
-dropped with a warning.  Each named geometry of a multi-object file (OBJ ``o``/``g``)
-becomes a cell set of that name; the cell set ``surface`` holds all triangles.
+dropped with a warning.  The cell set ``surface`` holds all triangles; when trimesh
+returns several named geometries (multi-object files), each also becomes a cell set of
+that name (trimesh's OBJ loader usually merges ``o``/``g`` groups into one geometry).
 """
 
 from __future__ import annotations

@@ -55,7 +55,8 @@ def _check_points(mesh: Mesh) -> None:
             file=_where(mesh))
 
 
-def _referenced(mesh: Mesh) -> np.ndarray:
+def referenced(mesh: Mesh) -> np.ndarray:
+    """True for nodes an element, point mass or rigid link uses."""
     used = np.zeros(mesh.n_nodes, dtype=bool)
     for b in mesh.blocks:
         used[b.cells.ravel()] = True
@@ -196,7 +197,7 @@ def validate(mesh: Mesh, *, prune_unreferenced: bool = False,
     Mesh
     """
     _check_points(mesh)
-    used = _referenced(mesh)
+    used = referenced(mesh)
     if not used.all():
         if prune_unreferenced:
             mesh = prune(mesh, used)
@@ -213,4 +214,4 @@ def validate(mesh: Mesh, *, prune_unreferenced: bool = False,
     return mesh
 
 
-__all__ = ["MeshWarning", "prune", "validate"]
+__all__ = ["MeshWarning", "prune", "referenced", "validate"]

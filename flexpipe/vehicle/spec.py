@@ -9,11 +9,11 @@ in that position; the spring preload that holds it there is computed unless give
 File layout (see ``cars/sedan.toml`` for a complete example)::
 
     [car]            name
-    [body]           mesh, mesh_scale, material, shell_thickness_m, damping_ratio,
-                     interface_radius_m        (flexible body from a mesh)
+    [body]           mesh, mesh_scale, mesh_units, material, shell_thickness_m,
+                     damping_ratio, interface_radius_m      (flexible body from a mesh)
     [body.rigid]     mass_kg, cg_m, inertia_kg_m2  (rigid mass properties, instead of
                      or in addition to a mesh)
-    [[body.mass]]    name, mass_kg, position_m, spread_radius_m, inertia_kg_m2
+    [[body.mass]]    name, mass_kg, position_m, spread_radius_m
                      (non-structural masses: powertrain, trim, occupants)
     [body.points]    name = [x, y, z]  (named output points for accelerations)
     [corners.fl|fr|rl|rr]
@@ -31,7 +31,7 @@ File layout (see ``cars/sedan.toml`` for a complete example)::
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -47,14 +47,16 @@ DRIVE_LAYOUTS = ("front", "rear", "all")
 
 @dataclass(frozen=True)
 class AddedMass:
-    """A non-structural mass spread over the body nodes within ``spread_radius`` of
-    ``position`` (same total mass and centre; ``inertia`` about its own centre)."""
+    """A non-structural mass spread over the body nodes near ``position``.
+
+    The nodal shares are chosen so that their total is ``mass`` and their centre of mass
+    is ``position`` (see :func:`flexpipe.vehicle.bodymodel.spread_mass`).
+    """
 
     name: str
     mass: float
     position: np.ndarray
     spread_radius: float
-    inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
 
 
 @dataclass(frozen=True)
@@ -72,6 +74,7 @@ class BodySpec:
 
     mesh: Path | None
     mesh_scale: float
+    mesh_units: str | None
     material: Material | None
     shell_thickness: float | None
     damping_ratio: float
@@ -216,6 +219,7 @@ def _body(doc: Table, base: Path) -> BodySpec:
             raise t.error("mesh", f"mesh file {mesh} does not exist (paths are relative to "
                                   "the car file)")
     scale = t.number("mesh_scale", 1.0, lo=0, lo_open=True)
+    units = t.string("mesh_units", None)
     material = _material(t, "material")
     thick = t.number("shell_thickness_m", None, lo=0, lo_open=True)
     zeta = t.number("damping_ratio", 0.02, lo=0, hi=1.0)
@@ -238,9 +242,7 @@ def _body(doc: Table, base: Path) -> BodySpec:
         name = m.string("name", f"mass{i}")
         masses.append(AddedMass(
             name, m.number("mass_kg", lo=0, doc="non-structural mass"),
-            m.vector("position_m"), m.number("spread_radius_m", 0.2, lo=0, lo_open=True),
-            _inertia(m, "inertia_kg_m2") if m.has("inertia_kg_m2")
-            else np.zeros((3, 3))))
+            m.vector("position_m"), m.number("spread_radius_m", 0.3, lo=0, lo_open=True)))
         m.finish()
     points = {}
     if t.has("points"):
@@ -249,7 +251,7 @@ def _body(doc: Table, base: Path) -> BodySpec:
             points[k] = p.vector(k)
         p.finish()
     t.finish()
-    return BodySpec(mesh, scale, material, thick, zeta, radius, rigid, tuple(masses), points)
+    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points)
 
 
 def _corner(corners: Table, name: str, base: Path) -> CornerSpec:

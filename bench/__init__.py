@@ -1,0 +1,6 @@
+"""Benchmarks (``make bench``): timings and memory on large models, not timed tests.
+
+Every ``bench/bench_*.py`` module exposes ``run() -> dict`` returning its figures
+(name -> number, bool or str).  ``python -m bench [name ...]`` runs them, each in its own
+process, and prints one table.
+"""

@@ -1,0 +1,294 @@
+"""Exudyn side of the full car: bodies, joints, loads and the time-step loop.
+
+Model (per corner ``fl, fr, rl, rr``)
+-------------------------------------
+* Chassis: ``ObjectFFRFreducedOrder`` (flexible/full body, via
+  :func:`flexpipe.exu.body.add_flexible_body`) or ``ObjectRigidBody`` with the same mass
+  properties; one 6-DOF marker at each suspension hardpoint.
+* Wheel carrier (upright + wheel as one rigid body of the unsprung mass) joined to the
+  chassis hardpoint marker by a ``GenericJoint`` that leaves the translation along the
+  chassis z axis free (prismatic suspension travel).  Steered corners also leave the
+  rotation about that axis free and hold it with a torsional spring-damper whose offset is
+  the steering angle (the steering system's compliance).
+* Wheel spin: one rotational coordinate (``Node1D`` + ``ObjectRotationalMass1D``) per
+  wheel carrying the spin inertia.
+* Suspension forces (spring with preload, dual-rate damper, bump and rebound stops,
+  anti-roll bars), tyre forces and moments, drive and brake torques are **explicit per
+  step**: a PreStepUserFunction reads the state once, a vectorized callback computes the
+  loads, which stay constant over the step (``LoadForceVector``, ``LoadTorqueVector``,
+  ``LoadCoordinate``).  The implicit solver only sees the bodies, constraints and linear
+  connectors, without Python callbacks in its Newton loop.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+from exudyn.rigidBodyUtilities import GetRigidBodyNode
+
+from flexpipe.exu.body import NODE_TYPE, add_flexible_body
+
+OV = exu.OutputVariableType
+
+
+@dataclass
+class CarState:
+    """State read from Exudyn at the start of a step (global ISO 8855 frame)."""
+
+    t: float
+    body_p: np.ndarray
+    body_R: np.ndarray
+    body_v: np.ndarray
+    body_w: np.ndarray
+    wheel_p: np.ndarray
+    wheel_v: np.ndarray
+    wheel_R: np.ndarray
+    wheel_w: np.ndarray
+    spin_rate: np.ndarray
+    jounce: np.ndarray
+    jounce_rate: np.ndarray
+    joint_force: np.ndarray  # (4, 3) constraint force in the hardpoint (J0) frame
+    mount_R: np.ndarray  # (4, 3, 3) hardpoint marker frames
+
+
+@dataclass
+class CarLoads:
+    """Loads for one step."""
+
+    suspension: np.ndarray  # (4,) along the chassis z axis at the hardpoint
+    tire_force: np.ndarray  # (4, 3) global, on the wheel carrier at the wheel centre
+    tire_moment: np.ndarray  # (4, 3) global, non-spin part on the carrier
+    spin_torque: np.ndarray  # (4,) about the spin axis, on the wheel spin coordinate
+    steer: np.ndarray  # (4,) steering angle offsets (rad), used on steered corners
+
+
+@dataclass
+class CarBuild:
+    """Everything :func:`build_car` needs (plain data, no Exudyn objects)."""
+
+    chassis: str  # "rigid" or "flexible"
+    flexbody: object = None  # FlexBody for "flexible"
+    mass: float = 0.0
+    center_of_mass: np.ndarray = None
+    inertia_origin: np.ndarray = None
+    hardpoints: np.ndarray = None  # (4, 3) body coordinates
+    wheel_centers: np.ndarray = None  # (4, 3) body coordinates, design position
+    m_unsprung: np.ndarray = None
+    J_unsprung: np.ndarray = None  # (4, 3, 3)
+    spin_inertia: np.ndarray = None
+    steered: np.ndarray = None  # (4,) bool
+    steer_stiffness: float = 2.0e4  # N m / rad, steering system at the road wheel
+    steer_damping: float = 150.0  # N m s / rad
+    position: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    speed: float = 0.0
+    spin_rate: np.ndarray = None
+    gravity: float = 9.81
+    point_nodes: dict = field(default_factory=dict)  # name -> mesh node index
+    point_local: dict = field(default_factory=dict)  # name -> body coordinates
+
+
+class CarSystem:
+    """An assembled Exudyn car; :meth:`run` integrates it with per-step explicit loads."""
+
+    def __init__(self, spec: CarBuild):
+        self.spec = spec
+        self.SC = exu.SystemContainer()
+        self.mbs = mbs = self.SC.AddSystem()
+        p0 = np.asarray(spec.position, dtype=float)
+        v0 = np.array([spec.speed, 0.0, 0.0])
+        g = np.array([0.0, 0.0, -spec.gravity])
+        names = ("fl", "fr", "rl", "rr")
+        if spec.chassis == "flexible":
+            h = add_flexible_body(mbs, spec.flexbody, position=p0, velocity=v0, gravity=g,
+                                  name="body")
+            self.body_node, self.body_obj = h.node, h.object
+            mount = [h.markers[n] for n in names]
+            self.modal_node = h.modal_node
+        else:
+            J = spec.inertia_origin
+            self.body_node = mbs.AddNode(GetRigidBodyNode(
+                nodeType=NODE_TYPE, position=list(p0), velocity=list(v0),
+                rotationMatrix=np.eye(3), angularVelocity=[0.0, 0.0, 0.0]))
+            self.body_obj = mbs.AddObject(eii.ObjectRigidBody(
+                physicsMass=spec.mass, nodeNumber=self.body_node,
+                physicsInertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
+                physicsCenterOfMass=list(spec.center_of_mass)))
+            mount = [mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=self.body_obj,
+                                                       localPosition=list(hp)))
+                     for hp in spec.hardpoints]
+            mb = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=self.body_obj))
+            mbs.AddLoad(eii.LoadMassProportional(markerNumber=mb, loadVector=list(g)))
+            self.modal_node = None
+        self.mount = mount
+        self.wheel_node, self.wheel_obj, self.joint, self.torsion = [], [], [], []
+        self.spin_node, self.load_body, self.load_carrier = [], [], []
+        self.load_tire_f, self.load_tire_m, self.load_spin = [], [], []
+        self.travel0 = np.zeros(4)
+        for i in range(4):
+            W = spec.wheel_centers[i]
+            H = spec.hardpoints[i]
+            n_w = mbs.AddNode(GetRigidBodyNode(
+                nodeType=NODE_TYPE, position=list(p0 + W), velocity=list(v0),
+                rotationMatrix=np.eye(3), angularVelocity=[0.0, 0.0, 0.0]))
+            Jw = spec.J_unsprung[i]
+            o_w = mbs.AddObject(eii.ObjectRigidBody(
+                physicsMass=float(spec.m_unsprung[i]), nodeNumber=n_w,
+                physicsInertia=[Jw[0, 0], Jw[1, 1], Jw[2, 2], Jw[1, 2], Jw[0, 2], Jw[0, 1]],
+                physicsCenterOfMass=[0.0, 0.0, 0.0]))
+            # carrier marker on the travel axis (below the hardpoint, at wheel-centre height)
+            m_slide = mbs.AddMarker(eii.MarkerBodyRigid(
+                bodyNumber=o_w, localPosition=[H[0] - W[0], H[1] - W[1], 0.0]))
+            m_center = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
+            m_mass = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=o_w))
+            mbs.AddLoad(eii.LoadMassProportional(markerNumber=m_mass, loadVector=list(g)))
+            steered = bool(spec.steered[i])
+            axes = [1, 1, 0, 1, 1, 0] if steered else [1, 1, 0, 1, 1, 1]
+            jnt = mbs.AddObject(eii.GenericJoint(markerNumbers=[mount[i], m_slide],
+                                                 constrainedAxes=axes,
+                                                 visualization=eii.VGenericJoint(show=False)))
+            tsd = None
+            if steered:
+                tsd = mbs.AddObject(eii.ObjectConnectorTorsionalSpringDamper(
+                    markerNumbers=[mount[i], m_slide], stiffness=spec.steer_stiffness,
+                    damping=spec.steer_damping, offset=0.0))
+            n_s = mbs.AddNode(eii.Node1D(referenceCoordinates=[0.0], initialCoordinates=[0.0],
+                                         initialVelocities=[float(spec.spin_rate[i])]))
+            mbs.AddObject(eii.ObjectRotationalMass1D(physicsInertia=float(spec.spin_inertia[i]),
+                                                     nodeNumber=n_s))
+            m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
+            self.load_body.append(mbs.AddLoad(eii.LoadForceVector(
+                markerNumber=mount[i], loadVector=[0.0, 0.0, 0.0], bodyFixed=True)))
+            self.load_carrier.append(mbs.AddLoad(eii.LoadForceVector(
+                markerNumber=m_slide, loadVector=[0.0, 0.0, 0.0], bodyFixed=True)))
+            self.load_tire_f.append(mbs.AddLoad(eii.LoadForceVector(
+                markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
+            self.load_tire_m.append(mbs.AddLoad(eii.LoadTorqueVector(
+                markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
+            self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
+                                                                 load=0.0)))
+            self.wheel_node.append(n_w)
+            self.wheel_obj.append(o_w)
+            self.joint.append(jnt)
+            self.torsion.append(tsd)
+            self.spin_node.append(n_s)
+            self.travel0[i] = W[2] - H[2]
+        mbs.Assemble()
+        self.points = {}
+        for name, node in spec.point_nodes.items():
+            self.points[name] = ("node", int(node)) if spec.chassis == "flexible" else \
+                ("local", list(map(float, spec.point_local[name])))
+
+    # ------------------------------------------------------------------ state and loads
+    def state(self, t: float) -> CarState:
+        """Read the current state."""
+        mbs = self.mbs
+        g = mbs.GetNodeOutput
+        bn = self.body_node
+        wp = np.array([g(n, OV.Position) for n in self.wheel_node])
+        wv = np.array([g(n, OV.Velocity) for n in self.wheel_node])
+        wR = np.array([np.asarray(g(n, OV.RotationMatrix)).reshape(3, 3)
+                       for n in self.wheel_node])
+        ww = np.array([g(n, OV.AngularVelocity) for n in self.wheel_node])
+        spin = np.array([g(n, OV.Coordinates_t)[0] for n in self.spin_node])
+        go = mbs.GetObjectOutput
+        disp = np.array([go(j, OV.DisplacementLocal) for j in self.joint])
+        vel = np.array([go(j, OV.VelocityLocal) for j in self.joint])
+        force = np.array([go(j, OV.ForceLocal) for j in self.joint])
+        mR = np.array([np.asarray(mbs.GetMarkerOutput(m, OV.RotationMatrix)).reshape(3, 3)
+                       for m in self.mount])
+        return CarState(
+            t=t, body_p=np.asarray(g(bn, OV.Position)),
+            body_R=np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3),
+            body_v=np.asarray(g(bn, OV.Velocity)), body_w=np.asarray(g(bn, OV.AngularVelocity)),
+            wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
+            jounce=disp[:, 2] - self.travel0, jounce_rate=vel[:, 2], joint_force=force,
+            mount_R=mR)
+
+    def point_accelerations(self) -> dict:
+        """Global acceleration (3,) of every named body point."""
+        out = {}
+        for name, (kind, where) in self.points.items():
+            if kind == "node":
+                a = self.mbs.GetObjectOutputSuperElement(self.body_obj, OV.Acceleration, where)
+            else:
+                a = self.mbs.GetObjectOutputBody(self.body_obj, OV.Acceleration, where)
+            out[name] = np.asarray(a, dtype=float)
+        return out
+
+    def apply(self, loads: CarLoads) -> None:
+        """Set the loads for the coming step."""
+        mbs = self.mbs
+        setp = mbs.SetLoadParameter
+        for i in range(4):
+            F = float(loads.suspension[i])
+            setp(self.load_body[i], "loadVector", [0.0, 0.0, F])
+            setp(self.load_carrier[i], "loadVector", [0.0, 0.0, -F])
+            setp(self.load_tire_f[i], "loadVector", loads.tire_force[i].tolist())
+            setp(self.load_tire_m[i], "loadVector", loads.tire_moment[i].tolist())
+            setp(self.load_spin[i], "load", float(loads.spin_torque[i]))
+            if self.torsion[i] is not None:
+                mbs.SetObjectParameter(self.torsion[i], "offset", float(loads.steer[i]))
+
+    # ------------------------------------------------------------------ time loop
+    def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.8,
+            progress=None, jacobian_every_step: bool = False):
+        """Integrate to ``t_end`` with step ``h``; ``step(state) -> CarLoads | None``.
+
+        ``step`` returns ``None`` to stop (e.g. divergence).  Returns
+        ``(completed, t_reached, cpu_seconds, wall_seconds, solver_message)``.
+        """
+        mbs = self.mbs
+        n_steps = int(round(t_end / h))
+        loads = step(self.state(0.0))
+        if loads is None:
+            return False, 0.0, 0.0, 0.0, "stopped at the initial state"
+        self.apply(loads)
+        last = {"t": 0.0, "n": 0}
+
+        def prestep(mbs_, t):
+            t0 = t - h  # the state is at the start of the step
+            if t0 <= 1e-12:
+                return True
+            loads = step(self.state(t0))
+            last["t"] = t0
+            last["n"] += 1
+            if progress is not None and last["n"] % 100 == 0:
+                progress(100)
+            if loads is None:
+                return False
+            self.apply(loads)
+            return True
+
+        mbs.SetPreStepUserFunction(prestep)
+        s = exu.SimulationSettings()
+        ti = s.timeIntegration
+        ti.numberOfSteps = n_steps
+        ti.endTime = t_end
+        ti.verboseMode = 0
+        ti.generalizedAlpha.spectralRadius = spectral_radius
+        ti.generalizedAlpha.computeInitialAccelerations = True
+        ti.newton.useModifiedNewton = not jacobian_every_step
+        ti.newton.relativeTolerance = 1e-7
+        ti.newton.absoluteTolerance = 1e-9
+        ti.adaptiveStep = True
+        s.solutionSettings.writeSolutionToFile = False
+        s.solutionSettings.writeInitialValues = False
+        s.displayStatistics = False
+        s.displayComputationTime = False
+        s.linearSolverType = exu.LinearSolverType.EXUdense
+        cpu0, wall0 = time.process_time(), time.perf_counter()
+        message = ""
+        try:
+            ok = bool(exu.SolveDynamic(mbs, s, solverType=exu.DynamicSolverType.GeneralizedAlpha,
+                                       updateInitialValues=False, storeSolver=True))
+        except (RuntimeError, ValueError) as exc:  # Exudyn raises on Newton failure
+            ok = False
+            message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
+        cpu = time.process_time() - cpu0
+        wall = time.perf_counter() - wall0
+        completed = ok and last["t"] >= t_end - 1.5 * h
+        return completed, last["t"], cpu, wall, message

@@ -1,0 +1,129 @@
+"""``flexpipe`` command line: the ``modes`` command against rod theory, error handling
+(one line, exit code 2) and the lazy subcommand registry."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import textwrap
+
+import meshio
+import numpy as np
+import pytest
+
+from flexpipe import cli
+from flexpipe.mesh import write_mesh
+from flexpipe.mesh.generate import box, plate
+
+E, RHO, L = 210e9, 7850.0, 1.0
+
+
+@pytest.fixture(scope="module")
+def bar(tmp_path_factory):
+    """A 1 m x 0.1 m x 0.1 m tet4 bar as a Gmsh file (face node sets xmin, xmax, ...)."""
+    p = tmp_path_factory.mktemp("bar") / "bar.msh"
+    write_mesh(box(L, 0.1, 0.1, 20, 2, 2), p)
+    return p
+
+
+def _table(out: str) -> np.ndarray:
+    rows = [ln.split() for ln in out.splitlines()]
+    return np.array([float(r[1]) for r in rows if len(r) == 2 and r[0].isdigit()])
+
+
+def test_modes_axial_mode_of_clamped_rod(bar, tmp_path, capsys):
+    out = tmp_path / "modes"
+    code = cli.main(["modes", str(bar), "--material", "steel", "--nu", "0", "--n", "10",
+                     "--fixed", "xmin", "-o", str(out), "-q"])
+    assert code == 0
+    printed = _table(capsys.readouterr().out)
+    m = meshio.read(out / "modes.vtu")
+    f = m.field_data["frequency_hz"]
+    np.testing.assert_allclose(printed, f, rtol=1e-5)       # table shows 6 digits
+    assert len(f) == 10 and np.all(np.diff(f) >= 0) and f[0] > 1.0   # clamped: no rigid modes
+    fixed = np.isclose(m.points[:, 0], 0.0)
+    x_share = []
+    for k in range(10):
+        u = m.point_data[f"mode_{k + 1:02d}"]
+        assert np.abs(u[fixed]).max() == 0.0                  # clamped face does not move
+        x_share.append(np.sum(u[:, 0] ** 2) / np.sum(u**2))
+    axial = int(np.argmax(x_share))
+    assert x_share[axial] > 0.99
+    # nu = 0: the first axial mode of a clamped-free rod, f = c / (4 L), c = sqrt(E / rho)
+    assert f[axial] == pytest.approx(np.sqrt(E / RHO) / (4 * L), rel=5e-3)
+    csv = np.loadtxt(out / "frequencies.csv", delimiter=",", skiprows=1)
+    np.testing.assert_allclose(csv[:, 1], f, rtol=1e-9)
+
+
+def test_modes_free_body_has_six_rigid_modes(bar, tmp_path, capsys):
+    out = tmp_path / "free"
+    assert cli.main(["modes", str(bar), "--E", "70e9", "--nu", "0.33", "--rho", "2700",
+                     "--n", "8", "-o", str(out), "-q", "--per-mode"]) == 0
+    f = _table(capsys.readouterr().out)
+    assert np.all(f[:6] < 1e-3 * f[6]) and f[6] > 100.0
+    one = meshio.read(out / "mode_07.vtu")
+    assert one.field_data["frequency_hz"][0] == pytest.approx(f[6], rel=1e-5)
+    assert one.point_data["displacement"].shape == (one.points.shape[0], 3)
+
+
+def test_modes_shell_mesh_with_thickness(tmp_path, capsys):
+    p = tmp_path / "plate.msh"
+    write_mesh(plate(0.4, 0.3, 8, 6), p)
+    assert cli.main(["modes", str(p), "--material", "steel", "--thickness", "0.002",
+                     "--n", "7", "--fixed", "xmin", "-o", str(tmp_path / "o"), "-q"]) == 0
+    f = _table(capsys.readouterr().out)
+    # cantilever plate strip, first bending: f = 1.875^2 / (2 pi L^2) sqrt(D / (rho t))
+    D = E * 0.002**3 / (12 * (1 - 0.3**2))
+    f_ref = 1.875104**2 / (2 * np.pi * 0.4**2) * np.sqrt(D / (RHO * 0.002))
+    assert f[0] == pytest.approx(f_ref, rel=0.03)
+    m = meshio.read(tmp_path / "o" / "modes.vtu")
+    assert "mode_01_rotation" in m.point_data
+
+
+@pytest.mark.parametrize("args,expect", [
+    (["missing.msh", "--material", "steel"], "missing.msh: file not found"),
+    (["{bar}"], "no material in the file"),
+    (["{bar}", "--material", "steel", "--fixed", "nowhere"], "no node set or cell set 'nowhere'"),
+    (["{bar}", "--material", "unobtainium"], "unknown material 'unobtainium'"),
+    (["{bar}", "--E", "1e9"], "missing --nu, --rho"),
+    (["{plate}", "--material", "steel"], "plate.msh: 48 shell (quad) element(s) have no"),
+])
+def test_errors_are_one_line_with_exit_code_2(bar, tmp_path, capsys, monkeypatch, args, expect):
+    monkeypatch.chdir(tmp_path)
+    write_mesh(plate(0.4, 0.3, 8, 6), tmp_path / "plate.msh")
+    argv = ["modes"] + [a.format(bar=bar, plate=tmp_path / "plate.msh") for a in args] + ["-q"]
+    assert cli.main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("flexpipe modes: error: ")
+    assert expect in err[0]
+
+
+def test_console_entry_point_without_traceback(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "flexpipe.cli", "modes", str(tmp_path / "x.bdf")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2
+    assert "Traceback" not in r.stderr and "x.bdf: file not found" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "flexpipe.cli", "--help"], capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 0 and "modes" in r.stdout
+
+
+def test_registry_loads_commands_lazily(tmp_path, monkeypatch, capsys):
+    (tmp_path / "fp_echo_cmd.py").write_text(textwrap.dedent("""
+        def add_arguments(p):
+            p.add_argument("--times", type=int, default=1)
+
+        def run(args):
+            print("echo " * args.times)
+            return 3
+    """))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(cli, "COMMANDS", cli.COMMANDS + (
+        ("echo", "fp_echo_cmd", "test command"), ("ghost", "fp_not_installed", "absent")))
+    assert cli.main(["--help"]) == 0
+    listing = capsys.readouterr().out
+    assert "echo" in listing and "ghost" not in listing
+    assert "fp_echo_cmd" not in sys.modules            # --help did not import it
+    assert cli.main(["echo", "--times", "2"]) == 3
+    assert capsys.readouterr().out.split() == ["echo", "echo"]
+    assert cli.main(["ghost"]) == 2                     # unknown command: argparse error
