@@ -69,7 +69,7 @@ class BeamSection:
 
     @classmethod
     def rectangle(cls, b: float, h: float, **kw) -> BeamSection:
-        """Solid rectangle: ``b`` along local y, ``h`` along local z (so ``Iy = b h^3 / 12``)."""
+        """Solid rectangle: width ``b`` along local z, height ``h`` along local y."""
         a, c = max(b, h), min(b, h)
         J = a * c**3 * (1 / 3 - 0.21 * c / a * (1 - c**4 / (12 * a**4)))
         # Iy = int z^2 dA (z spans the width b), Iz = int y^2 dA (y spans the height h)

@@ -233,6 +233,9 @@ def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: f
     branch = np.ones(2, dtype=int)
     branch[x[n:] @ model.D < 0] = -1
     contact = np.ones(2, dtype=bool)
+    if nl.contact:  # a wheel may start off the road
+        d0 = P.road_s(0.0) - x[:n] @ model.E
+        contact = P.laws.F0 + P.laws.k_t * d0 + P.laws.k_t3 * d0**3 > 0.0
     if method is None:
         method = "Radau" if P.duffing else "exact"
     cpu0 = time.process_time()
