@@ -84,6 +84,7 @@ class CarBuild:
     steer_stiffness: float = 2.0e4  # N m / rad, steering system at the road wheel
     steer_damping: float = 150.0  # N m s / rad
     position: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    rotation: np.ndarray = field(default_factory=lambda: np.eye(3))
     speed: float = 0.0
     spin_rate: np.ndarray = None
     gravity: float = 9.81
@@ -99,12 +100,13 @@ class CarSystem:
         self.SC = exu.SystemContainer()
         self.mbs = mbs = self.SC.AddSystem()
         p0 = np.asarray(spec.position, dtype=float)
-        v0 = np.array([spec.speed, 0.0, 0.0])
+        R0 = np.asarray(spec.rotation, dtype=float)
+        v0 = R0 @ np.array([spec.speed, 0.0, 0.0])
         g = np.array([0.0, 0.0, -spec.gravity])
         names = ("fl", "fr", "rl", "rr")
         if spec.chassis == "flexible":
-            h = add_flexible_body(mbs, spec.flexbody, position=p0, velocity=v0, gravity=g,
-                                  name="body")
+            h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=v0,
+                                  gravity=g, name="body")
             self.body_node, self.body_obj = h.node, h.object
             mount = [h.markers[n] for n in names]
             self.modal_node = h.modal_node
@@ -112,7 +114,7 @@ class CarSystem:
             J = spec.inertia_origin
             self.body_node = mbs.AddNode(GetRigidBodyNode(
                 nodeType=NODE_TYPE, position=list(p0), velocity=list(v0),
-                rotationMatrix=np.eye(3), angularVelocity=[0.0, 0.0, 0.0]))
+                rotationMatrix=R0, angularVelocity=[0.0, 0.0, 0.0]))
             self.body_obj = mbs.AddObject(eii.ObjectRigidBody(
                 physicsMass=spec.mass, nodeNumber=self.body_node,
                 physicsInertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
@@ -132,8 +134,8 @@ class CarSystem:
             W = spec.wheel_centers[i]
             H = spec.hardpoints[i]
             n_w = mbs.AddNode(GetRigidBodyNode(
-                nodeType=NODE_TYPE, position=list(p0 + W), velocity=list(v0),
-                rotationMatrix=np.eye(3), angularVelocity=[0.0, 0.0, 0.0]))
+                nodeType=NODE_TYPE, position=list(p0 + R0 @ W), velocity=list(v0),
+                rotationMatrix=R0, angularVelocity=[0.0, 0.0, 0.0]))
             Jw = spec.J_unsprung[i]
             o_w = mbs.AddObject(eii.ObjectRigidBody(
                 physicsMass=float(spec.m_unsprung[i]), nodeNumber=n_w,

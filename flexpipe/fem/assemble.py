@@ -139,6 +139,9 @@ def _material_arrays(mesh, bi, block, material):
         return None
 
     mats = _per_cell(mesh, bi, len(block), material, "material", from_section)
+    if len(set(map(id, mats))) == 1 and mats[0] is not None:  # one material: no loops
+        m = mats[0]
+        return tuple(np.full(len(mats), float(v)) for v in (m.E, m.nu, m.rho))
     missing = [i for i, m in enumerate(mats) if m is None]
     if missing:
         ids = block.ids[missing[:10]].tolist()
@@ -239,16 +242,14 @@ class _Pattern:
         self.row_stride = dpn * counts
         del first
         self.indptr = np.concatenate([[0], np.cumsum(np.repeat(dpn * counts, dpn))]).astype(it)
-        # every DOF row of node a holds the same columns: [b * dpn + j for blocks b, j < dpn]
-        row_cols = (cols[:, None] * dpn + np.arange(dpn)).astype(it).ravel()
-        del rows, cols
-        seg = np.repeat(dpn * counts, dpn)                      # length of each DOF row
-        shift = np.repeat(dpn * dpn * start_b[:-1] - dpn * start_b[:-1], dpn) + \
-            np.tile(np.arange(dpn), n) * np.repeat(dpn * counts, dpn)
-        src = np.arange(self.nnz, dtype=np.int64)
-        src -= np.repeat(shift, seg)
-        self.indices = row_cols[src]
-        del src, row_cols
+        # every DOF row of node a holds the columns [b * dpn + j for blocks b, j < dpn]
+        self.indices = np.empty(self.nnz, dtype=it)
+        stride = self.row_stride[rows]
+        del rows
+        for i in range(dpn):
+            at = self.base + i * stride
+            for j in range(dpn):
+                self.indices[at + j] = cols * dpn + j
 
     def block_index(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """Index of block (a, b) in the pattern, for node index arrays of equal shape."""

@@ -118,8 +118,14 @@ def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol
         Md = M.toarray() if sp.issparse(M) else np.asarray(M)
         if n > ndof:
             raise InputError(f"asked for {n} modes but the model has only {ndof} free DOF")
-        lam, X = sla.eigh(Kd, Md, subset_by_index=[0, n - 1])
-        return lam, X
+        # M may be singular (massless DOF): solve M x = mu (K - sigma M) x, whose
+        # B-matrix is positive definite, and map back with lambda = sigma + 1/mu
+        A = Kd - sigma * Md
+        mu, X = sla.eigh(Md, A, subset_by_index=[ndof - n, ndof - 1])
+        lam = sigma + 1.0 / mu[::-1]
+        X = X[:, ::-1]
+        mm = np.einsum("ij,ij->j", X, Md @ X)
+        return lam, X / np.sqrt(np.abs(mm))
     K = sp.csr_matrix(K)
     M = sp.csr_matrix(M)
     R = np.zeros((ndof, 0)) if rigid is None else np.asarray(rigid, dtype=float)

@@ -30,7 +30,8 @@ from flexpipe.errors import SolverError
 
 #: scan step of the switching functions, s (>= 10 samples per period of 500 Hz)
 SCAN_STEP = 2e-4
-SCAN_BLOCK = 512
+#: scan blocks grow from SCAN_FIRST to SCAN_BLOCK points (short pieces stay cheap)
+SCAN_FIRST, SCAN_BLOCK = 8, 512
 #: eigenvector-matrix condition above which the augmented exponential is used instead
 EIGEN_COND_MAX = 1e8
 
@@ -141,8 +142,10 @@ class PiecewiseLinear:
             states = self.piece(damper, contact, active, t0, x)
             t_hit, k_hit = None, None
             a = t0
+            block = SCAN_FIRST
             while a < t_stop and t_hit is None:
-                grid = np.minimum(a + SCAN_STEP * np.arange(1, SCAN_BLOCK + 1), t_stop)
+                grid = np.minimum(a + SCAN_STEP * np.arange(1, block + 1), t_stop)
+                block = min(2 * block, SCAN_BLOCK)
                 grid = np.unique(grid)
                 xs = states(grid)
                 g = self.switching(xs, grid, damper, contact)

@@ -1,0 +1,272 @@
+"""Per-step vehicle physics outside the integrator: tyres on the road, suspension force law,
+driver, steering geometry and the recording of output channels.
+
+:class:`CarController` is called once per time step with the state read from the
+multibody model (:class:`flexpipe.exu.car.CarState`) and returns the loads for the step
+(:class:`flexpipe.exu.car.CarLoads`), vectorized over the four corners.  It also records
+the output channels into preallocated arrays every ``output_every`` steps.
+
+Output channels (SI units; "body axes" = the chassis frame, ISO 8855 orientation)
+-----------------------------------------------------------------------------
+``x, y, z`` body-origin position, ``roll, pitch, yaw`` (rad), ``speed`` (forward, m/s),
+``steer`` road-wheel angle (rad), ``steering_wheel`` (rad), ``drive_torque`` (N m, total),
+``lateral_error`` (m, rear-axle centre from the path), ``ay`` lateral acceleration of the
+centre of mass (m/s^2, body axes);
+per corner ``c`` in ``fl, fr, rl, rr``: ``hub_c_x|y|z`` force the corner applies to the body
+at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-axes),
+``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
+per named point ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, without gravity).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from flexpipe.vehicle.spec import CORNERS
+
+#: sign that turns the GenericJoint's ForceLocal into the force on the body (see tests)
+JOINT_FORCE_SIGN = -1.0
+
+
+def _rpy(R: np.ndarray):
+    """Roll, pitch, yaw (Tait-Bryan z-y-x) of a body-to-world rotation matrix."""
+    yaw = math.atan2(R[1, 0], R[0, 0])
+    pitch = -math.asin(max(-1.0, min(1.0, R[2, 0])))
+    roll = math.atan2(R[2, 1], R[2, 2])
+    return roll, pitch, yaw
+
+
+class Recorder:
+    """Preallocated channel arrays, filled row by row."""
+
+    def __init__(self, names, n_rows: int):
+        self.names = list(names)
+        self.index = {n: i for i, n in enumerate(self.names)}
+        self.data = np.full((n_rows, len(self.names)), np.nan)
+        self.t = np.full(n_rows, np.nan)
+        self.rows = 0
+
+    def add(self, t: float, values: np.ndarray) -> None:
+        if self.rows < len(self.t):
+            self.t[self.rows] = t
+            self.data[self.rows] = values
+            self.rows += 1
+
+    def channels(self) -> dict:
+        return {n: self.data[: self.rows, i].copy() for i, n in enumerate(self.names)}
+
+
+class CarController:
+    """Tyres, suspension, driver and recording for one run (see module docstring).
+
+    Parameters
+    ----------
+    corners : CornerArrays
+    tires : list of TireModel
+        One per corner (the same object may be shared).
+    road : Road
+        Heights in global coordinates: ``s = x``, ``lateral = y``.
+    steering : PurePursuit
+        Bound to the path.
+    speed_pi : SpeedPI
+    target_speed : float
+    car : Car
+        For steering ratio/limits and the drive layout.
+    h : float
+        Step size, s.
+    t_end : float
+    output_every : int
+        Record every this many steps.
+    points : list of str
+        Named body points whose accelerations are recorded.
+    point_acc : callable
+        ``point_acc() -> {name: global acceleration}`` (read from the multibody model).
+    driver_every : int
+        Driver update period in steps.
+    """
+
+    def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
+                 output_every=2, points=(), point_acc=None, driver_every=5,
+                 body_com=None, track=None):
+        self.c = corners
+        self.road = road
+        self.steering = steering
+        self.speed_pi = speed_pi
+        self.v_target = float(target_speed)
+        self.car = car
+        self.h = float(h)
+        self.output_every = int(output_every)
+        self.driver_every = int(driver_every)
+        self.points = list(points)
+        self.point_acc = point_acc
+        self.body_com = np.zeros(3) if body_com is None else np.asarray(body_com, dtype=float)
+        groups = {}
+        for i, t in enumerate(tires):
+            groups.setdefault(id(t), (t, []))[1].append(i)
+        self.tire_groups = [(t, np.array(ix)) for t, ix in groups.values()]
+        sides = ["left" if n[1] == "l" else "right" for n in CORNERS]
+        self.mirror = np.zeros(4, dtype=bool)
+        for t, ix in self.tire_groups:
+            self.mirror[ix] = t.mirror_for([sides[i] for i in ix])
+        from flexpipe.tires import SlipState
+
+        self.slip = {id(t): SlipState.zeros(len(ix)) for t, ix in self.tire_groups}
+        st = car.steering
+        self.steered = np.array([car.corners[i].axle == st.axle for i in range(4)])
+        self.max_angle = st.max_wheel_angle
+        self.max_rate = st.max_rate
+        self.ratio = st.ratio
+        self.wheelbase = car.wheelbase
+        self.track = float(np.mean(np.abs(corners.wheel_center[:2, 1])) * 2) \
+            if track is None else track
+        self.drive_share = car.drive.drive_shares()
+        self.brake_share = car.drive.brake_shares()
+        self.delta = 0.0
+        self.delta_cmd = 0.0
+        self.torque = 0.0
+        self.step_no = 0
+        self.status = 0
+        self.message = ""
+        names = ["x", "y", "z", "roll", "pitch", "yaw", "speed", "ay", "steer",
+                 "steering_wheel", "drive_torque", "lateral_error"]
+        for cn in CORNERS:
+            names += [f"hub_{cn}_x", f"hub_{cn}_y", f"hub_{cn}_z", f"tire_{cn}_Fx",
+                      f"tire_{cn}_Fy", f"tire_{cn}_Fz", f"travel_{cn}", f"spin_{cn}"]
+        for p in self.points:
+            names += [f"acc_{p}_x", f"acc_{p}_y", f"acc_{p}_z"]
+        n_rows = int(round(t_end / h)) // self.output_every + 2
+        self.rec = Recorder(names, n_rows)
+        self._prev_v = None
+
+    # ------------------------------------------------------------------ pieces
+    def road_contact(self, P: np.ndarray):
+        """Road height (4,) and upward unit normal (4, 3) under points P (4, 3)."""
+        e = 0.05
+        x = np.concatenate([P[:, 0], P[:, 0] + e, P[:, 0] - e, P[:, 0], P[:, 0]])
+        y = np.concatenate([P[:, 1], P[:, 1], P[:, 1], P[:, 1] + e, P[:, 1] - e])
+        z = np.asarray(self.road.height(x, y), dtype=float).reshape(5, -1)
+        gx = (z[1] - z[2]) / (2 * e)
+        gy = (z[3] - z[4]) / (2 * e)
+        n = np.column_stack([-gx, -gy, np.ones_like(gx)])
+        return z[0], n / np.linalg.norm(n, axis=1, keepdims=True)
+
+    def wheel_angles(self, delta: float) -> np.ndarray:
+        """Road-wheel angles (4,) of an Ackermann steering for the bicycle angle ``delta``."""
+        out = np.zeros(4)
+        if abs(delta) < 1e-9:
+            return out
+        L, half = self.wheelbase, 0.5 * self.track
+        tan_d = math.tan(delta)
+        left = math.atan(L * tan_d / (L - half * tan_d))
+        right = math.atan(L * tan_d / (L + half * tan_d))
+        idx = np.flatnonzero(self.steered)
+        for i in idx:
+            out[i] = left if CORNERS[i][1] == "l" else right
+        return out
+
+    def driver(self, st, v: float, yaw: float) -> None:
+        """Update steering command and drive torque (every ``driver_every`` steps)."""
+        dt = self.h * self.driver_every
+        p = st.body_p
+        cmd = self.steering.steer(float(p[0]), float(p[1]), yaw, v)
+        self.delta_cmd = max(-self.max_angle, min(self.max_angle, cmd))
+        self.torque = self.speed_pi.torque(self.v_target, v, dt)
+
+    # ------------------------------------------------------------------ step
+    def __call__(self, st):
+        if not (np.all(np.isfinite(st.body_p)) and np.all(np.isfinite(st.wheel_p))
+                and np.all(np.isfinite(st.jounce))):
+            return self._fail(st.t, "the state became non-finite (NaN/inf): numerical "
+                                    "divergence; try a smaller step h")
+        R = st.body_R
+        roll, pitch, yaw = _rpy(R)
+        if abs(roll) > 1.0 or abs(pitch) > 1.0:
+            return self._fail(st.t, f"roll {math.degrees(roll):.0f} deg / pitch "
+                                    f"{math.degrees(pitch):.0f} deg: the car overturned "
+                                    "(speed or manoeuvre too severe)")
+        if np.abs(st.jounce).max() > 0.5:
+            i = int(np.argmax(np.abs(st.jounce)))
+            return self._fail(st.t, f"suspension travel {st.jounce[i]:.2f} m at corner "
+                                    f"{CORNERS[i]}: the wheel left its travel range "
+                                    "(divergence or missing bump/rebound stops)")
+        v = float(R[:, 0] @ st.body_v)
+        if self.step_no % self.driver_every == 0:
+            self.driver(st, v, yaw)
+        # steering actuator: rate limit towards the command
+        dmax = self.max_rate * self.h
+        self.delta += max(-dmax, min(dmax, self.delta_cmd - self.delta))
+        steer = self.wheel_angles(self.delta)
+
+        # tyres
+        s_axis = st.wheel_R[:, :, 1]
+        omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
+        h_road, n_road = self.road_contact(st.wheel_p)
+        F = np.zeros((4, 3))
+        M = np.zeros((4, 3))
+        Fw = np.zeros((4, 3))
+        for tire, ix in self.tire_groups:
+            wf = tire.wheel_forces(
+                st.wheel_p[ix], s_axis[ix], omega[ix], st.wheel_v[ix],
+                road_height=h_road[ix], road_normal=n_road[ix],
+                angular_velocity=st.wheel_w[ix] + st.spin_rate[ix, None] * s_axis[ix],
+                mirror=self.mirror[ix], state=self.slip[id(tire)], dt=self.h)
+            self.slip[id(tire)] = wf.state
+            F[ix] = wf.force
+            M[ix] = wf.moment
+            Fw[ix] = np.column_stack([wf.Fx, wf.Fy, wf.Fz])
+        if not np.all(np.isfinite(F)):
+            return self._fail(st.t, "tyre forces became non-finite")
+        share = self.drive_share if self.torque >= 0 else self.brake_share
+        T = self.torque * share
+        # brakes oppose the rolling direction
+        if self.torque < 0:
+            T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
+        Ms = np.einsum("ij,ij->i", M, s_axis)
+        spin_torque = T + Ms
+        carrier_moment = M - (Ms + T)[:, None] * s_axis
+
+        # suspension
+        Fs = self.c.force(st.jounce, st.jounce_rate)
+
+        from flexpipe.exu.car import CarLoads
+
+        loads = CarLoads(suspension=Fs, tire_force=F, tire_moment=carrier_moment,
+                         spin_torque=spin_torque, steer=steer)
+        if self.step_no % self.output_every == 0:
+            self._record(st, Fs, Fw, v, roll, pitch, yaw)
+        self.step_no += 1
+        return loads
+
+    def _fail(self, t: float, why: str):
+        self.status = -1
+        self.message = f"simulation stopped at t = {t:.4f} s: {why}"
+        return None
+
+    def _record(self, st, Fs, Fw, v, roll, pitch, yaw):
+        R = st.body_R
+        # hub force on the body at each hardpoint, in that mount's frame (~ body axes)
+        hub = JOINT_FORCE_SIGN * st.joint_force
+        hub[:, 2] += Fs
+        # centre-of-mass lateral acceleration from the velocity history
+        if self._prev_v is None:
+            ay = 0.0
+        else:
+            dt = self.h * self.output_every
+            ay = float(R[:, 1] @ (st.body_v - self._prev_v)) / dt
+        self._prev_v = st.body_v.copy()
+        rx = st.body_p[0] - self.wheelbase * R[0, 0]
+        ry = st.body_p[1] - self.wheelbase * R[1, 0]
+        path = self.steering.path
+        lat = path.project(float(rx), float(ry))[1] if path is not None else 0.0
+        row = [st.body_p[0], st.body_p[1], st.body_p[2], roll, pitch, yaw, v, ay, self.delta,
+               self.delta * self.ratio, self.torque, lat]
+        for i in range(4):
+            row += [hub[i, 0], hub[i, 1], hub[i, 2], Fw[i, 0], Fw[i, 1], Fw[i, 2],
+                    st.jounce[i], st.spin_rate[i]]
+        if self.points:
+            acc = self.point_acc()
+            for p in self.points:
+                row += list(R.T @ acc[p])
+        self.rec.add(st.t, np.array(row, dtype=float))

@@ -1,0 +1,137 @@
+"""Simulation results: :class:`Result` (named channels, status, message, CSV) and
+:func:`compare` (rigid-vs-flexible differences)."""
+
+from __future__ import annotations
+
+import csv
+import io
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import atomic_path
+from flexpipe.errors import InputError
+
+
+@dataclass(frozen=True, eq=False)
+class Result:
+    """Outcome of :func:`flexpipe.simulate` (solve_ivp-like).
+
+    Attributes
+    ----------
+    t : ndarray (n,)
+        Output times, s.
+    channels : dict of str to ndarray (n,)
+        Named output channels (see :mod:`flexpipe.vehicle.dynamics` for the list).
+    status : int
+        0: reached ``t_end``; -1: stopped early (numerical failure or physical limit).
+    message : str
+        What happened; for a failure the simulated time and the likely cause.
+    body : str
+        "rigid", "flexible" or "full".
+    cpu_time : float
+        CPU time of the time integration, s (process time; excludes model building).
+    wall_time : float
+        Wall-clock time of the time integration, s.
+    simulated_time : float
+        Simulated time reached, s.
+    info : dict
+        Settings and model facts: step size, modes, band, reduction time, car name...
+    """
+
+    t: np.ndarray
+    channels: dict
+    status: int
+    message: str
+    body: str
+    cpu_time: float
+    wall_time: float
+    simulated_time: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def success(self) -> bool:
+        """True when the run reached its end time."""
+        return self.status >= 0
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name == "t":
+            return self.t
+        if name not in self.channels:
+            raise KeyError(f"no channel {name!r}; valid: t, {', '.join(sorted(self.channels))}")
+        return self.channels[name]
+
+    @property
+    def realtime_factor(self) -> float:
+        """Simulated time per CPU second (> 1: faster than real time)."""
+        return self.simulated_time / self.cpu_time if self.cpu_time > 0 else float("inf")
+
+    def to_csv(self, path, *, channels=None) -> Path:
+        """Write ``t`` and the channels (all, or the names given) to a CSV file atomically."""
+        names = list(self.channels) if channels is None else list(channels)
+        for n in names:
+            if n not in self.channels:
+                raise InputError(f"no channel {n!r}; valid: {', '.join(sorted(self.channels))}",
+                                 key="channels")
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["t"] + names)
+        data = np.column_stack([self.t] + [self.channels[n] for n in names])
+        for row in data:
+            w.writerow([f"{v:.6g}" for v in row])
+        path = Path(path)
+        with atomic_path(path) as tmp:
+            tmp.write_text(buf.getvalue())
+        return path
+
+    def __repr__(self) -> str:
+        return (f"Result(body={self.body!r}, status={self.status}, t=0..{self.simulated_time:.3g}"
+                f" s, {len(self.channels)} channels, cpu {self.cpu_time:.2f} s, "
+                f"message={self.message!r})")
+
+
+def _aligned(a: Result, b: Result, name: str):
+    ta, tb = a.t, b.t
+    t_hi = min(ta[-1], tb[-1]) if len(ta) and len(tb) else 0.0
+    sel = ta <= t_hi + 1e-12
+    xa = a[name][sel]
+    xb = np.interp(ta[sel], tb, b[name])
+    return ta[sel], xa, xb
+
+
+def compare(a: Result, b: Result, channels=None, *, t_from: float = 0.0) -> dict:
+    """Differences between two runs, channel by channel (``b`` resampled on ``a``'s times).
+
+    Parameters
+    ----------
+    a, b : Result
+    channels : list of str, optional
+        Default: the 3 hub-force components of every wheel.
+    t_from : float
+        Ignore samples before this time (e.g. the settling of the first 0.5 s).
+
+    Returns
+    -------
+    dict
+        ``{channel: {"rms_a", "rms_b", "rms_diff", "peak_diff", "rel_rms_diff"}}`` where
+        ``rms_diff`` is the RMS of ``a - b``, ``peak_diff`` its largest magnitude, and
+        ``rel_rms_diff = rms_diff / rms_a``.
+    """
+    if not isinstance(a, Result) or not isinstance(b, Result):
+        raise InputError("compare needs two flexpipe Result objects")
+    if channels is None:
+        channels = [f"hub_{c}_{k}" for c in ("fl", "fr", "rl", "rr") for k in "xyz"]
+    out = {}
+    for name in channels:
+        t, xa, xb = _aligned(a, b, name)
+        sel = t >= t_from
+        d = xa[sel] - xb[sel]
+        if d.size == 0:
+            raise InputError(f"no common samples after t = {t_from} s to compare")
+        rms_a = float(np.sqrt(np.mean(xa[sel] ** 2)))
+        rms_d = float(np.sqrt(np.mean(d**2)))
+        out[name] = {"rms_a": rms_a, "rms_b": float(np.sqrt(np.mean(xb[sel] ** 2))),
+                     "rms_diff": rms_d, "peak_diff": float(np.abs(d).max()),
+                     "rel_rms_diff": rms_d / rms_a if rms_a > 0 else float("nan")}
+    return out
