@@ -95,3 +95,17 @@ def test_unknown_variant_and_bad_data_raise_input_error(tmp_path):
     bad.write_text(DATA.read_text().replace("attachment_node = 9", "attachment_node = 11"))
     with pytest.raises(InputError, match="0..10"):
         load_params(bad)
+
+
+def test_paper_table1_markdown_lists_all_variants_against_published_values():
+    from flexpipe.halfcar.paper import table1
+
+    md, stats = table1(load_params())
+    rows = [r for r in md.splitlines() if r.startswith("| ") and r[2].isdigit()]
+    assert len(rows) == 8
+    for row, pc, pr in zip(rows, PAPER_COMPLETE, PAPER_REDUCED, strict=True):
+        assert f"| {pc:.2f} |" in row and f"| {pr:.2f} |" in row
+    assert stats["complete_vs_paper_max_rel_err"] < 0.01
+    assert stats["rigid_vs_paper_max_rel_err"] < 0.01
+    assert stats["reduced_first6_vs_complete_max_rel_err"] < 1e-3
+    assert set(stats["computed_Hz"]) == {"complete", "reduced", "truncated", "rigid"}

@@ -103,7 +103,8 @@ def test_duffing_lift_off_solution_is_a_periodic_orbit_with_its_floquet_multipli
     road = Road(s0, m.params.road_wavelength_m)
     x0 = _hb_state(hb, sol)
 
-    def flow(x, te=np.array([T])):
+    def flow(x, te=None):
+        te = np.array([T]) if te is None else te
         return simulate(m, nl, road, f * m.params.road_wavelength_m, T, t_eval=te, x0=x,
                         method="DOP853", rtol=1e-11, atol=1e-14)
 

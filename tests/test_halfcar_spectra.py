@@ -86,3 +86,12 @@ def test_floquet_multipliers_of_linear_solution_are_exp_lambda_T(variant):
     assert dist.min(axis=1).max() < 1e-6
     assert dist.min(axis=0).max() < 1e-6
     assert np.abs(mu).max() < 1.0
+
+
+def test_bad_solver_settings_raise_input_error():
+    from flexpipe.errors import InputError
+
+    with pytest.raises(InputError, match="samples"):
+        HarmonicBalance(build_model("rigid"), Nonlinearity(), harmonics=10, samples=15)
+    with pytest.raises(InputError, match="dual_rate"):
+        Nonlinearity(damper="bilinear")

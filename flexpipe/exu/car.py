@@ -51,7 +51,7 @@ class CarState:
     spin_rate: np.ndarray
     jounce: np.ndarray
     jounce_rate: np.ndarray
-    joint_force: np.ndarray  # (4, 3) constraint force in the hardpoint (J0) frame
+    joint_force: np.ndarray | None  # (4, 3) joint force in the hardpoint frame, if read
     mount_R: np.ndarray  # (4, 3, 3) hardpoint marker frames
 
 
@@ -72,6 +72,7 @@ class CarBuild:
 
     chassis: str  # "rigid" or "flexible"
     flexbody: object = None  # FlexBody for "flexible"
+    n_modes: int | None = None  # use only the lowest n elastic modes (None: all)
     mass: float = 0.0
     center_of_mass: np.ndarray = None
     inertia_origin: np.ndarray = None
@@ -106,7 +107,7 @@ class CarSystem:
         names = ("fl", "fr", "rl", "rr")
         if spec.chassis == "flexible":
             h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=v0,
-                                  gravity=g, name="body")
+                                  gravity=g, n_modes=spec.n_modes, name="body")
             self.body_node, self.body_obj = h.node, h.object
             mount = [h.markers[n] for n in names]
             self.modal_node = h.modal_node
@@ -130,6 +131,7 @@ class CarSystem:
         self.spin_node, self.load_body, self.load_carrier = [], [], []
         self.load_tire_f, self.load_tire_m, self.load_spin = [], [], []
         self.travel0 = np.zeros(4)
+        self.slide_local = np.zeros((4, 3))
         for i in range(4):
             W = spec.wheel_centers[i]
             H = spec.hardpoints[i]
@@ -178,7 +180,9 @@ class CarSystem:
             self.torsion.append(tsd)
             self.spin_node.append(n_s)
             self.travel0[i] = W[2] - H[2]
+            self.slide_local[i] = [H[0] - W[0], H[1] - W[1], 0.0]
         mbs.Assemble()
+        self.newton_rtol = 1e-6
         self.points = {}
         for name, node in spec.point_nodes.items():
             self.points[name] = ("node", int(node)) if spec.chassis == "flexible" else \
@@ -186,29 +190,35 @@ class CarSystem:
 
     # ------------------------------------------------------------------ state and loads
     def state(self, t: float) -> CarState:
-        """Read the current state."""
+        """Read the current state (suspension travel from the marker frames, which is
+        much cheaper than the joint outputs of a flexible-body marker)."""
         mbs = self.mbs
         g = mbs.GetNodeOutput
+        gm = mbs.GetMarkerOutput
         bn = self.body_node
         wp = np.array([g(n, OV.Position) for n in self.wheel_node])
         wv = np.array([g(n, OV.Velocity) for n in self.wheel_node])
-        wR = np.array([np.asarray(g(n, OV.RotationMatrix)).reshape(3, 3)
-                       for n in self.wheel_node])
+        wR = np.array([g(n, OV.RotationMatrix) for n in self.wheel_node]).reshape(4, 3, 3)
         ww = np.array([g(n, OV.AngularVelocity) for n in self.wheel_node])
-        spin = np.array([g(n, OV.Coordinates_t)[0] for n in self.spin_node])
-        go = mbs.GetObjectOutput
-        disp = np.array([go(j, OV.DisplacementLocal) for j in self.joint])
-        vel = np.array([go(j, OV.VelocityLocal) for j in self.joint])
-        force = np.array([go(j, OV.ForceLocal) for j in self.joint])
-        mR = np.array([np.asarray(mbs.GetMarkerOutput(m, OV.RotationMatrix)).reshape(3, 3)
-                       for m in self.mount])
+        spin = np.array([g(n, OV.Coordinates_t) for n in self.spin_node], dtype=float).ravel()
+        mp = np.array([gm(m, OV.Position) for m in self.mount])
+        mv = np.array([gm(m, OV.Velocity) for m in self.mount])
+        mR = np.array([gm(m, OV.RotationMatrix) for m in self.mount]).reshape(4, 3, 3)
+        r = np.einsum("nij,nj->ni", wR, self.slide_local)
+        ps = wp + r
+        vs = wv + np.cross(ww, r)
+        jounce = np.einsum("ni,ni->n", mR[:, :, 2], ps - mp) - self.travel0
+        rate = np.einsum("ni,ni->n", mR[:, :, 2], vs - mv)
         return CarState(
             t=t, body_p=np.asarray(g(bn, OV.Position)),
             body_R=np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3),
             body_v=np.asarray(g(bn, OV.Velocity)), body_w=np.asarray(g(bn, OV.AngularVelocity)),
             wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
-            jounce=disp[:, 2] - self.travel0, jounce_rate=vel[:, 2], joint_force=force,
-            mount_R=mR)
+            jounce=jounce, jounce_rate=rate, joint_force=None, mount_R=mR)
+
+    def joint_forces(self) -> np.ndarray:
+        """Constraint force of every suspension joint in its hardpoint frame (4, 3)."""
+        return np.array([self.mbs.GetObjectOutput(j, OV.ForceLocal) for j in self.joint])
 
     def point_accelerations(self) -> dict:
         """Global acceleration (3,) of every named body point."""
@@ -236,7 +246,7 @@ class CarSystem:
                 mbs.SetObjectParameter(self.torsion[i], "offset", float(loads.steer[i]))
 
     # ------------------------------------------------------------------ time loop
-    def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.8,
+    def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.7,
             progress=None, jacobian_every_step: bool = False):
         """Integrate to ``t_end`` with step ``h``; ``step(state) -> CarLoads | None``.
 
@@ -274,8 +284,8 @@ class CarSystem:
         ti.generalizedAlpha.spectralRadius = spectral_radius
         ti.generalizedAlpha.computeInitialAccelerations = True
         ti.newton.useModifiedNewton = not jacobian_every_step
-        ti.newton.relativeTolerance = 1e-7
-        ti.newton.absoluteTolerance = 1e-9
+        ti.newton.relativeTolerance = self.newton_rtol
+        ti.newton.absoluteTolerance = 1e-8
         ti.adaptiveStep = True
         s.solutionSettings.writeSolutionToFile = False
         s.solutionSettings.writeInitialValues = False

@@ -23,6 +23,10 @@ import numpy as np
 from flexpipe.errors import InputError
 from flexpipe.halfcar.model import HalfCarModel
 
+#: switching hysteresis of the integrators: damper velocity (m/s) and tire load (N)
+EVENT_EPS = 1e-9
+EVENT_EPS_F = 1e-6
+
 DAMPERS = ("linear", "dual_rate")
 TIRES = ("linear", "duffing")
 

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from tqdm import tqdm
 
-from flexpipe.errors import SolverError
+from flexpipe.errors import InputError, SolverError
 from flexpipe.halfcar._blas import single_threaded_blas
 from flexpipe.halfcar.elements import CornerLaws, Nonlinearity
 from flexpipe.halfcar.floquet import monodromy
@@ -105,8 +105,10 @@ class HarmonicBalance:
         self.laws = CornerLaws(model, nl, c_ref=c_ref, k_ref=k_ref)
         self.H = H = int(harmonics if harmonics is not None else p.harmonics)
         self.N = N = int(samples if samples is not None else p.time_samples)
-        if N < 2 * H + 1:
-            raise SolverError(f"AFT needs at least 2 H + 1 = {2 * H + 1} samples, got {N}")
+        if H < 1 or N < 2 * H + 1:
+            raise InputError(f"harmonic balance needs harmonics >= 1 and samples >= 2 H + 1 "
+                             f"= {2 * H + 1}; got harmonics = {H}, samples = {N}",
+                             key="samples")
         self.amplitude, self.wavelength = amplitude, wavelength
         self.K_ref = model.K + (model.E * (self.laws.k_ref - model.k_t)) @ model.E.T
         self.C_ref = model.damping_matrix(self.laws.c_ref)

@@ -33,8 +33,10 @@ class Spectrum:
     tire_force : ndarray, shape (2, nf)
         Maximum absolute dynamic tire force (front, rear), N.
     floquet_max : ndarray, shape (nf,)
-        Largest Floquet multiplier modulus (spectral radius of the monodromy matrix).
+        Largest Floquet multiplier modulus (spectral radius of the monodromy matrix);
+        NaN when stability was not computed.
     stable : ndarray of bool, shape (nf,)
+        ``floquet_max < 1`` (False where stability was not computed).
     iterations : ndarray of int, shape (nf,)
         Newton iterations per point (0 for the closed form).
     """
@@ -48,11 +50,6 @@ class Spectrum:
     floquet_max: np.ndarray
     stable: np.ndarray
     iterations: np.ndarray
-
-    def as_dict(self) -> dict:
-        """JSON-ready dictionary (lists of floats)."""
-        return {k: (v.tolist() if isinstance(v, np.ndarray) else v)
-                for k, v in self.__dict__.items()}
 
 
 def road_amplitudes(model: HalfCarModel, omega, *, amplitude=None, wavelength=None):

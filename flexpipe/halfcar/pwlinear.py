@@ -27,6 +27,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from flexpipe.errors import SolverError
+from flexpipe.halfcar.elements import EVENT_EPS, EVENT_EPS_F
 
 #: scan step of the switching functions, s (>= 10 samples per period of 500 Hz)
 SCAN_STEP = 2e-4
@@ -111,8 +112,6 @@ class PiecewiseLinear:
 
     def switching(self, x, t, damper, contact):
         """Switching functions (rows: events) with the hysteresis of the ODE path."""
-        from flexpipe.halfcar.transient import EVENT_EPS, EVENT_EPS_F
-
         m, n, P = self.m, self.n, self.P
         rows = []
         if P.dual:

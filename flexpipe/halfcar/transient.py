@@ -1,11 +1,15 @@
 """Direct time integration of the half car on a road, event-accurate at law kinks.
 
 Between two kinks of the corner laws (damper velocity reversal, loss or recovery of
-tire contact) every law is smooth, so the equations are integrated with a stiff,
-error-controlled method (Radau IIA by default) with the law branches frozen; the kink
-is located as a terminal event, the branch is switched and the integration restarts
-from the event state.  A tiny hysteresis (``EVENT_EPS`` in velocity, ``EVENT_EPS_F`` in
-force) keeps a system at rest from chattering between branches.
+tire contact) every law is smooth.  Piecewise-linear laws (linear or dual-rate dampers,
+linear tires with or without contact) are propagated in closed form piece by piece
+(:mod:`flexpipe.halfcar.pwlinear`, the default).  With Duffing tires the pieces are
+integrated by :func:`scipy.integrate.solve_ivp` (Radau IIA with the exact Jacobian by
+default) with the branches frozen; each kink is located as a terminal event, the branch
+is switched and the integration restarts from the event state.  A tiny hysteresis
+(``EVENT_EPS`` in velocity, ``EVENT_EPS_F`` in force, see
+:mod:`flexpipe.halfcar.elements`) keeps a system at rest from chattering between
+branches.
 
 The road: the front wheel is at ``z = v t``, the rear one at ``z = v t - wheelbase``.
 """
@@ -20,12 +24,9 @@ from scipy.integrate import solve_ivp
 
 from flexpipe.errors import InputError, SolverError
 from flexpipe.halfcar._blas import single_threaded_blas
-from flexpipe.halfcar.elements import CornerLaws, Nonlinearity
+from flexpipe.halfcar.elements import EVENT_EPS, EVENT_EPS_F, CornerLaws, Nonlinearity
 from flexpipe.halfcar.model import HalfCarModel
 from flexpipe.halfcar.pwlinear import PiecewiseLinear
-
-EVENT_EPS = 1e-9  # m/s
-EVENT_EPS_F = 1e-6  # N
 
 
 @dataclass(frozen=True)

@@ -166,35 +166,44 @@ def _m_orthonormalize(W, M, V=None, MV=None, *, drop=1e-10):
     return W @ T, MW @ T
 
 
-def block_krylov_modes(K, M, k, *, factor, X0=None, block=None, tol=1e-7, max_blocks=60,
-                       seed=0):
+def block_krylov_modes(K, M, k, *, factor, sigma=0.0, X0=None, block=None, tol=1e-6,
+                       max_dim=None, seed=0):
     """Lowest ``k`` eigenpairs by block Krylov (block Lanczos with full re-orthogonalization).
 
-    The subspace ``span{X0, A X0, A^2 X0, ...}`` with ``A = factor^-1 M`` grows one block
-    per step; every step ends with a Rayleigh-Ritz solve using the exact ``K`` and ``M``.
-    The next block is ``A`` applied to the ``block`` lowest Ritz vectors.  It stops when
-    the ``k`` lowest Ritz pairs ``(theta, x)`` have shift-invert residuals
-    ``theta * |A x - x / theta|_M <= tol`` (the measure ARPACK uses in shift-invert mode;
-    eigenvalue errors are of order ``tol^2``).  All solves are multi-right-hand-side,
-    which on a sparse direct factor cost a fraction per column of single solves.
+    The subspace grows by ``A = (K - sigma M)^-1 M`` applied to the ``block`` lowest Ritz
+    vectors, starting from ``X0``; every step ends with a Rayleigh-Ritz solve with the
+    exact ``K`` and ``M``.  It stops when the ``k`` lowest Ritz pairs ``(theta, x)`` have
+    shift-invert residuals ``(theta - sigma) |A x - x / (theta - sigma)|_M <= tol`` (the
+    measure ARPACK uses in shift-invert mode; eigenvalue errors are of order ``tol^2``).
+    Every solve is multi-right-hand-side, which on a sparse direct factor costs a fraction
+    per column of a single solve.
 
     Parameters
     ----------
     K, M : sparse matrices
     k : int
     factor : Factor
-        Factor of ``K`` (SPD): the iteration assumes ``A = K^-1 M``.
+        Factor of ``K - sigma M``.
+    sigma : float
+        The shift of ``factor`` (below the spectrum).
     X0 : ndarray (n, b), optional
-        Starting block (e.g. static modes); random when omitted.
+        Starting block (e.g. static modes); ``A`` times a random block when omitted.
     block : int, optional
-        Number of Ritz vectors expanded per step (default ``k + 2``).
+        Ritz vectors expanded per step (default ``k + 2``).
     tol : float
         Residual tolerance.
+    max_dim : int, optional
+        Largest subspace (default ``min(n, 30 k + 100)``).
 
     Returns
     -------
     lam : ndarray (k,)
     X : ndarray (n, k), ``X^T M X = I``
+
+    Raises
+    ------
+    ModelError
+        No convergence within ``max_dim`` vectors.
     """
     n = K.shape[0]
     b = min(block or k + 2, n)
@@ -202,28 +211,25 @@ def block_krylov_modes(K, M, k, *, factor, X0=None, block=None, tol=1e-7, max_bl
     if X0 is None:
         X0 = factor.solve(M @ rng.standard_normal((n, b)))
     W, MW = _m_orthonormalize(np.array(X0, dtype=float), M)
-    cap = min(n, W.shape[1] + max_blocks * b)
-    V, MV, KV, AV = (np.empty((n, cap)) for _ in range(4))
-    H = np.zeros((cap, cap))
-    d = 0  # current dimension
+    cap = min(n, max_dim or 30 * k + 100)
+    cap = max(cap, min(n, W.shape[1]))
+    V, MV, AV = (np.empty((n, cap)) for _ in range(3))
+    H = np.zeros((cap, cap))  # V^T K V
+    d = 0
     res = np.array([np.inf])
-    while True:
-        w = W.shape[1]
-        if w == 0 or d + w > cap:
-            break
-        V[:, d:d + w], MV[:, d:d + w] = W, MW
-        KW = K @ W
-        KV[:, d:d + w] = KW
-        H[:d + w, d:d + w] = V[:, :d + w].T @ KW
-        H[d:d + w, :d] = H[:d, d:d + w].T
-        AV[:, d:d + w] = factor.solve(MW)
-        d += w
+    while W.shape[1] and d + W.shape[1] <= cap:
+        e = d + W.shape[1]
+        V[:, d:e], MV[:, d:e] = W, MW
+        H[:e, d:e] = V[:, :e].T @ (K @ W)
+        H[d:e, :d] = H[:d, d:e].T
+        AV[:, d:e] = factor.solve(MW)
+        d = e
         theta, Y = np.linalg.eigh(0.5 * (H[:d, :d] + H[:d, :d].T))
         if d >= k:
             Yk = Y[:, :k]
             X = V[:, :d] @ Yk
-            S = AV[:, :d] @ Yk - X / theta[:k]
-            res = theta[:k] * np.sqrt(np.abs(np.einsum("ij,ij->j", S, M @ S)))
+            S = AV[:, :d] @ Yk - X / (theta[:k] - sigma)
+            res = (theta[:k] - sigma) * np.sqrt(np.abs(np.einsum("ij,ij->j", S, M @ S)))
             if res.max() <= tol:
                 return theta[:k], X
         if d >= n:

@@ -27,7 +27,7 @@ import numpy as np
 from flexpipe.vehicle.spec import CORNERS
 
 #: sign that turns the GenericJoint's ForceLocal into the force on the body (see tests)
-JOINT_FORCE_SIGN = -1.0
+JOINT_FORCE_SIGN = 1.0
 
 
 def _rpy(R: np.ndarray):
@@ -88,8 +88,8 @@ class CarController:
     """
 
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
-                 output_every=2, points=(), point_acc=None, driver_every=5,
-                 body_com=None, track=None):
+                 output_every=2, points=(), point_acc=None, joint_forces=None,
+                 driver_every=5, body_com=None, track=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -101,6 +101,7 @@ class CarController:
         self.driver_every = int(driver_every)
         self.points = list(points)
         self.point_acc = point_acc
+        self.joint_forces = joint_forces
         self.body_com = np.zeros(3) if body_com is None else np.asarray(body_com, dtype=float)
         groups = {}
         for i, t in enumerate(tires):
@@ -247,7 +248,8 @@ class CarController:
     def _record(self, st, Fs, Fw, v, roll, pitch, yaw):
         R = st.body_R
         # hub force on the body at each hardpoint, in that mount's frame (~ body axes)
-        hub = JOINT_FORCE_SIGN * st.joint_force
+        jf = st.joint_force if st.joint_force is not None else self.joint_forces()
+        hub = JOINT_FORCE_SIGN * np.asarray(jf, dtype=float)
         hub[:, 2] += Fs
         # centre-of-mass lateral acceleration from the velocity history
         if self._prev_v is None:

@@ -1,0 +1,316 @@
+"""``simulate(car, road=..., path=..., speed=..., t_end=..., body=...)``: one call from a car
+file and a road to a :class:`~flexpipe.vehicle.result.Result`.
+
+Bodies
+------
+``"rigid"``
+    The body as one rigid body with the trimmed FE model's exact mass, centre of mass and
+    inertia (or the ``[body.rigid]`` properties of a car without mesh).
+``"flexible"``
+    The body reduced by component mode synthesis (Craig-Bampton, interfaces at the four
+    suspension hardpoints) for a band chosen from the speed and the road content
+    (:func:`flexpipe.vehicle.bodymodel.choose_band`), cached on disk.
+``"full"``
+    The same FE model with every mode up to :data:`FULL_F_MAX_HZ` (about 6 x the flexible
+    band; plus the static constraint modes, so the quasi-static response of all higher
+    modes is kept exactly).  This is what "unreduced" can mean for an FFRF multibody body
+    at acceptable cost: it differs from the full FE model only by the *dynamics* of modes
+    far above the road and ride excitation.  Meant for short validation runs.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import InputError
+from flexpipe.vehicle import bodymodel
+from flexpipe.vehicle.corners import GRAVITY, corner_arrays
+from flexpipe.vehicle.result import Result
+from flexpipe.vehicle.spec import Car, load_car
+
+BODIES = ("flexible", "rigid", "full")
+#: top of the band of the "full" body, Hz
+FULL_F_MAX_HZ = 300.0
+#: distance along the path of the body origin at t = 0, beyond the wheelbase, m
+START_MARGIN_M = 3.0
+
+
+def _number(value, name, *, lo=None, hi=None):
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {value!r}", key=name) from None
+    if not math.isfinite(v) or (lo is not None and v <= lo) or (hi is not None and v > hi):
+        rng = f"in ({lo:g}, {hi:g}]" if hi is not None else f"> {lo:g}"
+        raise InputError(f"{name} must be finite and {rng}, got {value!r}", key=name)
+    return v
+
+
+def _road(road, needed: float):
+    from flexpipe.roads import Road, flat, load_road
+
+    if road is None:
+        return flat(needed + 50.0, dx=1.0, track_width=1.5)
+    if isinstance(road, Road):
+        return road
+    if isinstance(road, (str, Path, dict)):
+        return load_road(road)
+    raise InputError(f"road must be a flexpipe Road, a road file (.toml/.crg/.csv) or None, "
+                     f"got {type(road).__name__}", key="road")
+
+
+def _path(path, needed: float):
+    from flexpipe.driver import Path as DPath
+    from flexpipe.driver import read_path, straight
+
+    if path is None or (isinstance(path, str) and path == "straight"):
+        return straight(needed + 50.0, ds=1.0)
+    if isinstance(path, DPath):
+        return path
+    if isinstance(path, (str, Path)):
+        return read_path(path)
+    raise InputError(f"path must be a flexpipe.driver.Path, a path file (.csv/.toml), "
+                     f"'straight' or None, got {type(path).__name__}", key="path")
+
+
+def default_driver(car: Car, mass: float):
+    """Pure pursuit and PI speed controller with gains scaled to the car."""
+    from flexpipe.driver import PurePursuit, SpeedPI
+
+    rear_x = float(np.mean([c.wheel_center[0] for c in car.corners[2:]]))
+    radius = float(np.mean([c.wheel_radius for c in car.corners]))
+    kp = mass * radius / 0.5  # 0.5 s speed time constant
+    steering = PurePursuit(wheelbase=car.wheelbase, lookahead_base=4.0, lookahead_time=0.2,
+                           max_steer=car.steering.max_wheel_angle, rear_axle_offset=-rear_x)
+    speed = SpeedPI(kp=kp, ki=kp / 2.0, drive_torque_max=car.drive.max_drive_torque,
+                    brake_torque_max=car.drive.max_brake_torque, integral_band=2.0)
+    return steering, speed
+
+
+def _tires(car: Car):
+    from flexpipe.tires import tire_from_file
+
+    models, out = {}, []
+    for c in car.corners:
+        key = str(c.tire)
+        if key not in models:
+            models[key] = tire_from_file(c.tire)
+        tire = models[key]
+        if abs(tire.unloaded_radius - c.wheel_radius) > 1e-3:
+            raise InputError(f"wheel_radius_m = {c.wheel_radius:g} m but the tyre file "
+                             f"{c.tire.name} has UNLOADED_RADIUS = {tire.unloaded_radius:g} m; "
+                             "make them agree", file=car.file,
+                             key=f"corners.{c.name}.wheel_radius_m")
+        out.append(tire)
+    return out
+
+
+def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, log=None):
+    """Everything a run needs that does not depend on the time integration.
+
+    Returns a dict with ``rigid`` (mass properties), ``corners``, ``tires``, ``flexbody``
+    (None for rigid), ``band_hz`` and ``reduction`` (cache info).
+    """
+    log = log or (lambda *a: None)
+    rb = bodymodel.rigid_properties(car, cache=cache)
+    tires = _tires(car)
+    corners = corner_arrays(car, rb.mass, rb.center_of_mass, tires=tires)
+    out = {"rigid": rb, "corners": corners, "tires": tires, "flexbody": None,
+           "band_hz": None, "reduction": None}
+    if body in ("flexible", "full"):
+        band = f_max if f_max is not None else (
+            bodymodel.choose_band(speed, road) if body == "flexible" else FULL_F_MAX_HZ)
+        fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log)
+        out.update(flexbody=fb, band_hz=band, reduction=info)
+    return out
+
+
+def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
+             h: float = 1e-3, output_step: float = 2e-3, driver=None, f_max=None,
+             max_mode_hz=None, progress: bool = False, cache: bool = True, log=None,
+             prepared=None) -> Result:
+    """Simulate the car on a road following a path at constant target speed.
+
+    Parameters
+    ----------
+    car : Car or str or Path
+        A car (:func:`load_car`) or its TOML file.
+    road : Road, str, Path or None
+        Road (file: ``.toml`` spec, ``.crg``, ``.csv``); ``None`` for a flat road.  Road
+        coordinates are global: distance ``s = x`` and ``lateral = y``.
+    path : flexpipe.driver.Path, str, Path or None
+        Path the driver follows (file ``.csv``/``.toml``); ``None`` or ``"straight"`` for
+        the x axis.
+    speed : float
+        Target (and initial) speed, m/s.
+    t_end : float
+        Simulated time, s.
+    body : {"flexible", "rigid", "full"}
+        Body model (see module docstring).
+    h : float
+        Time step, s (1e-5 .. 5e-3).
+    output_step : float
+        Output sampling interval, s (a multiple of ``h``).
+    driver : (PurePursuit, SpeedPI) or str or Path, optional
+        Controllers, or a driver TOML file (``[steering]``, ``[speed]``); default
+        :func:`default_driver`.
+    f_max : float, optional
+        Band of the flexible body in Hz (default: chosen from speed and road).
+    max_mode_hz : float, optional
+        Keep only the reduced body's modes up to this frequency (default: all).
+    progress : bool
+        Show a progress bar.
+    cache : bool
+        Use and fill the on-disk cache of reduced bodies.
+    log : callable, optional
+        Receives progress messages (default: silent).
+    prepared : dict, optional
+        Output of :func:`prepare` to reuse between runs.
+
+    Returns
+    -------
+    Result
+        ``status`` 0 on success, -1 when the run stopped early (``message`` names the
+        simulated time and the likely cause).
+
+    Raises
+    ------
+    InputError
+        Bad arguments, bad car file, road or path too short.
+    """
+    if not isinstance(car, Car):
+        if isinstance(car, (str, Path)):
+            car = load_car(car)
+        else:
+            raise InputError(f"car must be a Car or a car file, got {type(car).__name__}",
+                             key="car")
+    if body not in BODIES:
+        raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
+    speed = _number(speed, "speed", lo=0.0, hi=80.0)
+    t_end = _number(t_end, "t_end", lo=0.0, hi=3600.0)
+    h = _number(h, "h", lo=0.0, hi=5e-3)
+    if h < 1e-5:
+        raise InputError(f"h must be >= 1e-5 s, got {h}", key="h")
+    output_step = _number(output_step, "output_step", lo=0.0, hi=1.0)
+    every = max(1, int(round(output_step / h)))
+    if body == "full" and car.body.mesh is None or body == "flexible" and car.body.mesh is None:
+        raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
+                         "properties ([body.rigid]); use body='rigid'", file=car.file,
+                         key="body.mesh")
+    if f_max is not None:
+        f_max = _number(f_max, "f_max", lo=0.0, hi=5000.0)
+    start = abs(min(c.wheel_center[0] for c in car.corners)) + START_MARGIN_M
+    travel = speed * t_end
+    needed = start + travel + 10.0
+    road_obj = _road(road, needed)
+    path_obj = _path(path, needed)
+    what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
+    road_obj.require_length(needed, what=what, start=road_obj.x[0])
+    path_obj.require_length(travel + 10.0, what=what, start=start)
+    if driver is None:
+        steering = speed_pi = None
+    elif isinstance(driver, (str, Path)):
+        from flexpipe.driver import read_driver
+
+        steering, speed_pi = read_driver(driver)
+    else:
+        try:
+            steering, speed_pi = driver
+        except (TypeError, ValueError):
+            raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file",
+                             key="driver") from None
+
+    prep = prepared or prepare(car, body=body, speed=speed, road=road_obj, f_max=f_max,
+                               cache=cache, log=log)
+    rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]
+    total_mass = rb.mass + corners.m_unsprung.sum()
+    if steering is None:
+        steering, speed_pi = default_driver(car, total_mass)
+    steering = steering.with_path(path_obj)
+    speed_pi.reset()
+
+    # initial pose: body origin on the path at arc length `start`, heading along the path
+    x0, y0 = path_obj.point_at(start)
+    psi = float(path_obj.heading_at(start))
+    R0 = np.array([[math.cos(psi), -math.sin(psi), 0.0], [math.sin(psi), math.cos(psi), 0.0],
+                   [0.0, 0.0, 1.0]])
+    W = corners.wheel_center
+    Pw = np.array([x0, y0, 0.0]) + W @ R0.T
+    z0 = float(np.mean(road_obj.height(Pw[:, 0], Pw[:, 1])))
+    p0 = np.array([x0, y0, z0])
+    re = np.array([float(t.effective_rolling_radius(t.unloaded_radius - wz))
+                   for t, wz in zip(tires, W[:, 2], strict=True)])
+    spin0 = speed / re
+
+    from flexpipe.exu.car import CarBuild, CarSystem
+    from flexpipe.vehicle.dynamics import CarController
+
+    fb = prep["flexbody"]
+    kind = "rigid" if body == "rigid" else "flexible"
+    names = list(car.body.points)
+    pn = {}
+    if car.body.mesh is not None:
+        nodes = fb.nodes if fb is not None else bodymodel.body_mesh(car).points
+        pn = bodymodel.point_nodes(car, nodes)
+        local = {n: nodes[pn[n]] for n in names}
+    else:
+        local = dict(car.body.points)
+    n_modes = None
+    if fb is not None and max_mode_hz is not None:
+        n_modes = int(np.count_nonzero(fb.frequencies_hz[fb.n_rigid:] <= max_mode_hz))
+    build = CarBuild(
+        chassis=kind, flexbody=fb, n_modes=n_modes, mass=rb.mass, center_of_mass=rb.center_of_mass,
+        inertia_origin=rb.inertia_origin, hardpoints=corners.hardpoint,
+        wheel_centers=corners.wheel_center, m_unsprung=corners.m_unsprung,
+        J_unsprung=corners.J_unsprung, spin_inertia=corners.spin_inertia,
+        steered=np.array([c.axle == car.steering.axle for c in car.corners]),
+        position=p0, rotation=R0, speed=speed, spin_rate=spin0, gravity=GRAVITY,
+        point_nodes=pn if pn else {n: -1 for n in names}, point_local=local)
+    system = CarSystem(build)
+    ctrl = CarController(corners=corners, tires=tires, road=road_obj, steering=steering,
+                         speed_pi=speed_pi, target_speed=speed, car=car, h=h, t_end=t_end,
+                         output_every=every, points=names,
+                         point_acc=system.point_accelerations,
+                         joint_forces=system.joint_forces)
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=int(round(t_end / h)), desc=f"{car.name} {body}", unit="step",
+                   leave=True, mininterval=0.5)
+    try:
+        completed, t_reached, cpu, wall, solver_msg = system.run(
+            ctrl, t_end=t_end, h=h, progress=bar.update if bar is not None else None)
+    finally:
+        if bar is not None:
+            bar.close()
+    if ctrl.status < 0:
+        status, message = -1, ctrl.message
+    elif not completed:
+        status = -1
+        message = (f"simulation stopped at t = {t_reached:.4f} s: the implicit solver did not "
+                   f"converge ({solver_msg or 'Newton failure'}); likely causes: a too large "
+                   f"step h = {h:g} s for the stiffness of the model, or a diverging state")
+    else:
+        status, message = 0, f"reached t_end = {t_end:g} s"
+    ch = ctrl.rec.channels()
+    info = {
+        "car": car.name, "car_file": str(car.file), "body": body, "h": h,
+        "output_step": every * h, "speed": speed, "t_end": t_end,
+        "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
+        "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
+        "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
+        "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
+    }
+    if fb is not None:
+        used = fb.n_elastic if n_modes is None else n_modes
+        info.update(n_elastic_modes=used, band_hz=prep["band_hz"],
+                    highest_mode_hz=float(fb.frequencies_hz[fb.n_rigid + used - 1]),
+                    reduction_cached=prep["reduction"]["cached"],
+                    reduction_s=prep["reduction"]["seconds"])
+    return Result(t=ctrl.rec.t[: ctrl.rec.rows].copy(), channels=ch, status=status,
+                  message=message, body=body, cpu_time=cpu, wall_time=wall,
+                  simulated_time=max(t_reached, 0.0), info=info)
