@@ -13,6 +13,10 @@ Every family module (``tet4``, ``tet10``, ``hex8``, ``shell_tri3``, ``shell_quad
     for beams.  Returns element stiffness and mass (ne, nd, nd) with element DOF
     ordered node-major (node a, component c -> a * DOFS_PER_NODE + c).
 
+Optionally ``SYMMETRIC = True`` promises element matrices that are symmetric bit for bit;
+the assembler then skips its own ``(Ke + Ke^T) / 2`` (the assembled matrices are exactly
+symmetric either way).
+
 A family raises :class:`BadElements` for inverted or degenerate elements; the assembler
 turns it into a :class:`~flexpipe.errors.MeshError` naming the element ids.
 """

@@ -13,7 +13,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse import _sparsetools
 from scipy.sparse.csgraph import connected_components
 
 from flexpipe.errors import InputError, MeshError, ModelError
@@ -21,6 +20,11 @@ from flexpipe.fem._element import BadElements
 from flexpipe.fem.material import Material
 from flexpipe.fem.model import FEModel
 from flexpipe.mesh.mesh import BEAM_TYPES, SHELL_TYPES, Mesh
+
+try:  # private SciPy C++ routine (stable for a decade); a NumPy search replaces it if absent
+    from scipy.sparse._sparsetools import csr_sample_offsets as _csr_sample_offsets
+except ImportError:  # pragma: no cover - depends on the SciPy version
+    _csr_sample_offsets = None
 
 #: element family module for each meshio cell type
 FAMILIES = {
@@ -256,11 +260,12 @@ class _Pattern:
         shape = np.shape(a)
         a = np.ascontiguousarray(a, dtype=self._node_col.dtype).ravel()
         b = np.ascontiguousarray(b, dtype=self._node_col.dtype).ravel()
-        out = np.empty(a.size, dtype=self._node_col.dtype)
-        try:  # SciPy's C++ CSR look-up: binary search within each short row, ~6x faster
-            _sparsetools.csr_sample_offsets(self.n, self.n, self._node_ptr, self._node_col,
-                                            a.size, a, b, out)
-        except Exception:  # noqa: BLE001 - private SciPy API: fall back to a global search
+        if _csr_sample_offsets is not None:
+            # binary search within each short CSR row: ~6x faster than a global search
+            out = np.empty(a.size, dtype=self._node_col.dtype)
+            _csr_sample_offsets(self.n, self.n, self._node_ptr, self._node_col, a.size, a, b,
+                                out)
+        else:
             out = np.searchsorted(self.keys, a.astype(np.int64) * self.n + b)
         return out.reshape(shape)
 
