@@ -208,3 +208,26 @@ def test_rectangle_and_box_sections_bend_about_the_right_axes():
         u[free] = spla.spsolve(K[free][:, free].tocsc(), F[free])
         assert u[tip + 1] == pytest.approx(L**3 / (3 * E * Iz_ref), rel=1e-9)
         assert u[tip + 2] == pytest.approx(L**3 / (3 * E * Iy_ref), rel=1e-9)
+
+
+def test_cantilever_frequency_convergence_rate_is_fourth_order():
+    """Hermite cubic + consistent mass: eigenvalue error ~ h^(2(p + 1 - m)) = h^4 (p = 3,
+    m = 2), from above; measured on the first two bending modes against beta L roots."""
+    L = 2.0
+    sec = BeamSection(A, IY, IZ, J, orientation=(0.0, 1.0, 0.0))
+    # roots of cos x cosh x = -1 to full precision (the table's 7 digits limit at 1e-7)
+    roots = np.array([brentq(lambda x: np.cos(x) * np.cosh(x) + 1, a, b, xtol=1e-15)
+                      for a, b in ((1.5, 2.5), (4.0, 5.0))])
+    np.testing.assert_allclose(roots, BL_CANT[:2], rtol=1e-6)
+    err = []
+    for n in (3, 6, 12):
+        fe = assemble(line_mesh([0, 0, 0], [L, 0, 0], n), STEEL, beam_section=sec)
+        f, X = eigenmodes(fe, 6, np.arange(6))
+        U = X.reshape(-1, 6, X.shape[1])[:, :3, :]      # nodal translations of each mode
+        along_z = np.abs(U[:, 2, :]).max(axis=0) > 0.5 * np.abs(U).max(axis=(0, 1))  # about y
+        err.append(f[along_z][:2] / bending_f(roots, L, IY) - 1)
+    err = np.array(err)
+    assert np.all(err > 0)
+    rates = np.log2(err[:-1] / err[1:])
+    assert np.all((rates > 3.6) & (rates < 4.4)), (err, rates)
+    assert np.all(err[-1] < 3e-5)

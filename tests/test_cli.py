@@ -6,6 +6,7 @@ from __future__ import annotations
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
 import meshio
 import numpy as np
@@ -127,3 +128,50 @@ def test_registry_loads_commands_lazily(tmp_path, monkeypatch, capsys):
     assert cli.main(["echo", "--times", "2"]) == 3
     assert capsys.readouterr().out.split() == ["echo", "echo"]
     assert cli.main(["ghost"]) == 2                     # unknown command: argparse error
+
+
+SAMPLES = Path(__file__).resolve().parents[1] / "meshes"
+
+
+def test_acceptance_command_on_the_sample_plate(tmp_path, capsys):
+    """``flexpipe modes meshes/plate_quad.msh --material steel --thickness 0.002 --n 20``:
+    the table, progress messages on stderr, and a .vtu that meshio reads back with one
+    translation and one rotation array per mode; the six ~0 Hz modes written are rigid
+    motions (u = t + theta x X, rotations = theta) and the printed mass is rho a b t."""
+    out = tmp_path / "plate"
+    assert cli.main(["modes", str(SAMPLES / "plate_quad.msh"), "--material", "steel",
+                     "--thickness", "0.002", "--n", "20", "-o", str(out)]) == 0
+    cap = capsys.readouterr()
+    for step in ("reading", "assembling", "solving for 20 modes"):
+        assert step in cap.err
+    assert cap.err.count("done in") == 3
+    f = _table(cap.out)
+    assert len(f) == 20 and np.all(f[:6] < 1e-4 * f[6]) and f[6] > 1.0
+    mass = float(cap.out.split("mass ")[1].split()[0])
+    assert mass == pytest.approx(RHO * 0.4 * 0.3 * 0.002, rel=1e-5)    # 6 digits printed
+    m = meshio.read(out / "modes.vtu")
+    modes = sorted(k for k in m.point_data if k.startswith("mode_"))
+    assert modes == sorted([f"mode_{k:02d}" for k in range(1, 21)]
+                           + [f"mode_{k:02d}_rotation" for k in range(1, 21)])
+    assert set(m.point_data) - set(modes) == {"node_id"}       # file node ids (Gmsh tags)
+    assert m.point_data["node_id"].ravel().tolist() == list(range(1, 64))
+    assert all(m.point_data[k].shape == (63, 3) for k in modes)
+    assert m.cells_dict["quad"].shape == (48, 4)
+    np.testing.assert_allclose(m.field_data["frequency_hz"], f, rtol=1e-5)
+    X = m.points
+    for k in range(1, 7):
+        u, rot = m.point_data[f"mode_{k:02d}"], m.point_data[f"mode_{k:02d}_rotation"]
+        theta = rot.mean(axis=0)
+        assert np.abs(rot - theta).max() < 1e-6 * np.abs(u).max()
+        t = (u - np.cross(theta, X)).mean(axis=0)
+        assert np.abs(u - t - np.cross(theta, X)).max() < 1e-6 * np.abs(u).max()
+
+
+def test_corrupt_mesh_is_a_one_line_error(tmp_path, capsys):
+    bad = tmp_path / "broken.vtu"
+    bad.write_text("<VTKFile type='UnstructuredGrid'")
+    assert cli.main(["modes", str(bad), "--material", "steel", "-q"]) == 2
+    cap = capsys.readouterr()
+    err = cap.err.strip().splitlines()
+    assert len(err) == 1 and "broken.vtu: cannot read as vtu file" in err[0]
+    assert cap.out == ""

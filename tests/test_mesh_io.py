@@ -533,3 +533,131 @@ def test_sample_meshes_match_their_files():
     plate_mesh = read_mesh(root / "plate_quad.msh")
     assert np.all(plate_mesh.points[plate_mesh.node_sets["clamped"], 0] == 0.0)
     assert [b.type for b in plate_mesh.blocks] == ["quad"]
+
+
+# ------------------------------------------------- surfaces, scale, CBEAM, degenerate cells
+
+
+@pytest.mark.parametrize("ext", ["obj", "ply", "off"])
+def test_surface_obj_ply_off_as_shell_mid_surfaces_in_mm(tmp_path, ext):
+    """A 500 mm x 200 mm triangulated surface, written by trimesh, read with scale=1e-3
+    and a user thickness: the original node count and the mass rho * A * t."""
+    import trimesh
+
+    tri = plate(0.5, 0.2, 5, 2, cell="triangle")
+    p = tmp_path / f"s.{ext}"
+    trimesh.Trimesh(tri.points * 1e3, tri.blocks[0].cells, process=False).export(p)
+    mesh = read_mesh(p, 1e-3, thickness=0.003)
+    assert mesh.n_nodes == tri.n_nodes and [b.type for b in mesh.blocks] == ["triangle"]
+    assert len(mesh.blocks[0]) == len(tri.blocks[0])
+    assert np.ptp(mesh.points, axis=0) == pytest.approx([0.5, 0.2, 0.0], abs=1e-9)
+    fe = assemble(mesh, STEEL)          # binary PLY stores float32: ~1e-7 relative
+    assert fe.total_mass == pytest.approx(7850.0 * 0.5 * 0.2 * 0.003, rel=1e-6)
+    assert mesh.sections["default_thickness"]["thickness"] == 0.003   # not scaled
+
+
+@pytest.mark.parametrize("ext", ["msh", "vtu", "inp", "bdf"])
+def test_scale_reads_a_millimetre_mesh_as_the_metre_mesh(tmp_path, ext):
+    """The same body in mm, read with scale=1e-3, gives the matrices of the metre body."""
+    body = box(0.5, 0.2, 0.1, 4, 2, 2, cell="hexahedron")
+    mm = Mesh(body.points * 1e3, body.blocks, node_sets=body.node_sets)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MeshWarning)
+        write_mesh(mm, tmp_path / f"mm.{ext}")
+        back = read_mesh(tmp_path / f"mm.{ext}", scale=1e-3)
+    np.testing.assert_allclose(back.points, body.points, rtol=0, atol=1e-15)
+    _matrices_equal(assemble(back, STEEL), assemble(body, STEEL))
+    unscaled = assemble(read_mesh(tmp_path / f"mm.{ext}"), STEEL)
+    assert unscaled.total_mass == pytest.approx(7850.0 * 500 * 200 * 100, rel=1e-12)
+
+
+@pytest.mark.parametrize("ext", ["nas", "dat"])
+def test_nastran_cbeam_pbeam_and_deck_suffixes(tmp_path, ext):
+    p = _write(tmp_path, f"frame.{ext}", _deck(
+        "GRID,1,,0.,0.,0.", "GRID,2,,0.5,0.,0.", "GRID,3,,1.,0.,0.", "GRID,8,,0.,3.,4.",
+        "CBEAM,11,4,1,2,0.,1.,0.", "CBEAM,12,4,2,3,8",
+        "PBEAM,4,7,6.-4,2.-8,4.5-8,0.,3.-8", "MAT1,7,2.1+11,,0.3,7850."))
+    mesh = read_mesh(p)
+    (b,) = mesh.blocks
+    assert b.type == "line" and b.ids.tolist() == [11, 12]
+    assert mesh.node_ids.tolist() == [1, 2, 3]          # GRID 8 only orients CBEAM 12
+    # CBEAM 12: v = X(G0) - X(GA) = (0, 3, 4) - (0.5, 0, 0)
+    np.testing.assert_array_equal(b.data["orientation"], [[0, 1, 0], [-0.5, 3, 4]])
+    # PBEAM: PID MID A I1 I2 I12 J; Nastran I1 bends in the element x-y plane (our Iz)
+    s = mesh.sections["PID4"]
+    assert (s["A"], s["Iz"], s["Iy"], s["J"]) == (6e-4, 2e-8, 4.5e-8, 3e-8)
+    assert (s["E"], s["nu"], s["rho"]) == (2.1e11, 0.3, 7850.0)
+    assert assemble(mesh).total_mass == pytest.approx(7850.0 * 6e-4 * 1.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("cards,match", [
+    (["GRID,5,,1.,1.,0.", "CTETRA,31,1,1,2,3,5"],                      # four nodes in z = 0
+     r"flat.bdf: 1 tetra element\(s\) have zero volume.*ids \[31\]"),
+    (["CTETRA,32,1,1,2,3,3"], r"flat.bdf: 1 tetra element\(s\) use the same node twice.*\[32\]"),
+    (["GRID,5,,2.,0.,0.", "GRID,6,,3.,0.,0.", "CQUAD4,33,1,1,2,5,6"],  # collinear nodes
+     r"flat.bdf: 1 quad shell element\(s\) have zero area.*ids \[33\]"),
+])
+def test_zero_volume_and_collapsed_elements_name_the_element(tmp_path, cards, match):
+    p = _write(tmp_path, "flat.bdf", _deck(*TET, *cards))
+    with pytest.raises(MeshError, match=match):
+        read_mesh(p, prune_unreferenced=True)
+
+
+@pytest.mark.parametrize("name,content", [
+    ("broken.vtu", b"<VTKFile type='UnstructuredGrid'"),        # truncated XML
+    ("empty.msh", b""),
+    ("binary.msh", b"$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00$EndMeshFormat\n$Nodes\n\x07"),
+    ("short.vtk", b"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+                  b"POINTS 3 double\n0 0\n"),
+    ("junk.stl", b"\x00" * 30),
+    ("junk.obj", b"v 0 0\nf 1 2 3\n"),
+])
+def test_corrupt_files_raise_mesh_error_naming_the_file(tmp_path, name, content):
+    """meshio ends the process (sys.exit) on some unreadable files: flexpipe must turn
+    that into a MeshError naming the file instead."""
+    p = tmp_path / name
+    p.write_bytes(content)
+    with pytest.raises(MeshError, match=rf"{name.replace('.', r'[.]')}: "):
+        read_mesh(p, thickness=0.001)
+
+
+def test_unreadable_gmsh_says_why(tmp_path, capfd):
+    with pytest.raises(MeshError, match=r"empty.msh: cannot read as gmsh file \(the file is "
+                                        r"empty\)"):
+        read_mesh(_write(tmp_path, "empty.msh", ""))
+    with pytest.raises(MeshError, match=r"v9.msh: .*mesh format in .*got 9.9"):
+        read_mesh(_write(tmp_path, "v9.msh", "$MeshFormat\n9.9 0 8\n$EndMeshFormat\n"))
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""                 # meshio's printout does not leak
+
+
+def test_mode_shape_files_are_written_atomically(tmp_path, monkeypatch):
+    from flexpipe.mesh.vtu import write_modes
+
+    body = box(0.2, 0.1, 0.1, 1, 1, 1)
+    shapes = np.ones((3 * body.n_nodes, 2))
+    p = tmp_path / "modes.vtu"
+    write_modes(p, body, [1.0, 2.0], shapes)
+    before = p.read_bytes()
+
+    def crash(path, *args, **kwargs):  # the VTU writer dies half-way through
+        with open(path, "w") as fh:
+            fh.write("<VTKFile")
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(meshio, "write", crash)
+    with pytest.raises(RuntimeError, match="disk full"):
+        write_modes(p, body, [3.0, 4.0], 2 * shapes, per_mode_dir=tmp_path)
+    assert p.read_bytes() == before
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["modes.vtu"]
+
+
+def test_abaqus_duplicate_node_and_element_ids_name_both_lines(tmp_path):
+    nodes = "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n"
+    p = _write(tmp_path, "dupn.inp", nodes + "3,0,2,0\n*ELEMENT, TYPE=C3D4\n1,1,2,3,4\n")
+    with pytest.raises(MeshError, match=r"dupn.inp, line 6: node 3 is defined twice: "
+                                        r"dupn.inp line 4 and dupn.inp line 6"):
+        read_mesh(p)
+    p = _write(tmp_path, "dupe.inp", nodes + "*ELEMENT, TYPE=C3D4\n7,1,2,3,4\n7,1,2,4,3\n")
+    with pytest.raises(MeshError, match=r"dupe.inp, line 8: element 7 is defined twice"):
+        read_mesh(p)

@@ -20,6 +20,8 @@ tags for files Gmsh numbered consecutively, its default).
 
 from __future__ import annotations
 
+import contextlib
+import io
 import threading
 import warnings
 from pathlib import Path
@@ -38,14 +40,31 @@ _SPY_LOCK = threading.Lock()
 
 
 def _meshio_read(path, file_format):
+    """``meshio.read`` that turns every failure into a :class:`MeshError` naming the file.
+
+    For a file its reader rejects (``ReadError``: empty file, bad XML, wrong header),
+    ``meshio.read`` prints the reason, then calls ``sys.exit(1)``; the printout is captured
+    here and the ``SystemExit`` becomes the MeshError, so a corrupt file never ends the
+    calling program.
+    """
     import meshio
 
+    said = io.StringIO()
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), contextlib.redirect_stdout(said), \
+                contextlib.redirect_stderr(said):
             warnings.simplefilter("ignore")
             return meshio.read(str(path), file_format=file_format)
-    except Exception as exc:  # meshio raises many types for corrupt files
-        msg = str(exc).strip() or type(exc).__name__
+    except (Exception, SystemExit) as exc:  # meshio raises many types for corrupt files
+        if isinstance(exc, SystemExit):
+            # the reader's reason, without meshio's (line-wrapped) closing "Error: ..." line
+            said_text = " ".join(said.getvalue().split())
+            reason = said_text.split("Error: Couldn't read", 1)[0].strip()
+            empty = Path(path).stat().st_size == 0
+            msg = reason or ("the file is empty" if empty else
+                             f"meshio's {file_format} reader rejected it")
+        else:
+            msg = str(exc).strip() or type(exc).__name__
         raise MeshError(f"cannot read as {file_format} file ({msg}); is the file complete "
                         "and in that format?", file=str(path)) from None
 
