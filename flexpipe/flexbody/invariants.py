@@ -105,8 +105,13 @@ def mass_properties(M, nodes: np.ndarray, dofs_per_node: int):
         Inertia tensor about the origin of the mesh coordinates.
     """
     R = rigid_body_vectors(nodes, dofs_per_node)
-    MR = R.T @ (M @ R)
-    MR = 0.5 * (MR + MR.T)
+    return rigid_mass_properties(R.T @ (M @ R))
+
+
+def rigid_mass_properties(MR: np.ndarray):
+    """Mass, centre of mass, inertia about it and about the origin from the 6 x 6 rigid-body
+    mass matrix ``R^T M R`` (translations x, y, z, rotations about x, y, z at the origin)."""
+    MR = 0.5 * (np.asarray(MR, dtype=float) + np.asarray(MR, dtype=float).T)
     mass = float(np.mean(np.diag(MR)[:3]))
     # off-diagonal block: R_t^T M R_r = -m S(c)  (translation-rotation coupling)
     Sc = -MR[0:3, 3:6] / mass

@@ -132,7 +132,8 @@ def craig_bampton_basis(M, K, boundary_dofs, n_fixed=None, *, f_max=None, backen
     backend : {"pardiso", "superlu"}, optional
         Sparse factorization backend.
     tol : float, optional
-        Relative tolerance of the sparse eigensolver (default: machine precision).
+        Residual tolerance of the sparse eigensolver (default
+        :data:`flexpipe.reduction.eigen.KRYLOV_TOL`: eigenvalues to ~1e-12).
 
     Returns
     -------
@@ -170,8 +171,9 @@ def _craig_bampton(M, K, boundary_dofs, n_fixed, *, f_max=None, backend=None, to
     interior = np.setdiff1d(np.arange(n), b)
     ni, nb = interior.size, b.size
     if n_fixed is not None and n_fixed > ni:
-        raise InputError(f"n_fixed={n_fixed} but only {ni} interior DOF exist "
-                         f"({n} DOF, {nb} on the boundary); valid: 0..{ni}", key="n_fixed")
+        raise InputError(f"{n_fixed} fixed-interface modes requested (n_modes) but the model "
+                         f"has only {ni} interior DOF ({n} DOF, {nb} on the interfaces); "
+                         f"valid: 0..{ni}", key="n_modes")
     if ni == 0:
         Psi = np.zeros((n, nb))
         Psi[b, np.arange(nb)] = 1.0
@@ -194,12 +196,13 @@ def _craig_bampton(M, K, boundary_dofs, n_fixed, *, f_max=None, backend=None, to
         ) from None
     static = -fac.solve(_dense(Kib))
     if n_fixed is None:
-        lam, Phi = modes_up_to(Kii, Mii, f_max, sigma=0.0, factor=fac, backend=backend, tol=tol)
+        lam, Phi = modes_up_to(Kii, Mii, f_max, sigma=0.0, factor=fac, backend=backend, tol=tol,
+                               X0=static)
         keep = lam <= (2 * np.pi * f_max) ** 2
         lam, Phi = lam[keep], Phi[:, keep]
     elif n_fixed:
         lam, Phi = lowest_modes(Kii, Mii, n_fixed, sigma=0.0, factor=fac, backend=backend,
-                                tol=tol)
+                                tol=tol, X0=static)
     else:
         lam, Phi = np.zeros(0), np.zeros((ni, 0))
     Psi = np.zeros((n, nb + Phi.shape[1]))

@@ -14,9 +14,12 @@ import scipy.sparse.linalg as spla
 
 from flexpipe.errors import InputError, ModelError
 from flexpipe.fem.solver import factorize
+from flexpipe.reduction._threads import dense_single_threaded
 
 #: problems up to this many DOF are solved with dense LAPACK
 DENSE_LIMIT = 400
+#: residual tolerance of the block Krylov eigensolver (eigenvalue errors ~ tol^2)
+KRYLOV_TOL = 1e-6
 #: default shift (rad/s)^2 for free structures: below every eigenvalue (rigid modes at 0)
 FREE_SIGMA = -(2 * np.pi * 1.0) ** 2
 
@@ -58,7 +61,7 @@ def factor_spd(A, *, backend=None):
 
 
 def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
-                 return_factor=False):
+                 return_factor=False, X0=None):
     """Lowest ``k`` eigenpairs of ``K x = lambda M x``, mass-normalized, ascending.
 
     Parameters
@@ -71,9 +74,12 @@ def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
     factor : Factor, optional
         Factor of ``K - sigma M`` if already available.
     tol : float, optional
-        ARPACK relative tolerance (0: machine precision, the default).
+        Shift-invert residual tolerance of the block Krylov solver (default
+        :data:`KRYLOV_TOL`; eigenvalues then agree to ~1e-12).
     return_factor : bool
         Also return the factor of ``K - sigma M`` and sigma.
+    X0 : ndarray, optional
+        Starting block for the block Krylov solver (e.g. static modes).
 
     Returns
     -------
@@ -115,9 +121,13 @@ def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
                 f"{exc}; K - sigma M cannot be factorized at sigma = {sigma:.4g}: look for "
                 "mechanisms, disconnected parts or zero-stiffness DOF"
             ) from None
-    ncv = min(n, max(2 * k + 1, k + 20))
-    lam, X = spla.eigsh(Ks, k=k, M=Ms, sigma=sigma, which="LM", OPinv=factor.as_operator(),
-                        ncv=ncv, tol=0.0 if tol is None else tol)
+    try:
+        lam, X = block_krylov_modes(Ks, Ms, k, factor=factor, sigma=sigma, X0=X0,
+                                    tol=KRYLOV_TOL if tol is None else tol)
+    except ModelError:  # no convergence in the allotted subspace: ARPACK, full precision
+        ncv = min(n, max(2 * k + 1, k + 20))
+        lam, X = spla.eigsh(Ks, k=k, M=Ms, sigma=sigma, which="LM",
+                            OPinv=factor.as_operator(), ncv=ncv, tol=0.0)
     order = np.argsort(lam)
     lam, X = lam[order], X[:, order]
     X = X / np.sqrt(np.abs(np.einsum("ij,ij->j", X, Ms @ X)))
@@ -127,7 +137,7 @@ def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
 
 
 def modes_up_to(K, M, f_max_hz, *, sigma=None, factor=None, backend=None, tol=None,
-                start=12, return_factor=False):
+                start=12, return_factor=False, X0=None):
     """All eigenpairs with frequency <= ``f_max_hz`` (plus the next one, for gap tests).
 
     Computes the lowest ``start`` modes and doubles the count until one lies above
@@ -142,7 +152,7 @@ def modes_up_to(K, M, f_max_hz, *, sigma=None, factor=None, backend=None, tol=No
     k = min(n, start)
     while True:
         res = lowest_modes(K, M, k, sigma=sigma, factor=factor, backend=backend, tol=tol,
-                           return_factor=True)
+                           return_factor=True, X0=X0)
         lam, X, factor, sigma = res
         if lam[-1] > lam_max or k == n:
             break
@@ -193,7 +203,7 @@ def block_krylov_modes(K, M, k, *, factor, sigma=0.0, X0=None, block=None, tol=1
     tol : float
         Residual tolerance.
     max_dim : int, optional
-        Largest subspace (default ``min(n, 30 k + 100)``).
+        Largest subspace (default ``width of X0 + 10 (k + 2) + 20``).
 
     Returns
     -------
@@ -205,13 +215,19 @@ def block_krylov_modes(K, M, k, *, factor, sigma=0.0, X0=None, block=None, tol=1
     ModelError
         No convergence within ``max_dim`` vectors.
     """
+    with dense_single_threaded():
+        return _block_krylov(K, M, k, factor=factor, sigma=sigma, X0=X0, block=block, tol=tol,
+                             max_dim=max_dim, seed=seed)
+
+
+def _block_krylov(K, M, k, *, factor, sigma, X0, block, tol, max_dim, seed):
     n = K.shape[0]
     b = min(block or k + 2, n)
     rng = np.random.default_rng(seed)
     if X0 is None:
         X0 = factor.solve(M @ rng.standard_normal((n, b)))
     W, MW = _m_orthonormalize(np.array(X0, dtype=float), M)
-    cap = min(n, max_dim or 30 * k + 100)
+    cap = min(n, max_dim or W.shape[1] + 10 * b + 20)
     cap = max(cap, min(n, W.shape[1]))
     V, MV, AV = (np.empty((n, cap)) for _ in range(3))
     H = np.zeros((cap, cap))  # V^T K V

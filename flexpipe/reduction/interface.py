@@ -87,6 +87,10 @@ def _describe(fe: FEModel, i: int) -> str:
     return f"node index {int(i)} at ({x:.4g}, {y:.4g}, {z:.4g}) m"
 
 
+def _pt(p) -> str:
+    return "(" + ", ".join(f"{float(v):.4g}" for v in p) + ") m"
+
+
 def _has_rotations(fe: FEModel, nodes) -> np.ndarray:
     """Per node: True when all three rotation DOF are independent DOF of the model."""
     if fe.dofs_per_node < 6:
@@ -128,7 +132,7 @@ def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
             if nodes.size == 0:
                 raise InputError(
                     f"interface '{name}': no mesh node within radius {itf.radius:g} m of "
-                    f"{tuple(p)}; the nearest is {_describe(fe, nearest)}, "
+                    f"{_pt(p)}; the nearest is {_describe(fe, nearest)}, "
                     f"{dist[nearest]:.4g} m away", key=name)
         elif itf.node_set is not None:
             sets = fe.mesh.node_sets if fe.mesh is not None else {}
@@ -147,7 +151,7 @@ def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
         else:
             if dist[nearest] > max(tol, 1e-9):
                 raise InputError(
-                    f"interface '{name}': no mesh node at {tuple(p)} (nearest: "
+                    f"interface '{name}': no mesh node at {_pt(p)} (nearest: "
                     f"{_describe(fe, nearest)}, {dist[nearest]:.4g} m away); give radius=, "
                     "node_set= or nodes=", key=name)
             nodes = np.array([nearest])

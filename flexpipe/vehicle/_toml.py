@@ -109,7 +109,11 @@ class Table:
         if key not in self.data:
             if default is _MISSING:
                 hint = f" ({doc})" if doc else ""
-                raise self.error(None, f"missing required key '{key}'{hint}")
+                close = difflib.get_close_matches(key, [k for k in self.data if k != key], n=1)
+                if close:
+                    hint += f"; found '{close[0]}' - misspelt?"
+                raise InputError(f"missing required key '{key}'{hint}", file=self.file,
+                                 line=self._line(None), key=self.key(key))
             return default
         return self.data[key]
 

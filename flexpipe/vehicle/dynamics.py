@@ -8,10 +8,11 @@ the output channels into preallocated arrays every ``output_every`` steps.
 
 Output channels (SI units; "body axes" = the chassis frame, ISO 8855 orientation)
 -----------------------------------------------------------------------------
-``x, y, z`` body-origin position, ``roll, pitch, yaw`` (rad), ``speed`` (forward, m/s),
+``x, y, z`` body-origin position, ``x_rear, y_rear`` rear-axle centre (the point the
+driver steers along the path), ``roll, pitch, yaw`` (rad), ``speed`` (forward, m/s),
 ``steer`` road-wheel angle (rad), ``steering_wheel`` (rad), ``drive_torque`` (N m, total),
 ``lateral_error`` (m, rear-axle centre from the path), ``ay`` lateral acceleration of the
-centre of mass (m/s^2, body axes);
+body origin (m/s^2, body axes, from its velocity);
 per corner ``c`` in ``fl, fr, rl, rr``: ``hub_c_x|y|z`` force the corner applies to the body
 at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-axes),
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
@@ -89,7 +90,8 @@ class CarController:
 
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
-                 driver_every=5, body_com=None, track=None):
+                 wheel_acc=None, gravity=9.81, driver_every=5, body_com=None, track=None,
+                 tire_k=None, preview_time=0.3):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -102,6 +104,12 @@ class CarController:
         self.points = list(points)
         self.point_acc = point_acc
         self.joint_forces = joint_forces
+        self.wheel_acc = wheel_acc
+        self.gvec = np.array([0.0, 0.0, -float(gravity)])
+        self.tire_k = np.zeros(4) if tire_k is None else np.asarray(tire_k, dtype=float)
+        self.preview_time = float(preview_time)
+        self.r0 = np.array([t.unloaded_radius for t in tires])
+        self._prev_tire = None
         self.body_com = np.zeros(3) if body_com is None else np.asarray(body_com, dtype=float)
         groups = {}
         for i, t in enumerate(tires):
@@ -120,8 +128,10 @@ class CarController:
         self.max_rate = st.max_rate
         self.ratio = st.ratio
         self.wheelbase = car.wheelbase
+        self.rear_offset = -float(np.mean(corners.wheel_center[2:, 0]))
         self.track = float(np.mean(np.abs(corners.wheel_center[:2, 1])) * 2) \
             if track is None else track
+        self.spin_inertia = np.array([c.spin_inertia for c in car.corners])
         self.drive_share = car.drive.drive_shares()
         self.brake_share = car.drive.brake_shares()
         self.delta = 0.0
@@ -130,8 +140,8 @@ class CarController:
         self.step_no = 0
         self.status = 0
         self.message = ""
-        names = ["x", "y", "z", "roll", "pitch", "yaw", "speed", "ay", "steer",
-                 "steering_wheel", "drive_torque", "lateral_error"]
+        names = ["x", "y", "z", "x_rear", "y_rear", "roll", "pitch", "yaw", "speed", "ay",
+                 "steer", "steering_wheel", "drive_torque", "lateral_error"]
         for cn in CORNERS:
             names += [f"hub_{cn}_x", f"hub_{cn}_y", f"hub_{cn}_z", f"tire_{cn}_Fx",
                       f"tire_{cn}_Fy", f"tire_{cn}_Fz", f"travel_{cn}", f"spin_{cn}"]
@@ -168,10 +178,17 @@ class CarController:
         return out
 
     def driver(self, st, v: float, yaw: float) -> None:
-        """Update steering command and drive torque (every ``driver_every`` steps)."""
+        """Update steering command and drive torque (every ``driver_every`` steps).
+
+        The pure-pursuit law is applied to the pose predicted ``preview_time`` ahead
+        (constant velocity and yaw rate): a driver anticipates the vehicle's own response
+        lag (tyre relaxation, yaw inertia), which a kinematic pure pursuit does not know.
+        """
         dt = self.h * self.driver_every
-        p = st.body_p
-        cmd = self.steering.steer(float(p[0]), float(p[1]), yaw, v)
+        tau = self.preview_time
+        p = st.body_p + tau * st.body_v
+        yaw_p = yaw + tau * float(st.body_w[2])
+        cmd = self.steering.steer(float(p[0]), float(p[1]), yaw_p, v)
         self.delta_cmd = max(-self.max_angle, min(self.max_angle, cmd))
         self.torque = self.speed_pi.torque(self.v_target, v, dt)
 
@@ -193,7 +210,9 @@ class CarController:
                                     f"{CORNERS[i]}: the wheel left its travel range "
                                     "(divergence or missing bump/rebound stops)")
         v = float(R[:, 0] @ st.body_v)
-        if self.step_no % self.driver_every == 0:
+        if self.v_target == 0.0:
+            self.torque = 0.0  # parked: no driver, wheels braked below
+        elif self.step_no % self.driver_every == 0:
             self.driver(st, v, yaw)
         # steering actuator: rate limit towards the command
         dmax = self.max_rate * self.h
@@ -225,18 +244,28 @@ class CarController:
         if self.torque < 0:
             T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
         Ms = np.einsum("ij,ij->i", M, s_axis)
+        if self.v_target == 0.0:  # parking brake: viscous, at half the explicit limit
+            T = -0.5 * self.spin_inertia / self.h * st.spin_rate
         spin_torque = T + Ms
         carrier_moment = M - (Ms + T)[:, None] * s_axis
 
         # suspension
         Fs = self.c.force(st.jounce, st.jounce_rate)
 
+        # the implicit linear tyre spring pushes k (z_ref - z) up; the explicit load is the
+        # tyre model's force minus that spring's force in the current state
+        z_ref = h_road + self.r0
+        F_lin = self.tire_k * (z_ref - st.wheel_p[:, 2])
+        F_explicit = F.copy()
+        F_explicit[:, 2] -= F_lin
+
         from flexpipe.exu.car import CarLoads
 
-        loads = CarLoads(suspension=Fs, tire_force=F, tire_moment=carrier_moment,
-                         spin_torque=spin_torque, steer=steer)
+        loads = CarLoads(suspension=Fs, tire_force=F_explicit, tire_moment=carrier_moment,
+                         spin_torque=spin_torque, steer=steer, tire_ref_z=z_ref)
         if self.step_no % self.output_every == 0:
             self._record(st, Fs, Fw, v, roll, pitch, yaw)
+        self._prev_tire = F
         self.step_no += 1
         return loads
 
@@ -248,9 +277,16 @@ class CarController:
     def _record(self, st, Fs, Fw, v, roll, pitch, yaw):
         R = st.body_R
         # hub force on the body at each hardpoint, in that mount's frame (~ body axes)
-        jf = st.joint_force if st.joint_force is not None else self.joint_forces()
-        hub = JOINT_FORCE_SIGN * np.asarray(jf, dtype=float)
-        hub[:, 2] += Fs
+        if self._prev_tire is None or self.wheel_acc is None:
+            jf = st.joint_force if st.joint_force is not None else self.joint_forces()
+            hub = JOINT_FORCE_SIGN * np.asarray(jf, dtype=float)
+            hub[:, 2] += Fs
+        else:
+            # Newton's law of each wheel carrier under the loads of the step just taken:
+            # what the corner applies to the body = tyre force + weight - m a
+            a = self.wheel_acc()
+            hub_g = self._prev_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
+            hub = np.einsum("nji,nj->ni", st.mount_R, hub_g)
         # centre-of-mass lateral acceleration from the velocity history
         if self._prev_v is None:
             ay = 0.0
@@ -258,12 +294,12 @@ class CarController:
             dt = self.h * self.output_every
             ay = float(R[:, 1] @ (st.body_v - self._prev_v)) / dt
         self._prev_v = st.body_v.copy()
-        rx = st.body_p[0] - self.wheelbase * R[0, 0]
-        ry = st.body_p[1] - self.wheelbase * R[1, 0]
+        rx = st.body_p[0] - self.rear_offset * R[0, 0]
+        ry = st.body_p[1] - self.rear_offset * R[1, 0]
         path = self.steering.path
         lat = path.project(float(rx), float(ry))[1] if path is not None else 0.0
-        row = [st.body_p[0], st.body_p[1], st.body_p[2], roll, pitch, yaw, v, ay, self.delta,
-               self.delta * self.ratio, self.torque, lat]
+        row = [st.body_p[0], st.body_p[1], st.body_p[2], rx, ry, roll, pitch, yaw, v, ay,
+               self.delta, self.delta * self.ratio, self.torque, lat]
         for i in range(4):
             row += [hub[i, 0], hub[i, 1], hub[i, 2], Fw[i, 0], Fw[i, 1], Fw[i, 2],
                     st.jounce[i], st.spin_rate[i]]

@@ -1,0 +1,33 @@
+"""``python -m flexpipe.scenarios NAME --out DIR``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def main(argv=None) -> int:
+    from flexpipe.errors import FlexpipeError
+    from flexpipe.scenarios.runner import SCENARIOS, run_scenario
+
+    p = argparse.ArgumentParser(prog="python -m flexpipe.scenarios",
+                                description="Run a ready-made car scenario (rigid and "
+                                            "flexible body) and write CSVs, plots and "
+                                            "summary.json.")
+    p.add_argument("name", choices=sorted(SCENARIOS), help="scenario")
+    p.add_argument("--out", required=True, help="output directory")
+    p.add_argument("--car", default=None, help="car file (default: cars/sedan.toml)")
+    p.add_argument("--t-end", type=float, default=None, help="simulated time, s")
+    p.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
+    args = p.parse_args(argv)
+    try:
+        summary = run_scenario(args.name, out=args.out, car=args.car, t_end=args.t_end,
+                               cache=not args.no_cache)
+    except FlexpipeError as exc:
+        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        return 2
+    return 0 if summary["status"] == 0 else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

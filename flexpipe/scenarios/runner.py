@@ -1,0 +1,162 @@
+"""Scenario runner: the same car with a rigid and a flexible body, CSVs, plots, summary."""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import write_text_atomic
+from flexpipe.errors import InputError
+
+ROOT = Path(__file__).resolve().parents[2]
+DEFAULT_CAR = ROOT / "cars" / "sedan.toml"
+
+
+def _straight_road():
+    from flexpipe.roads import iso8608
+
+    return iso8608("C", length=260.0, dx=0.05, seed=8608, track_width=1.55, fade=5.0)
+
+
+def _slalom_road():
+    from flexpipe.roads import iso8608
+
+    return iso8608("B", length=260.0, dx=0.05, seed=8609, track_width=1.55, fade=5.0)
+
+
+def _slalom_path():
+    from flexpipe.driver import slalom
+
+    return slalom(cone_spacing=18.0, n_cones=8, offset=0.8, lead_in=40.0, lead_out=60.0)
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A ready-made run: speed (km/h), duration (s), road and path factories, plots."""
+
+    name: str
+    title: str
+    speed_kmh: float
+    t_end: float
+    road: object
+    path: object = None
+    plots: tuple = ("hub_force_fl",)
+    notes: dict = field(default_factory=dict)
+
+
+SCENARIOS = {
+    "straight": Scenario(
+        "straight", "straight ISO 8608 class C road, 70 km/h", 70.0, 10.0, _straight_road,
+        None, ("hub_force_fl",),
+        {"road": "ISO 8608 class C (Gd(n0) = 256e-6 m^3), 260 m, seed 8608, 5 m fade-in"}),
+    "slalom": Scenario(
+        "slalom", "slalom 8 cones x 18 m, offset 0.8 m, 60 km/h, ISO 8608 class B road",
+        60.0, 10.0, _slalom_road, _slalom_path, ("hub_force_fl", "trajectory"),
+        {"road": "ISO 8608 class B (Gd(n0) = 64e-6 m^3), 260 m, seed 8609",
+         "path": "slalom(cone_spacing=18, n_cones=8, offset=0.8, lead_in=40, lead_out=60) "
+                 "(as paths/slalom_18m.toml; peak path curvature asks 6.8 m/s^2)"}),
+}
+
+
+def _summary_diffs(diff: dict) -> dict:
+    out = {}
+    for name, d in diff.items():
+        key = name.removeprefix("hub_")
+        out[key] = {"rms_diff_N": round(d["rms_diff"], 3), "peak_diff_N": round(d["peak_diff"], 3),
+                    "rel_rms_diff": round(d["rel_rms_diff"], 6),
+                    "rms_rigid_N": round(d["rms_a"], 3), "rms_flexible_N": round(d["rms_b"], 3)}
+    return out
+
+
+def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
+             plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
+             h: float | None = None, notes=None, name: str = "run", log=print) -> dict:
+    """Simulate ``car`` with each body kind, write CSVs, plots and ``summary.json``.
+
+    Returns the summary dict (``status`` 0 when every run reached its end time).
+    """
+    from flexpipe.vehicle import plots as P
+    from flexpipe.vehicle.result import compare
+    from flexpipe.vehicle.simulate import simulate
+    from flexpipe.vehicle.spec import Car, load_car
+
+    car = car if isinstance(car, Car) else load_car(car)
+    out = Path(out)
+    bodies = tuple(bodies)
+    if not bodies:
+        raise InputError("give at least one body kind", key="bodies")
+    out.mkdir(parents=True, exist_ok=True)
+    kw = {} if h is None else {"h": h}
+    results = {}
+    t0 = time.perf_counter()
+    for i, body in enumerate(bodies, 1):
+        log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
+        r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
+                     progress=True, cache=cache, log=lambda m: log("      " + m), **kw)
+        results[body] = r
+        log(f"      {r.message}; CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s "
+            f"simulated (real-time factor {r.realtime_factor:.2f})")
+    files = []
+    for body, r in results.items():
+        files.append(r.to_csv(out / f"{body}.csv").name)
+    summary = {
+        "scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
+        "status": 0 if all(r.status == 0 for r in results.values()) else -1,
+        "messages": {b: r.message for b, r in results.items()},
+        "simulated_time_s": min(r.simulated_time for r in results.values()),
+        "cpu_time_s": {b: round(r.cpu_time, 3) for b, r in results.items()},
+        "wall_time_s": {b: round(r.wall_time, 3) for b, r in results.items()},
+        "realtime_factor": {b: round(r.realtime_factor, 3) for b, r in results.items()},
+        "speed_kmh": round(speed * 3.6, 3), "time_step_s": next(iter(results.values())).info["h"],
+        **({"notes": notes} if notes else {}),
+    }
+    if "rigid" in results and "flexible" in results:
+        ra, rb = results["rigid"], results["flexible"]
+        diff = compare(ra, rb, t_from=min(0.5, 0.25 * ra.simulated_time))
+        summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)
+        summary["hub_force_difference_rigid_vs_flexible"] = _summary_diffs(diff)
+        summary["hub_force_difference_note"] = (
+            "rigid minus flexible, after the first 0.5 s; rel_rms_diff = rms_diff / rms_rigid; "
+            "hub force = force the corner applies to the body at its hardpoint, body axes")
+    fb = [r for r in results.values() if r.body != "rigid"]
+    if fb:
+        info = fb[0].info
+        summary["flexible_body"] = {k: info.get(k) for k in (
+            "n_elastic_modes", "band_hz", "highest_mode_hz", "reduction_s", "reduction_cached")}
+    summary["static_wheel_load_N"] = [round(v, 2) for v in
+                                      next(iter(results.values())).info["static_wheel_load_N"]]
+    if path is not None:
+        summary["lateral_error_max_m"] = {
+            b: round(float(np.nanmax(np.abs(r["lateral_error"][r.t >= 1.0]))), 4)
+            if np.any(r.t >= 1.0) else None for b, r in results.items()}
+    if "hub_force_fl" in plots:
+        files.append(P.hub_force(results, out / "hub_force_fl.png",
+                                 title=f"Vertical force on the front-left wheel hub ({title})").name)
+    if "trajectory" in plots and path is not None:
+        files.append(P.trajectory(results, path, out / "trajectory.png").name)
+    summary["files"] = sorted(files + ["summary.json"])
+    summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
+    write_text_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")
+    log(f"wrote {out}/: {', '.join(summary['files'])}")
+    if "hub_force_difference_rigid_vs_flexible" in summary:
+        d = summary["hub_force_difference_rigid_vs_flexible"]["fl_z"]
+        log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
+            f"{d['rms_diff_N']:.1f} N ({100 * d['rel_rms_diff']:.2f} %), peak "
+            f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
+            f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
+    return summary
+
+
+def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print) -> dict:
+    """Run the named scenario (see :data:`SCENARIOS`)."""
+    if name not in SCENARIOS:
+        raise InputError(f"unknown scenario {name!r}; valid: {sorted(SCENARIOS)}", key="name")
+    sc = SCENARIOS[name]
+    path = sc.path() if sc.path is not None else None
+    return run_pair(car or DEFAULT_CAR, road=sc.road(), path=path, speed=sc.speed_kmh / 3.6,
+                    t_end=sc.t_end if t_end is None else t_end, out=out, title=sc.title,
+                    plots=sc.plots, cache=cache, notes=sc.notes, name=name, log=log)
