@@ -77,8 +77,14 @@ BEAMS = {
     "bumper": (0.06, 0.10, 0.0018), "cowl": (0.08, 0.10, 0.0015),
     "quarter": (0.06, 0.08, 0.0015),
 }
-#: non-structural mass smeared on the side frame (outer skins, reinforcements), kg
-NONSTRUCTURAL_KG = 60.0
+#: non-structural masses (kg) smeared evenly over the nodes of these beam groups: outer
+#: body-side skins and reinforcements on the side frame; crash boxes, tower
+#: reinforcements and brackets on the front structure
+NONSTRUCTURAL = (
+    ("side frame", 60.0, ("sill", "hinge_pillar", "b_pillar", "roof_rail")),
+    ("front structure", 25.0, ("front_rail", "upper_rail", "bumper")),
+)
+NONSTRUCTURAL_KG = sum(m for _, m, _ in NONSTRUCTURAL)
 
 
 def shell_equivalent(name):
@@ -136,7 +142,7 @@ class Builder:
         """Polyline through ``pts`` split into pieces of about H."""
         pid = self.pid(name)
         pts = [np.asarray(p, dtype=float) for p in pts]
-        for a, b in zip(pts[:-1], pts[1:]):
+        for a, b in zip(pts[:-1], pts[1:], strict=True):
             n = max(1, round(np.linalg.norm(b - a) / H))
             d = (b - a) / np.linalg.norm(b - a)
             if orient is not None:
@@ -144,7 +150,7 @@ class Builder:
             else:  # vertical-ish members: orientation along x; others: along z
                 v = np.array([1.0, 0, 0]) if abs(d[2]) > 0.7 else np.array([0, 0, 1.0])
             ids = [self.node(a + (b - a) * k / n) for k in range(n + 1)]
-            for i0, i1 in zip(ids[:-1], ids[1:]):
+            for i0, i1 in zip(ids[:-1], ids[1:], strict=True):
                 self.bars.append((i0, i1))
                 self.bar_pid.append(pid)
                 self.bar_v.append(v)
@@ -234,12 +240,16 @@ def structural_mass(B) -> float:
     return float(STEEL["rho"] * (area @ t + L @ A))
 
 
-def nonstructural_nodes(B) -> np.ndarray:
-    """Nodes of the body-side frame that carry the smeared non-structural mass."""
+def nonstructural_masses(B):
+    """(node, mass) pairs of the smeared non-structural masses (see NONSTRUCTURAL)."""
     inv = {v: k for k, v in B.pids.items()}
-    names = {"sill", "hinge_pillar", "b_pillar", "roof_rail"}
-    nodes = {n for (a, b), p in zip(B.bars, B.bar_pid) if inv[p] in names for n in (a, b)}
-    return np.array(sorted(nodes))
+    out = {}
+    for _, mass, groups in NONSTRUCTURAL:
+        nodes = sorted({n for (a, b), p in zip(B.bars, B.bar_pid, strict=True) if inv[p] in groups
+                        for n in (a, b)})
+        for n in nodes:
+            out[n] = out.get(n, 0.0) + mass / len(nodes)
+    return sorted(out.items())
 
 
 def _read8(s: str) -> float:
@@ -298,7 +308,7 @@ def _card(*fields) -> str:
 def write_bdf(B, path: Path) -> dict:
     """Write the Nastran bulk-data file; returns a summary dict."""
     X = np.array(B.points)
-    ns_nodes = nonstructural_nodes(B)
+    ns = nonstructural_masses(B)
     lines = [
         "$ sedan body-in-white concept model, written by meshes/make_sedan_biw.py",
         "$ units: m, kg, s, N, Pa.  Axes ISO 8855 (x forward, y left, z up), z = 0 ground",
@@ -325,19 +335,19 @@ def write_bdf(B, path: Path) -> dict:
     for i, p in enumerate(X):
         lines.append(_card("GRID", i + 1, "", float(p[0]), float(p[1]), float(p[2])))
     eid = 0
-    for q, pid in zip(B.quads, B.quad_pid):
+    for q, pid in zip(B.quads, B.quad_pid, strict=True):
         eid += 1
         lines.append(_card("CQUAD4", eid, pid, *(int(n) + 1 for n in q)))
-    for (a, b), pid, v in zip(B.bars, B.bar_pid, B.bar_v):
+    for (a, b), pid, v in zip(B.bars, B.bar_pid, B.bar_v, strict=True):
         eid += 1
         lines.append(_card("CBAR", eid, pid, a + 1, b + 1, float(v[0]), float(v[1]),
                            float(v[2])))
-    m_each = NONSTRUCTURAL_KG / len(ns_nodes)
-    lines.append(f"$ non-structural mass {NONSTRUCTURAL_KG} kg on {len(ns_nodes)} side-frame "
-                 "nodes")
-    for n in ns_nodes:
+    for label, mass, groups in NONSTRUCTURAL:
+        lines.append(f"$ non-structural mass: {label}, {mass:g} kg on the {', '.join(groups)} "
+                     "nodes")
+    for n, m in ns:
         eid += 1
-        lines.append(_card("CONM2", eid, int(n) + 1, 0, round(m_each, 6)))
+        lines.append(_card("CONM2", eid, int(n) + 1, 0, round(m, 6)))
     for k, (name, p) in enumerate(HARDPOINTS.items()):
         near = np.flatnonzero(np.linalg.norm(X - np.asarray(p), axis=1) <= 0.10 + 1e-9)
         lines.append(f"$ SET {name}")

@@ -1,8 +1,13 @@
 """Eigen-solves and factorizations shared by the reduction methods.
 
 Dense LAPACK for small matrices, one sparse factorization reused for every solve for
-large ones.  The lowest modes of a large model come from shift-invert Lanczos
-(ARPACK) driven by that factor.
+large ones.  The lowest modes of a large model come from a block Krylov iteration driven
+by that factor (:func:`block_krylov_modes`: multi-right-hand-side solves, seeded with the
+static modes in Craig-Bampton), with shift-invert ARPACK as the fallback.
+
+Measured on the 61k-DOF tet4 block of ``bench/bench_reduction.py`` (10 fixed-interface
+modes): ARPACK needs 43 single-vector solves (0.1-0.17 s each), the block iteration six
+12-column solves (0.15-0.25 s each) for the same eigenvalues to 1e-10.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ from flexpipe.reduction._threads import dense_single_threaded
 #: problems up to this many DOF are solved with dense LAPACK
 DENSE_LIMIT = 400
 #: residual tolerance of the block Krylov eigensolver (eigenvalue errors ~ tol^2)
-KRYLOV_TOL = 1e-6
+KRYLOV_TOL = 1e-5
 #: default shift (rad/s)^2 for free structures: below every eigenvalue (rigid modes at 0)
 FREE_SIGMA = -(2 * np.pi * 1.0) ** 2
 
@@ -75,7 +80,7 @@ def lowest_modes(K, M, k, *, sigma=None, factor=None, backend=None, tol=None,
         Factor of ``K - sigma M`` if already available.
     tol : float, optional
         Shift-invert residual tolerance of the block Krylov solver (default
-        :data:`KRYLOV_TOL`; eigenvalues then agree to ~1e-12).
+        :data:`KRYLOV_TOL`; eigenvalues then agree to ~1e-10).
     return_factor : bool
         Also return the factor of ``K - sigma M`` and sigma.
     X0 : ndarray, optional
@@ -176,17 +181,17 @@ def _m_orthonormalize(W, M, V=None, MV=None, *, drop=1e-10):
     return W @ T, MW @ T
 
 
-def block_krylov_modes(K, M, k, *, factor, sigma=0.0, X0=None, block=None, tol=1e-6,
+def block_krylov_modes(K, M, k, *, factor, sigma=0.0, X0=None, block=None, tol=KRYLOV_TOL,
                        max_dim=None, seed=0):
     """Lowest ``k`` eigenpairs by block Krylov (block Lanczos with full re-orthogonalization).
 
-    The subspace grows by ``A = (K - sigma M)^-1 M`` applied to the ``block`` lowest Ritz
-    vectors, starting from ``X0``; every step ends with a Rayleigh-Ritz solve with the
-    exact ``K`` and ``M``.  It stops when the ``k`` lowest Ritz pairs ``(theta, x)`` have
-    shift-invert residuals ``(theta - sigma) |A x - x / (theta - sigma)|_M <= tol`` (the
-    measure ARPACK uses in shift-invert mode; eigenvalue errors are of order ``tol^2``).
-    Every solve is multi-right-hand-side, which on a sparse direct factor costs a fraction
-    per column of a single solve.
+    Starting from ``span(X0)``, every step does a Rayleigh-Ritz solve with the exact ``K``
+    and ``M`` and one multi-right-hand-side solve ``Z = A X_b``, ``A = (K - sigma M)^-1 M``,
+    of the ``block`` lowest Ritz vectors ``X_b``.  ``Z`` serves twice: its columns extend
+    the subspace (the next Krylov block) and give the shift-invert residuals
+    ``(theta - sigma) |A x - x / (theta - sigma)|_M`` of the ``k`` lowest Ritz pairs (the
+    measure ARPACK uses; eigenvalue errors are of order ``tol^2``).  It stops when they
+    are all below ``tol``.
 
     Parameters
     ----------
@@ -222,14 +227,14 @@ def block_krylov_modes(K, M, k, *, factor, sigma=0.0, X0=None, block=None, tol=1
 
 def _block_krylov(K, M, k, *, factor, sigma, X0, block, tol, max_dim, seed):
     n = K.shape[0]
-    b = min(block or k + 2, n)
+    b = min(max(block or k + 2, k), n)
     rng = np.random.default_rng(seed)
     if X0 is None:
         X0 = factor.solve(M @ rng.standard_normal((n, b)))
     W, MW = _m_orthonormalize(np.array(X0, dtype=float), M)
     cap = min(n, max_dim or W.shape[1] + 10 * b + 20)
     cap = max(cap, min(n, W.shape[1]))
-    V, MV, AV = (np.empty((n, cap)) for _ in range(3))
+    V, MV = (np.empty((n, cap), order="F") for _ in range(2))
     H = np.zeros((cap, cap))  # V^T K V
     d = 0
     res = np.array([np.inf])
@@ -238,18 +243,17 @@ def _block_krylov(K, M, k, *, factor, sigma, X0, block, tol, max_dim, seed):
         V[:, d:e], MV[:, d:e] = W, MW
         H[:e, d:e] = V[:, :e].T @ (K @ W)
         H[d:e, :d] = H[:d, d:e].T
-        AV[:, d:e] = factor.solve(MW)
         d = e
         theta, Y = np.linalg.eigh(0.5 * (H[:d, :d] + H[:d, :d].T))
-        if d >= k:
-            Yk = Y[:, :k]
-            X = V[:, :d] @ Yk
-            S = AV[:, :d] @ Yk - X / (theta[:k] - sigma)
-            res = (theta[:k] - sigma) * np.sqrt(np.abs(np.einsum("ij,ij->j", S, M @ S)))
-            if res.max() <= tol:
-                return theta[:k], X
-        if d >= n:
-            break
-        W, MW = _m_orthonormalize(AV[:, :d] @ Y[:, :b], M, V[:, :d], MV[:, :d])
+        bb = min(b, d)
+        X = V[:, :d] @ Y[:, :bb]  # lowest Ritz vectors
+        Z = factor.solve(MV[:, :d] @ Y[:, :bb])  # A X: the next Krylov directions ...
+        if d >= k:  # ... and the shift-invert residuals of the k lowest Ritz pairs
+            mu = theta[:k] - sigma
+            S = Z[:, :k] - X[:, :k] / mu
+            res = mu * np.sqrt(np.abs(np.einsum("ij,ij->j", S, M @ S)))
+            if res.max() <= tol or d >= n:
+                return theta[:k], X[:, :k]
+        W, MW = _m_orthonormalize(Z, M, V[:, :d], MV[:, :d])
     raise ModelError(f"block Krylov eigensolver did not converge to tol={tol:g} within "
                      f"{d} vectors (largest residual {res.max():.2e})")

@@ -137,7 +137,8 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
 
     t = time.perf_counter()
     try:
-        Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol)
+        Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
+                                   timings=timings)
     except ModelError as exc:
         raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
     timings["basis_s"] = time.perf_counter() - t
@@ -191,12 +192,12 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     )
 
 
-def _basis(method, system, b, n_modes, f_max, *, backend, tol):
+def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings):
     """Ritz basis of ``method`` on the interface system, and the rigid count if known."""
     if method == "craig-bampton":
         f_cb = None if f_max is None else CB_FACTOR * f_max
         Psi, _ = cms._craig_bampton(system.M, system.K, b, n_modes, f_max=f_cb,
-                                    backend=backend, tol=tol)
+                                    backend=backend, tol=tol, timings=timings)
         return Psi, None
     if method == "residual-flexibility":
         Psi, _, n_rigid = cms._residual_flexibility(system.M, system.K, b, n_modes, f_max=f_max,

@@ -81,10 +81,20 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     """
     from flexpipe.vehicle import plots as P
     from flexpipe.vehicle.result import compare
-    from flexpipe.vehicle.simulate import simulate
+    from flexpipe.vehicle.simulation import simulate
     from flexpipe.vehicle.spec import Car, load_car
 
     car = car if isinstance(car, Car) else load_car(car)
+    if isinstance(road, (str, Path)):
+        from flexpipe.roads import load_road
+
+        road = load_road(road)
+    if isinstance(path, (str, Path)) and path != "straight":
+        from flexpipe.driver import read_path
+
+        path = read_path(path)
+    elif path == "straight":
+        path = None
     out = Path(out)
     bodies = tuple(bodies)
     if not bodies:
@@ -134,8 +144,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             b: round(float(np.nanmax(np.abs(r["lateral_error"][r.t >= 1.0]))), 4)
             if np.any(r.t >= 1.0) else None for b, r in results.items()}
     if "hub_force_fl" in plots:
-        files.append(P.hub_force(results, out / "hub_force_fl.png",
-                                 title=f"Vertical force on the front-left wheel hub ({title})").name)
+        plot_title = f"Vertical force on the front-left wheel hub ({title})"
+        files.append(P.hub_force(results, out / "hub_force_fl.png", title=plot_title).name)
     if "trajectory" in plots and path is not None:
         files.append(P.trajectory(results, path, out / "trajectory.png").name)
     summary["files"] = sorted(files + ["summary.json"])

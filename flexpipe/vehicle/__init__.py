@@ -12,7 +12,7 @@ import importlib
 _EXPORTS = {
     "load_car": "flexpipe.vehicle.spec",
     "Car": "flexpipe.vehicle.spec",
-    "simulate": "flexpipe.vehicle.simulate",
+    "simulate": "flexpipe.vehicle.simulation",
     "compare": "flexpipe.vehicle.result",
     "Result": "flexpipe.vehicle.result",
 }

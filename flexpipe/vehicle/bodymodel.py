@@ -25,8 +25,9 @@ import numpy as np
 from flexpipe.errors import InputError
 from flexpipe.vehicle.spec import CORNERS, Car
 
-#: Craig-Bampton keeps fixed-interface modes to 1.5 f_max (flexpipe.reduction.CB_FACTOR)
 DEFAULT_METHOD = "craig-bampton"
+#: the car keeps Craig-Bampton fixed-interface modes up to this multiple of its band
+CB_RATIO = 1.5
 #: a hardpoint farther than this from every body node is "off the body", m
 OFF_BODY_TOL = 0.05
 #: bump when the cache layout or the reduction settings' meaning changes
@@ -192,7 +193,7 @@ def _digest(car: Car, extra: dict) -> str:
     b = car.body
     settings = {
         "v": CACHE_VERSION, "scale": b.mesh_scale, "units": b.mesh_units,
-        "thickness": b.shell_thickness, "radius": b.interface_radius,
+        "thickness": b.shell_thickness, "radius": b.interface_radius, "zeta": b.damping_ratio,
         "material": None if b.material is None else [b.material.E, b.material.nu,
                                                       b.material.rho],
         "masses": [[m.name, m.mass, *m.position.tolist(), m.spread_radius]
@@ -238,8 +239,14 @@ def modal_damping(car: Car):
 
 
 def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
-                 cache: bool = True, log=print):
+                 cache: bool = True, log=print, cutoff: float | None = None):
     """The reduced flexible body for band ``f_max`` (Hz), from the cache when possible.
+
+    Craig-Bampton keeps the fixed-interface modes up to ``cutoff`` (default
+    ``CB_RATIO * f_max``) plus the 24 static constraint modes of the four hardpoints,
+    which keep the static flexibility of every higher mode exactly.  (``reduce`` takes a
+    band and applies its own factor ``CB_FACTOR``; the band passed to it is scaled so the
+    cut-off is the car's.)
 
     Returns
     -------
@@ -247,20 +254,26 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     info : dict
         ``cached`` (bool), ``seconds`` (reduction time, 0 when cached), ``path``.
     """
+    import importlib
+
     from flexpipe.flexbody import load_body
     from flexpipe.reduction import reduce
 
-    path = cache_dir() / f"body-{_digest(car, {'f_max': round(f_max, 6), 'm': method})}.npz"
+    reduce_mod = importlib.import_module("flexpipe.reduction.reduce")
+    cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
+    factor = getattr(reduce_mod, "CB_FACTOR", 1.0) if method == "craig-bampton" else 1.0
+    key = {"cutoff": round(cutoff, 6), "m": method}
+    path = cache_dir() / f"body-{_digest(car, key)}.npz"
     if cache and path.is_file():
         try:
             return load_body(path), {"cached": True, "seconds": 0.0, "path": str(path)}
         except InputError:
             pass  # stale or truncated cache file: rebuild it
     t0 = time.perf_counter()
-    log(f"reducing body {car.body.mesh.name} ({method}, band {f_max:.0f} Hz) ...")
+    log(f"reducing body {car.body.mesh.name} ({method}, modes to {cutoff:.0f} Hz) ...")
     fe = body_fe(car)
     itf = corner_interfaces(car, fe.nodes)
-    body = reduce(fe, itf, method=method, f_max=f_max, damping=modal_damping(car))
+    body = reduce(fe, itf, method=method, f_max=cutoff / factor, damping=modal_damping(car))
     seconds = time.perf_counter() - t0
     log(f"  {fe.n_dof} DOF -> {body.n_elastic} elastic modes "
         f"({body.frequencies_hz[body.n_rigid]:.1f}-{body.frequencies_hz[-1]:.0f} Hz) "
@@ -270,20 +283,20 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     return body, {"cached": False, "seconds": seconds, "path": str(path)}
 
 
-def choose_band(speed: float, road=None, *, lo: float = 30.0, hi: float = 40.0,
+def choose_band(speed: float, road=None, *, lo: float = 20.0, hi: float = 30.0,
                 contact_length: float = 0.2) -> float:
-    """Top of the frequency band the body must reproduce, Hz.
+    """Top of the frequency band the flexible body must reproduce, Hz.
 
     The road excites the car at ``f = v n`` for wavenumbers ``n`` up to the road's content;
     the tyre contact patch averages out wavelengths shorter than about ``contact_length``.
-    The band covers 1.5 x the road content up to the wavenumber holding 90 % of the
-    profile's slope (velocity-input) variance, limited by the contact filter, and at least
-    ``lo`` = 30 Hz (the paper's reduced model is built to be accurate to about 30 Hz, above
-    the 0-25 Hz ride band); it is capped at ``hi`` = 40 Hz because the suspension and tyre
-    isolate the body above that and the time-step cost of the flexible body grows with
-    the square of its mode count.  Craig-Bampton then keeps fixed-interface modes to
-    1.5 x the band, and its constraint modes keep the static flexibility of every higher
-    mode at the hardpoints.
+    The band is 1.5 x the road content up to the wavenumber holding 90 % of the profile's
+    slope (velocity-input) variance, limited by the contact filter, but at least ``lo`` =
+    20 Hz (1.5 x the ~13 Hz wheel hop, which every road and manoeuvre excites) and at most
+    ``hi`` = 30 Hz, the band the paper's reduced model is built for (above the 0-25 Hz
+    ride band; the suspension and tyres isolate the body above it, and the time-step cost
+    of the flexible body grows with the square of its mode count).  The car then keeps
+    Craig-Bampton fixed-interface modes up to ``CB_RATIO`` x the band; the constraint
+    modes keep the static flexibility of every higher mode at the hardpoints.
     """
     f_road = 0.0
     if road is not None:

@@ -207,8 +207,9 @@ class CarController:
         if np.abs(st.jounce).max() > 0.5:
             i = int(np.argmax(np.abs(st.jounce)))
             return self._fail(st.t, f"suspension travel {st.jounce[i]:.2f} m at corner "
-                                    f"{CORNERS[i]}: the wheel left its travel range "
-                                    "(divergence or missing bump/rebound stops)")
+                                    f"{CORNERS[i]}: the wheel left its travel range - "
+                                    "numerical divergence (try a smaller step h) or "
+                                    "missing bump/rebound stops")
         v = float(R[:, 0] @ st.body_v)
         if self.v_target == 0.0:
             self.torque = 0.0  # parked: no driver, wheels braked below

@@ -335,7 +335,7 @@ def load_car(path) -> Car:
     x = [c.wheel_center[0] for c in corners]
     if min(x[:2]) <= max(x[2:]):
         raise InputError("front wheel centres must lie ahead (larger x) of the rear ones "
-                         f"(ISO axes, x forward); got x = {dict(zip(CORNERS, x))}",
+                         f"(ISO axes, x forward); got x = {dict(zip(CORNERS, x, strict=True))}",
                          file=path, key="corners")
     st = doc.sub("steering")
     steering = SteeringSpec(

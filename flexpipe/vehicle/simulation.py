@@ -11,11 +11,12 @@ Bodies
     suspension hardpoints) for a band chosen from the speed and the road content
     (:func:`flexpipe.vehicle.bodymodel.choose_band`), cached on disk.
 ``"full"``
-    The same FE model with every mode up to :data:`FULL_F_MAX_HZ` (about 6 x the flexible
-    band; plus the static constraint modes, so the quasi-static response of all higher
-    modes is kept exactly).  This is what "unreduced" can mean for an FFRF multibody body
-    at acceptable cost: it differs from the full FE model only by the *dynamics* of modes
-    far above the road and ride excitation.  Meant for short validation runs.
+    The same FE model with every fixed-interface mode up to :data:`FULL_CUTOFF_HZ` (four
+    times the flexible body's cut-off) plus the static constraint modes, so the
+    quasi-static response of all higher modes is kept exactly.  This is what "unreduced"
+    can mean for an FFRF multibody body at acceptable cost: it differs from the full FE
+    model only by the *dynamics* of modes far above the road and ride excitation (and
+    above what a 2 ms step resolves).  Meant for short validation runs.
 """
 
 from __future__ import annotations
@@ -32,8 +33,8 @@ from flexpipe.vehicle.result import Result
 from flexpipe.vehicle.spec import Car, load_car
 
 BODIES = ("flexible", "rigid", "full")
-#: top of the band of the "full" body, Hz
-FULL_F_MAX_HZ = 300.0
+#: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
+FULL_CUTOFF_HZ = 250.0
 #: distance along the path of the body origin at t = 0, beyond the wheelbase, m
 START_MARGIN_M = 3.0
 
@@ -145,10 +146,10 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
     out = {"rigid": rb, "corners": corners, "tires": tires, "flexbody": None,
            "band_hz": None, "reduction": None}
     if body in ("flexible", "full"):
-        band = f_max if f_max is not None else (
-            bodymodel.choose_band(speed, road) if body == "flexible" else FULL_F_MAX_HZ)
-        fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log)
-        out.update(flexbody=fb, band_hz=band, reduction=info)
+        band = f_max if f_max is not None else bodymodel.choose_band(speed, road)
+        cutoff = FULL_CUTOFF_HZ if body == "full" else None
+        fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log, cutoff=cutoff)
+        out.update(flexbody=fb, band_hz=None if body == "full" else band, reduction=info)
     return out
 
 
@@ -300,7 +301,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
             n_modes = int(np.count_nonzero(fb.frequencies_hz[fb.n_rigid:] <= max_mode_hz))
         q0 = static_deflection(fb, corners, n_modes)
     build = CarBuild(
-        chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass, center_of_mass=rb.center_of_mass,
+        chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass,
+        center_of_mass=rb.center_of_mass,
         inertia_origin=rb.inertia_origin, hardpoints=corners.hardpoint,
         wheel_centers=corners.wheel_center, m_unsprung=corners.m_unsprung,
         J_unsprung=corners.J_unsprung, spin_inertia=corners.spin_inertia,

@@ -1,0 +1,53 @@
+"""``flexpipe info FILE``: summary of a FlexBody (.npz) or a mesh file.
+
+For a FlexBody it prints the reduced-vs-full frequency table, the MAC matrix and mass
+properties (see :func:`flexpipe.cli_reduce.info_text`) and can write the mode shapes as
+.vtu; for a mesh it lists nodes, element blocks, named sets and carried properties.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def add_arguments(p) -> None:
+    """Options of ``flexpipe info``."""
+    from flexpipe.cli_reduce import add_info_arguments
+
+    add_info_arguments(p)
+    p.add_argument("--scale", type=float, default=1.0, help="mesh length scale (mesh files)")
+
+
+def mesh_text(mesh) -> str:
+    """Human-readable summary of a :class:`~flexpipe.mesh.Mesh`."""
+    lo, hi = mesh.points.min(axis=0), mesh.points.max(axis=0)
+    lines = [f"{mesh.source}: {mesh.n_nodes} nodes, bounding box "
+             f"{tuple(round(float(v), 4) for v in lo)} .. {tuple(round(float(v), 4) for v in hi)} m"]
+    for b in mesh.blocks:
+        lines.append(f"  {b.type:<10} {len(b):>9} elements")
+    if mesh.node_sets:
+        lines.append("  node sets: " + ", ".join(
+            f"{k} ({len(v)})" for k, v in sorted(mesh.node_sets.items())))
+    if mesh.cell_sets:
+        lines.append("  cell sets: " + ", ".join(sorted(mesh.cell_sets)))
+    for name, props in sorted(mesh.sections.items()):
+        lines.append(f"  section {name}: " + ", ".join(f"{k}={v:g}" for k, v in props.items()))
+    if mesh.point_masses:
+        total = sum(pm.mass for pm in mesh.point_masses)
+        lines.append(f"  {len(mesh.point_masses)} point masses, {total:.6g} kg in total")
+    if mesh.rigid_links:
+        lines.append(f"  {len(mesh.rigid_links)} rigid links (RBE2)")
+    return "\n".join(lines)
+
+
+def run(args) -> int:
+    """Run ``flexpipe info``."""
+    path = Path(args.body)
+    if path.suffix == ".npz":
+        from flexpipe.cli_reduce import run_info
+
+        return run_info(args)
+    from flexpipe.mesh import read_mesh
+
+    print(mesh_text(read_mesh(path, args.scale)))
+    return 0

@@ -1,0 +1,24 @@
+"""``flexpipe info`` on a mesh: the counts it prints are those of the file itself."""
+
+import re
+from pathlib import Path
+
+from flexpipe.cli import main
+
+BRACKET = Path(__file__).resolve().parents[1] / "meshes" / "bracket.bdf"
+
+
+def test_info_mesh_counts_match_the_deck(capsys):
+    text = BRACKET.read_text()
+    n_grid = len(re.findall(r"^GRID", text, flags=re.M))
+    n_quad = len(re.findall(r"^CQUAD4", text, flags=re.M))
+    assert main(["info", str(BRACKET)]) in (0, None)
+    out = capsys.readouterr().out
+    assert f"{n_grid} nodes" in out
+    assert re.search(rf"quad\s+{n_quad} elements", out)
+
+
+def test_info_missing_body_is_a_one_line_error(capsys, tmp_path):
+    assert main(["info", str(tmp_path / "nope.npz")]) == 2
+    err = capsys.readouterr().err
+    assert "nope.npz" in err and "Traceback" not in err
