@@ -21,8 +21,10 @@ def add_arguments(p) -> None:
 def mesh_text(mesh) -> str:
     """Human-readable summary of a :class:`~flexpipe.mesh.Mesh`."""
     lo, hi = mesh.points.min(axis=0), mesh.points.max(axis=0)
-    lines = [f"{mesh.source}: {mesh.n_nodes} nodes, bounding box "
-             f"{tuple(round(float(v), 4) for v in lo)} .. {tuple(round(float(v), 4) for v in hi)} m"]
+    def fmt(v):
+        return tuple(round(float(c), 4) for c in v)
+
+    lines = [f"{mesh.source}: {mesh.n_nodes} nodes, bounding box {fmt(lo)} .. {fmt(hi)} m"]
     for b in mesh.blocks:
         lines.append(f"  {b.type:<10} {len(b):>9} elements")
     if mesh.node_sets:
