@@ -29,6 +29,11 @@ def _timed(fn):
     return out, time.perf_counter() - w0
 
 
+def runs_rigid_short(car, road, prep):
+    """The rigid car over the full body's validation interval."""
+    return simulate(car, road=road, speed=SPEED, t_end=T_FULL, body="rigid", prepared=prep)
+
+
 def run() -> dict:
     """Run the benchmark; returns a flat dict of figures."""
     car = load_car(DEFAULT_CAR)
@@ -70,6 +75,11 @@ def run() -> dict:
                 out[f"{body}_short_cpu_s"] = round(short[body].cpu_time, 3)
             d = compare(short["full"], short["flexible"], ["hub_fl_z"], t_from=0.3)["hub_fl_z"]
             out["hub_fl_z_full_vs_flexible_rel_rms"] = round(d["rel_rms_diff"], 5)
+            out["hub_fl_z_full_vs_flexible_rel_rms_dynamic"] = round(d["rel_rms_diff_dynamic"], 5)
+            dr = compare(short["full"], runs_rigid_short(car, road, p_rigid), ["hub_fl_z"],
+                         t_from=0.3)["hub_fl_z"]
+            out["hub_fl_z_full_vs_rigid_rel_rms"] = round(dr["rel_rms_diff"], 5)
+            out["hub_fl_z_full_vs_rigid_rel_rms_dynamic"] = round(dr["rel_rms_diff_dynamic"], 5)
             out["hub_fl_z_full_vs_flexible_peak_N"] = round(d["peak_diff"], 2)
             out["cpu_speedup_flexible_over_full"] = round(
                 short["full"].cpu_time / short["flexible"].cpu_time, 2)

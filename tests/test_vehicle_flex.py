@@ -7,6 +7,7 @@ reduction check; plus the cache behaviour and the hardpoint/mass input errors.
 
 from __future__ import annotations
 
+import re
 import time
 from pathlib import Path
 
@@ -74,7 +75,7 @@ def _write_bdf(path: Path):
     return RHO * A * L.sum()
 
 
-def _car_text(mesh: Path, wheel_z=(0.30, 0.30)) -> str:
+def _car_text(mesh: Path, wheel_z=(0.35, 0.35)) -> str:
     """The sedan's corners, steering and drive on the frame body."""
     text = SEDAN.read_text()
     body_end = text.index("# Corners:")
@@ -108,8 +109,10 @@ spread_radius_m = 0.5
     rest = rest.replace("hardpoint_m = [-2.75, 0.55, 0.65]", "hardpoint_m = [-2.7, 0.55, 0.4]")
     rest = rest.replace("hardpoint_m = [-2.75, -0.55, 0.65]", "hardpoint_m = [-2.7, -0.55, 0.4]")
     rest = rest.replace("wheel_center_m = [-2.75,", "wheel_center_m = [-2.7,")
-    rest = rest.replace("0.775, 0.2986]", f"0.775, {wheel_z[0]:.5f}]")
-    rest = rest.replace("0.775, 0.3014]", f"0.775, {wheel_z[1]:.5f}]")
+    rest = re.sub(r"(wheel_center_m = \[0\.0, -?0\.775, )[0-9.]+\]",
+                  lambda m: f"{m.group(1)}{wheel_z[0]:.5f}]", rest)
+    rest = re.sub(r"(wheel_center_m = \[-2\.7, -?0\.775, )[0-9.]+\]",
+                  lambda m: f"{m.group(1)}{wheel_z[1]:.5f}]", rest)
     return head + rest
 
 

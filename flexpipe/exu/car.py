@@ -3,21 +3,27 @@
 Model (per corner ``fl, fr, rl, rr``)
 -------------------------------------
 * Chassis: ``ObjectFFRFreducedOrder`` (flexible/full body, via
-  :func:`flexpipe.exu.body.add_flexible_body`) or ``ObjectRigidBody`` with the same mass
-  properties; one 6-DOF marker at each suspension hardpoint.
-* Wheel carrier (upright + wheel as one rigid body of the unsprung mass) joined to the
-  chassis hardpoint marker by a ``GenericJoint`` that leaves the translation along the
-  chassis z axis free (prismatic suspension travel).  Steered corners also leave the
-  rotation about that axis free and hold it with a torsional spring-damper whose offset is
-  the steering angle (the steering system's compliance).
+  :func:`flexpipe.exu.body.add_flexible_body`, started in its static deflection on the
+  springs) or ``ObjectRigidBody`` with the same mass properties; a 6-DOF marker at each
+  suspension hardpoint.
+* Wheel carrier (upright + wheel as one rigid body of the unsprung mass).  Prismatic
+  suspension travel along the chassis z axis: a ``GenericJoint`` holds the carrier's
+  x, y translation at the hardpoint marker (forces into the flexible structure there),
+  a second ``GenericJoint`` holds its orientation relative to the chassis frame (the
+  moments take the path of a real suspension's lower arms into the body as a whole, not
+  through the strut top).  Steered corners leave the rotation about z free and hold it
+  with a torsional spring-damper (the steering compliance) whose offset is the angle.
 * Wheel spin: one rotational coordinate (``Node1D`` + ``ObjectRotationalMass1D``) per
   wheel carrying the spin inertia.
-* Suspension forces (spring with preload, dual-rate damper, bump and rebound stops,
-  anti-roll bars), tyre forces and moments, drive and brake torques are **explicit per
-  step**: a PreStepUserFunction reads the state once, a vectorized callback computes the
-  loads, which stay constant over the step (``LoadForceVector``, ``LoadTorqueVector``,
-  ``LoadCoordinate``).  The implicit solver only sees the bodies, constraints and linear
-  connectors, without Python callbacks in its Newton loop.
+* Tyre vertical stiffness: its linear part is an implicit ``CartesianSpringDamper`` from
+  the ground to the wheel centre (z only), its zero moved with the road each step; this
+  keeps the stiffest coupling of the car inside the implicit integrator.
+* Everything else - spring with preload, dual-rate damper, bump and rebound stops,
+  anti-roll bars, the rest of the tyre force and moment (Magic Formula, nonlinear
+  vertical part, damping), drive and brake torques - is **explicit per step**: a
+  PreStepUserFunction reads the state once, a vectorized callback computes the loads,
+  which stay constant over the step (``LoadForceVector``, ``LoadTorqueVector``,
+  ``LoadCoordinate``).  The implicit solver sees no Python callbacks in its Newton loop.
 """
 
 from __future__ import annotations
@@ -59,7 +65,8 @@ class CarState:
 class CarLoads:
     """Loads for one step."""
 
-    suspension: np.ndarray  # (4,) along the chassis z axis at the hardpoint
+    suspension: np.ndarray  # (4,) explicit part, along the chassis z axis at the hardpoint
+    damper_c: np.ndarray  # (4,) damping coefficient of the implicit damper for the step
     tire_force: np.ndarray  # (4, 3) global, on the wheel carrier at the wheel centre
     tire_moment: np.ndarray  # (4, 3) global, non-spin part on the carrier
     spin_torque: np.ndarray  # (4,) about the spin axis, on the wheel spin coordinate
@@ -83,7 +90,11 @@ class CarBuild:
     m_unsprung: np.ndarray = None
     J_unsprung: np.ndarray = None  # (4, 3, 3)
     spin_inertia: np.ndarray = None
+    spring_k: np.ndarray = None  # (4,) suspension spring rate (implicit connector), N/m
+    spring_preload: np.ndarray = None  # (4,) spring force at the design position, N
+    damper_c: np.ndarray = None  # (4,) initial damping of the implicit connector, N s/m
     tire_k: np.ndarray = None  # (4,) linear vertical tyre stiffness kept implicit, N/m
+    tire_c: np.ndarray = None  # (4,) vertical tyre damping kept implicit, N s/m
     tire_r0: np.ndarray = None  # (4,) unloaded radius, m
     steered: np.ndarray = None  # (4,) bool
     steer_stiffness: float = 2.0e4  # N m / rad, steering system at the road wheel
@@ -152,6 +163,7 @@ class CarSystem:
         m_ground = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground,
                                                         localPosition=[0.0, 0.0, 0.0]))
         self.tire_spring = []
+        self.susp_spring = []
         self.spin_node, self.load_body, self.load_carrier = [], [], []
         self.load_tire_f, self.load_tire_m, self.load_spin = [], [], []
         self.travel0 = np.zeros(4)
@@ -195,11 +207,18 @@ class CarSystem:
             mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
                                                      nodeNumber=n_s))
             m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
+            # spring (with preload) and damper, implicit; the damping coefficient is set per
+            # step (dual rate: jounce or rebound), stops and anti-roll bars come explicitly
+            self.susp_spring.append(mbs.AddObject(eii.ObjectConnectorSpringDamper(
+                markerNumbers=[load_at[i], m_slide], referenceLength=float(H[2] - W[2]),
+                stiffness=float(spec.spring_k[i]), damping=float(spec.damper_c[i]),
+                force=-float(spec.spring_preload[i]),
+                visualization=eii.VObjectConnectorSpringDamper(show=False))))
             # linear part of the vertical tyre spring, implicit (its offset follows the road
             # under the wheel each step); the tyre model supplies the rest explicitly
             self.tire_spring.append(mbs.AddObject(eii.ObjectConnectorCartesianSpringDamper(
                 markerNumbers=[m_ground, m_center], stiffness=[0.0, 0.0, float(spec.tire_k[i])],
-                damping=[0.0, 0.0, 0.0],
+                damping=[0.0, 0.0, float(spec.tire_c[i]) if spec.tire_c is not None else 0.0],
                 offset=[0.0, 0.0, float((p0 + R0 @ W)[2])],
                 visualization=eii.VObjectConnectorCartesianSpringDamper(show=False))))
             self.load_body.append(mbs.AddLoad(eii.LoadForceVector(
@@ -290,6 +309,7 @@ class CarSystem:
                 mbs.SetObjectParameter(self.torsion[i], "offset", float(loads.steer[i]))
             mbs.SetObjectParameter(self.tire_spring[i], "offset",
                                    [0.0, 0.0, float(loads.tire_ref_z[i])])
+            mbs.SetObjectParameter(self.susp_spring[i], "damping", float(loads.damper_c[i]))
 
     # ------------------------------------------------------------------ time loop
     def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.7,

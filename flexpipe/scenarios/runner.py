@@ -68,6 +68,7 @@ def _summary_diffs(diff: dict) -> dict:
         key = name.removeprefix("hub_")
         out[key] = {"rms_diff_N": round(d["rms_diff"], 3), "peak_diff_N": round(d["peak_diff"], 3),
                     "rel_rms_diff": round(d["rel_rms_diff"], 6),
+                    "rel_rms_diff_dynamic": round(d["rel_rms_diff_dynamic"], 6),
                     "rms_rigid_N": round(d["rms_a"], 3), "rms_flexible_N": round(d["rms_b"], 3)}
     return out
 
@@ -130,8 +131,10 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)
         summary["hub_force_difference_rigid_vs_flexible"] = _summary_diffs(diff)
         summary["hub_force_difference_note"] = (
-            "rigid minus flexible, after the first 0.5 s; rel_rms_diff = rms_diff / rms_rigid; "
-            "hub force = force the corner applies to the body at its hardpoint, body axes")
+            "rigid minus flexible, after the first 0.5 s; rel_rms_diff = rms_diff / rms_rigid "
+            "(static load included), rel_rms_diff_dynamic = rms_diff / std_rigid (fluctuating "
+            "part); hub force = force the corner applies to the body at its hardpoint, body "
+            "axes")
     fb = [r for r in results.values() if r.body != "rigid"]
     if fb:
         info = fb[0].info
@@ -144,7 +147,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             b: round(float(np.nanmax(np.abs(r["lateral_error"][r.t >= 1.0]))), 4)
             if np.any(r.t >= 1.0) else None for b, r in results.items()}
     if "hub_force_fl" in plots:
-        plot_title = f"Vertical force on the front-left wheel hub ({title})"
+        plot_title = f"Vertical force on the front-left wheel hub\n{title}"
         files.append(P.hub_force(results, out / "hub_force_fl.png", title=plot_title).name)
     if "trajectory" in plots and path is not None:
         files.append(P.trajectory(results, path, out / "trajectory.png").name)

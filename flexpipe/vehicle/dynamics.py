@@ -27,7 +27,8 @@ import numpy as np
 
 from flexpipe.vehicle.spec import CORNERS
 
-#: sign that turns the GenericJoint's ForceLocal into the force on the body (see tests)
+#: sign that turns the GenericJoint's ForceLocal into the force on the body (checked against
+#: the wheel carriers' Newton law, which gives the hub force after the first step)
 JOINT_FORCE_SIGN = 1.0
 
 
@@ -91,7 +92,7 @@ class CarController:
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_every=5, body_com=None, track=None,
-                 tire_k=None, preview_time=0.3):
+                 tire_k=None, tire_c=None, preview_time=0.3):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -107,6 +108,8 @@ class CarController:
         self.wheel_acc = wheel_acc
         self.gvec = np.array([0.0, 0.0, -float(gravity)])
         self.tire_k = np.zeros(4) if tire_k is None else np.asarray(tire_k, dtype=float)
+        self.tire_c = np.zeros(4) if tire_c is None else np.asarray(tire_c, dtype=float)
+        self.road_lead = 1.0  # fraction of the step the road height is taken ahead
         self.preview_time = float(preview_time)
         self.r0 = np.array([t.unloaded_radius for t in tires])
         self._prev_tire = None
@@ -250,23 +253,33 @@ class CarController:
         spin_torque = T + Ms
         carrier_moment = M - (Ms + T)[:, None] * s_axis
 
-        # suspension
+        # suspension: spring (with preload) and damper are implicit connectors; the damping
+        # coefficient for this step follows the sign of the jounce rate; the stops, the
+        # anti-roll bars (and any difference) come explicitly
         Fs = self.c.force(st.jounce, st.jounce_rate)
+        c_step = np.where(st.jounce_rate > 0.0, self.c.c_jounce, self.c.c_rebound)
+        Fs_implicit = self.c.preload + self.c.k * st.jounce + c_step * st.jounce_rate
 
-        # the implicit linear tyre spring pushes k (z_ref - z) up; the explicit load is the
-        # tyre model's force minus that spring's force in the current state
-        z_ref = h_road + self.r0
-        F_lin = self.tire_k * (z_ref - st.wheel_p[:, 2])
+        # the implicit linear tyre spring-damper pushes k (z_ref - z) - c z_dot up; the
+        # explicit load is the tyre model's force minus that spring's force now.  Over the
+        # step the spring's zero is the road where the wheel will be at the end of the step
+        # (the implicit integrator balances forces there), so the road input is not
+        # delayed by the explicit coupling
+        F_lin = self.tire_k * (h_road + self.r0 - st.wheel_p[:, 2]) \
+            - self.tire_c * st.wheel_v[:, 2]
         F_explicit = F.copy()
         F_explicit[:, 2] -= F_lin
+        ahead = st.wheel_p + self.road_lead * self.h * st.wheel_v
+        z_ref = np.asarray(self.road.height(ahead[:, 0], ahead[:, 1]), dtype=float) + self.r0
 
         from flexpipe.exu.car import CarLoads
 
-        loads = CarLoads(suspension=Fs, tire_force=F_explicit, tire_moment=carrier_moment,
-                         spin_torque=spin_torque, steer=steer, tire_ref_z=z_ref)
+        loads = CarLoads(suspension=Fs - Fs_implicit, damper_c=c_step, tire_force=F_explicit,
+                         tire_moment=carrier_moment, spin_torque=spin_torque, steer=steer,
+                         tire_ref_z=z_ref)
         if self.step_no % self.output_every == 0:
             self._record(st, Fs, Fw, v, roll, pitch, yaw)
-        self._prev_tire = F
+        self._prev_tire = (F_explicit, z_ref)
         self.step_no += 1
         return loads
 
@@ -286,9 +299,13 @@ class CarController:
             # Newton's law of each wheel carrier under the loads of the step just taken:
             # what the corner applies to the body = tyre force + weight - m a
             a = self.wheel_acc()
-            hub_g = self._prev_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
+            F_expl, z_ref = self._prev_tire  # the tyre force the carrier felt over the step
+            F_tire = F_expl.copy()
+            F_tire[:, 2] += self.tire_k * (z_ref - st.wheel_p[:, 2]) \
+                - self.tire_c * st.wheel_v[:, 2]
+            hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
             hub = np.einsum("nji,nj->ni", st.mount_R, hub_g)
-        # centre-of-mass lateral acceleration from the velocity history
+        # lateral acceleration of the body origin from its velocity history
         if self._prev_v is None:
             ay = 0.0
         else:

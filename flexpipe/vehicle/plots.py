@@ -41,7 +41,7 @@ def hub_force(results: dict, path, *, corner: str = "fl", component: str = "z",
     ax.set_xlabel("time [s]")
     ax.set_ylabel(f"{'vertical' if component == 'z' else component} hub force "
                   f"{corner.upper()} [kN]")
-    ax.set_title(title or f"Force on the {corner.upper()} wheel hub")
+    ax.set_title(title or f"Force on the {corner.upper()} wheel hub", fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend()
     fig.tight_layout()

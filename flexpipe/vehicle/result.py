@@ -114,9 +114,11 @@ def compare(a: Result, b: Result, channels=None, *, t_from: float = 0.0) -> dict
     Returns
     -------
     dict
-        ``{channel: {"rms_a", "rms_b", "rms_diff", "peak_diff", "rel_rms_diff"}}`` where
-        ``rms_diff`` is the RMS of ``a - b``, ``peak_diff`` its largest magnitude, and
-        ``rel_rms_diff = rms_diff / rms_a``.
+        ``{channel: {"rms_a", "rms_b", "std_a", "rms_diff", "peak_diff", "rel_rms_diff",
+        "rel_rms_diff_dynamic"}}`` where ``rms_diff`` is the RMS of ``a - b``,
+        ``peak_diff`` its largest magnitude, ``rel_rms_diff = rms_diff / rms_a`` (relative
+        to the whole signal, static load included) and ``rel_rms_diff_dynamic = rms_diff /
+        std_a`` (relative to the fluctuating part of ``a``).
     """
     if not isinstance(a, Result) or not isinstance(b, Result):
         raise InputError("compare needs two flexpipe Result objects")
@@ -130,8 +132,10 @@ def compare(a: Result, b: Result, channels=None, *, t_from: float = 0.0) -> dict
         if d.size == 0:
             raise InputError(f"no common samples after t = {t_from} s to compare")
         rms_a = float(np.sqrt(np.mean(xa[sel] ** 2)))
+        std_a = float(np.std(xa[sel]))
         rms_d = float(np.sqrt(np.mean(d**2)))
         out[name] = {"rms_a": rms_a, "rms_b": float(np.sqrt(np.mean(xb[sel] ** 2))),
-                     "rms_diff": rms_d, "peak_diff": float(np.abs(d).max()),
-                     "rel_rms_diff": rms_d / rms_a if rms_a > 0 else float("nan")}
+                     "std_a": std_a, "rms_diff": rms_d, "peak_diff": float(np.abs(d).max()),
+                     "rel_rms_diff": rms_d / rms_a if rms_a > 0 else float("nan"),
+                     "rel_rms_diff_dynamic": rms_d / std_a if std_a > 0 else float("nan")}
     return out

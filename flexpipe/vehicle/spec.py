@@ -6,27 +6,39 @@ y left, z up) in the *design position*: the car at rest on flat ground under its
 weight, with ``z = 0`` the ground plane.  ``wheel_center_m`` is where each wheel centre sits
 in that position; the spring preload that holds it there is computed unless given.
 
-File layout (see ``cars/sedan.toml`` for a complete example)::
+File layout (see ``cars/sedan.toml`` for a complete example; defaults in brackets)::
 
-    [car]            name
-    [body]           mesh, mesh_scale, mesh_units, material, shell_thickness_m,
-                     damping_ratio, interface_radius_m      (flexible body from a mesh)
-    [body.rigid]     mass_kg, cg_m, inertia_kg_m2  (rigid mass properties, instead of
-                     or in addition to a mesh)
-    [[body.mass]]    name, mass_kg, position_m, spread_radius_m
+    [car]            name [file stem]
+    [body]           mesh (file read by flexpipe.read_mesh), mesh_scale [1], mesh_units
+                     [SI], material (library name or {E_Pa, nu, rho_kg_per_m3}; replaces
+                     every material of the mesh), shell_thickness_m (for shells without
+                     one), damping_ratio [0.02] (elastic modes below 100 Hz),
+                     interface_radius_m [0.12] (mesh nodes tied to each hardpoint)
+    [body.rigid]     mass_kg, cg_m, inertia_kg_m2 (about the cg; 3 or 6 values):
+                     rigid mass properties, for a car without mesh
+    [[body.mass]]    name, mass_kg, position_m, spread_radius_m [0.3]
                      (non-structural masses: powertrain, trim, occupants)
     [body.points]    name = [x, y, z]  (named output points for accelerations)
     [corners.fl|fr|rl|rr]
-                     hardpoint_m, wheel_center_m, spring_rate_N_per_m, spring_preload_N,
-                     damper_N_s_per_m | damper_jounce_N_s_per_m + damper_rebound_N_s_per_m,
-                     bump_stop_clearance_m, bump_stop_rate_N_per_m,
-                     rebound_stop_clearance_m, rebound_stop_rate_N_per_m,
-                     unsprung_mass_kg, unsprung_inertia_kg_m2, wheel_radius_m,
-                     wheel_spin_inertia_kg_m2, tire
-    [steering]       axle, ratio, max_wheel_angle_deg, max_rate_deg_per_s
-    [anti_roll_bar.front|rear]  rate_N_per_m
-    [drive]          layout, max_drive_torque_N_m, max_brake_torque_N_m, brake_front_share,
-                     front_share
+                     hardpoint_m, wheel_center_m, spring_rate_N_per_m, spring_preload_N
+                     [computed: holds the design position], damper_N_s_per_m (linear) or
+                     damper_jounce_N_s_per_m + damper_rebound_N_s_per_m (dual rate),
+                     bump_stop_clearance_m [0.08], bump_stop_rate_N_per_m [2e5],
+                     rebound_stop_clearance_m [0.10], rebound_stop_rate_N_per_m [2e5],
+                     unsprung_mass_kg, unsprung_inertia_kg_m2, wheel_radius_m (must match
+                     the tyre file), wheel_spin_inertia_kg_m2, tire (.tir file)
+    [steering]       axle ["front"], ratio, max_wheel_angle_deg [35],
+                     max_rate_deg_per_s [60] (road-wheel angle rate)
+    [anti_roll_bar.front|rear]  rate_N_per_m (force at each wheel per metre of left-right
+                     travel difference)
+    [drive]          layout ("front" | "rear" | "all"), max_drive_torque_N_m [3000],
+                     max_brake_torque_N_m [6000], brake_front_share [0.65], front_share
+                     [0.5] (all-wheel drive)
+
+Checks made when the body is built (they need the mesh or the tyre): hardpoints within
+0.05 m of the structure, non-structural masses surrounded by body nodes, wheel radius equal
+to the tyre's UNLOADED_RADIUS, wheel-centre heights equal to the tyre's static loaded
+radius under the static wheel loads (so the design position is the ride height at rest).
 """
 
 from __future__ import annotations

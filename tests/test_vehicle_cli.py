@@ -1,0 +1,53 @@
+"""``flexpipe run`` and the scenario runner: outputs, summary content, exit codes."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from flexpipe.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+SEDAN = ROOT / "cars" / "sedan.toml"
+
+
+@pytest.fixture(autouse=True)
+def _cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("FLEXPIPE_CACHE", str(tmp_path / "cache"))
+
+
+def test_run_writes_csv_plots_and_summary(tmp_path, capsys):
+    out = tmp_path / "run"
+    code = main(["run", str(SEDAN), "--speed", "36", "--t-end", "0.4", "--body", "rigid",
+                 "--path", str(ROOT / "paths" / "slalom_18m.toml"), "--out", str(out)])
+    assert code == 0
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["hub_force_fl.png", "rigid.csv", "summary.json", "trajectory.png"]
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == 0
+    assert summary["simulated_time_s"] == pytest.approx(0.4)
+    assert summary["speed_kmh"] == pytest.approx(36.0)
+    assert set(summary["cpu_time_s"]) == {"rigid"}
+    data = np.genfromtxt(out / "rigid.csv", delimiter=",", names=True)
+    assert data["speed"][0] == pytest.approx(10.0, rel=1e-4)  # 36 km/h
+    assert (out / "hub_force_fl.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "rigid body" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--speed", "50", "--body", "stiff"], ["--body", "rigid, flexible, full"]),
+    (["--speed", "50", "--road", "nowhere.crg"], ["nowhere.crg"]),
+    (["--speed", "-5"], ["--speed"]),
+])
+def test_run_reports_bad_input_in_one_line(tmp_path, capsys, args, words):
+    out = tmp_path / "bad"
+    code = main(["run", str(SEDAN), "--t-end", "0.2", "--out", str(out), *args])
+    assert code == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("flexpipe run: error:") and "\n" not in err
+    for w in words:
+        assert w in err
+    assert not out.exists() or not any(out.iterdir())  # nothing half-written
