@@ -51,3 +51,54 @@ def write_text_atomic(path, text: str) -> None:
     """Write ``text`` to ``path`` atomically."""
     with atomic_path(path) as tmp:
         tmp.write_text(text)
+
+
+def read_numeric_rows(path, *, kind: str, columns: str):
+    """Read a small numeric table (comma or whitespace separated) with line numbers.
+
+    ``#`` lines and blank lines are skipped; one non-numeric header line is allowed
+    before the data.  Errors name the file and line.
+
+    Parameters
+    ----------
+    path : str or Path
+    kind : str
+        What the file is, for messages ("road", "path").
+    columns : str
+        What a data line holds, for messages (e.g. "'x, y' in metres").
+
+    Returns
+    -------
+    rows : list of (line_number, text, values)
+        ``values`` is a list of finite floats.
+    """
+    import math
+
+    from flexpipe.errors import InputError
+
+    path = Path(path)
+    try:
+        lines = path.read_text().splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"cannot read the {kind} file ({exc})", file=path) from None
+    rows = []
+    header_allowed = True
+    for k, raw in enumerate(lines, start=1):
+        text = raw.strip()
+        if not text or text.startswith("#"):
+            continue
+        fields = [f.strip() for f in (text.split(",") if "," in text else text.split())]
+        try:
+            values = [float(f) for f in fields]
+        except ValueError:
+            if header_allowed:
+                header_allowed = False
+                continue
+            raise InputError(f"not a number in {text!r}; expected {columns}",
+                             file=path, line=k) from None
+        header_allowed = False
+        if not all(math.isfinite(v) for v in values):
+            raise InputError(f"non-finite value in {text!r}; every value must be a finite "
+                             "number", file=path, line=k)
+        rows.append((k, text, values))
+    return rows

@@ -35,6 +35,7 @@ import pathlib
 
 import numpy as np
 
+from flexpipe._io import read_numeric_rows
 from flexpipe.driver.path import Path
 from flexpipe.errors import InputError
 from flexpipe.roads._tables import TableReader, read_toml
@@ -190,30 +191,10 @@ def iso3888_1(*, vehicle_width: float = 1.8, lead_in: float = 50.0, lead_out: fl
 def read_path_csv(path) -> Path:
     """Read ``x, y`` points (m) from a CSV file (``#`` comments, optional header line)."""
     path = pathlib.Path(path)
-    try:
-        lines = path.read_text().splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read the path file ({exc})", file=path) from None
     xs, ys, where = [], [], []
-    header_allowed = True
-    for k, raw in enumerate(lines, start=1):
-        text = raw.strip()
-        if not text or text.startswith("#"):
-            continue
-        fields = [f.strip() for f in (text.split(",") if "," in text else text.split())]
-        try:
-            values = [float(f) for f in fields]
-        except ValueError:
-            if header_allowed:
-                header_allowed = False
-                continue
-            raise InputError(f"not a number in {text!r}; expected 'x, y' in metres",
-                             file=path, line=k) from None
-        header_allowed = False
+    for k, _text, values in read_numeric_rows(path, kind="path", columns="'x, y' in metres"):
         if len(values) != 2:
             raise InputError(f"{len(values)} columns; expected 2 (x, y)", file=path, line=k)
-        if not all(math.isfinite(v) for v in values):
-            raise InputError(f"non-finite value in {text!r}", file=path, line=k)
         xs.append(values[0])
         ys.append(values[1])
         where.append(k)

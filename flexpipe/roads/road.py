@@ -25,7 +25,7 @@ import pathlib
 
 import numpy as np
 
-from flexpipe._io import atomic_path
+from flexpipe._io import atomic_path, read_numeric_rows
 from flexpipe.errors import InputError
 
 _SCALARS = (float, int, np.float64, np.float32, np.int64)
@@ -326,27 +326,10 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         columns, a distance that does not increase strictly, fewer than two samples.
     """
     path = pathlib.Path(path)
-    try:
-        lines = path.read_text().splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"cannot read the road file ({exc})", file=path) from None
     rows, line_no = [], []
     ncol = None
-    header_allowed = True
-    for k, raw in enumerate(lines, start=1):
-        text = raw.strip()
-        if not text or text.startswith("#"):
-            continue
-        fields = [f.strip() for f in (text.split(",") if "," in text else text.split())]
-        try:
-            values = [float(f) for f in fields]
-        except ValueError:
-            if header_allowed:
-                header_allowed = False
-                continue
-            raise InputError(f"not a number in {text!r}; expected 'distance, left, right' "
-                             "in metres", file=path, line=k) from None
-        header_allowed = False
+    columns = "'distance, left, right' in metres"
+    for k, _text, values in read_numeric_rows(path, kind="road", columns=columns):
         if ncol is None:
             ncol = len(values)
             if ncol not in (2, 3):
@@ -355,9 +338,6 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         elif len(values) != ncol:
             raise InputError(f"{len(values)} columns where earlier lines have {ncol}",
                              file=path, line=k)
-        if not all(math.isfinite(v) for v in values):
-            raise InputError(f"non-finite value in {text!r}; every distance and height "
-                             "must be a finite number", file=path, line=k)
         if rows and values[0] <= rows[-1][0]:
             raise InputError(f"distance {values[0]:g} m does not increase (previous sample "
                              f"{rows[-1][0]:g} m on line {line_no[-1]}); distances must "
