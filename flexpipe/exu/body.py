@@ -62,6 +62,10 @@ class BodyHandle:
         Hardpoints in body coordinates.
     mesh_node_count : int
         Number of real mesh nodes (marker points come after them).
+    hardpoint_nodes : mapping of str to int
+        Interface name -> index of the body's extra mesh point that sits on the hardpoint
+        and follows the rigid spider (flexible bodies only), for one-point markers such
+        as ``MarkerSuperElementPosition``.
     """
 
     kind: str
@@ -74,6 +78,7 @@ class BodyHandle:
     gravity_load: object = None
     interface_points: Mapping[str, np.ndarray] = field(default_factory=dict)
     mesh_node_count: int = 0
+    hardpoint_nodes: Mapping[str, int] = field(default_factory=dict)
 
     def _marker(self, name):
         if name not in self.markers:
@@ -244,7 +249,8 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
                       markers=markers, node_marker=m_node, body_marker=m_body,
                       gravity_load=load,
                       interface_points={i.name: i.point.copy() for i in body.interfaces},
-                      mesh_node_count=n)
+                      mesh_node_count=n,
+                      hardpoint_nodes={i.name: n + 7 * k for k, i in enumerate(body.interfaces)})
 
 
 def add_rigid_twin(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=None,

@@ -134,11 +134,9 @@ class CarSystem:
             if spec.modal_q0 is not None:
                 mbs.SetNodeParameter(h.modal_node, "initialCoordinates",
                                      [float(v) for v in spec.modal_q0])
-            # loads need only a position: a one-point marker on the hardpoint's marker point
-            # (the first of the 7 points add_flexible_body appends per interface)
-            order = [itf.name for itf in spec.flexbody.interfaces]
+            # loads need only a position: a one-point marker on the hardpoint's point
             load_at = [mbs.AddMarker(eii.MarkerSuperElementPosition(
-                bodyNumber=h.object, meshNodeNumbers=[h.mesh_node_count + 7 * order.index(n)],
+                bodyNumber=h.object, meshNodeNumbers=[h.hardpoint_nodes[n]],
                 weightingFactors=[1.0])) for n in names]
         else:
             J = spec.inertia_origin

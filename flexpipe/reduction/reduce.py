@@ -80,7 +80,8 @@ def _damping_ratios(damping, f_hz, n_rigid):
 
 def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int | None = None,
            f_max: float | None = None, *, damping=None, check: bool = False,
-           backend: str | None = None, tol: float | None = None) -> FlexBody:
+           backend: str | None = None, tol: float | None = None,
+           cb_factor: float = CB_FACTOR) -> FlexBody:
     """Reduce an FE model to a :class:`FlexBody` by component mode synthesis.
 
     Parameters
@@ -104,6 +105,9 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     tol : float, optional
         Shift-invert residual tolerance of the eigensolver (default 1e-6: eigenvalues
         to ~1e-12).
+    cb_factor : float
+        Craig-Bampton with ``f_max``: keep fixed-interface modes up to
+        ``cb_factor * f_max`` (default :data:`CB_FACTOR`).
 
     Returns
     -------
@@ -111,10 +115,11 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     """
     with dense_single_threaded():
         return _reduce(fe, interfaces, method, n_modes, f_max, damping=damping, check=check,
-                       backend=backend, tol=tol)
+                       backend=backend, tol=tol, cb_factor=cb_factor)
 
 
-def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, tol):
+def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, tol,
+            cb_factor):
     t0 = time.perf_counter()
     timings = {}
     if not isinstance(fe, FEModel):
@@ -138,7 +143,7 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     t = time.perf_counter()
     try:
         Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
-                                   timings=timings)
+                                   timings=timings, cb_factor=cb_factor)
     except ModelError as exc:
         raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
     timings["basis_s"] = time.perf_counter() - t
@@ -192,10 +197,10 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     )
 
 
-def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings):
+def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_factor):
     """Ritz basis of ``method`` on the interface system, and the rigid count if known."""
     if method == "craig-bampton":
-        f_cb = None if f_max is None else CB_FACTOR * f_max
+        f_cb = None if f_max is None else cb_factor * f_max
         Psi, _ = cms._craig_bampton(system.M, system.K, b, n_modes, f_max=f_cb,
                                     backend=backend, tol=tol, timings=timings)
         return Psi, None

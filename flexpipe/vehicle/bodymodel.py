@@ -244,9 +244,7 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
 
     Craig-Bampton keeps the fixed-interface modes up to ``cutoff`` (default
     ``CB_RATIO * f_max``) plus the 24 static constraint modes of the four hardpoints,
-    which keep the static flexibility of every higher mode exactly.  (``reduce`` takes a
-    band and applies its own factor ``CB_FACTOR``; the band passed to it is scaled so the
-    cut-off is the car's.)
+    which keep the static flexibility of every higher mode exactly.
 
     Returns
     -------
@@ -254,14 +252,10 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     info : dict
         ``cached`` (bool), ``seconds`` (reduction time, 0 when cached), ``path``.
     """
-    import importlib
-
     from flexpipe.flexbody import load_body
     from flexpipe.reduction import reduce
 
-    reduce_mod = importlib.import_module("flexpipe.reduction.reduce")
     cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
-    factor = getattr(reduce_mod, "CB_FACTOR", 1.0) if method == "craig-bampton" else 1.0
     key = {"cutoff": round(cutoff, 6), "m": method}
     path = cache_dir() / f"body-{_digest(car, key)}.npz"
     if cache and path.is_file():
@@ -273,7 +267,11 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     log(f"reducing body {car.body.mesh.name} ({method}, modes to {cutoff:.0f} Hz) ...")
     fe = body_fe(car)
     itf = corner_interfaces(car, fe.nodes)
-    body = reduce(fe, itf, method=method, f_max=cutoff / factor, damping=modal_damping(car))
+    if method == "craig-bampton":  # the car's own cut-off for fixed-interface modes
+        body = reduce(fe, itf, method=method, f_max=f_max, cb_factor=cutoff / f_max,
+                      damping=modal_damping(car))
+    else:
+        body = reduce(fe, itf, method=method, f_max=cutoff, damping=modal_damping(car))
     seconds = time.perf_counter() - t0
     log(f"  {fe.n_dof} DOF -> {body.n_elastic} elastic modes "
         f"({body.frequencies_hz[body.n_rigid]:.1f}-{body.frequencies_hz[-1]:.0f} Hz) "
