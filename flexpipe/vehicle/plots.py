@@ -32,18 +32,41 @@ def _save(plt, fig, path) -> Path:
 
 def hub_force(results: dict, path, *, corner: str = "fl", component: str = "z",
               title: str = "") -> Path:
-    """Hub force of one corner for several runs on one plot (paper Fig. 7 / Fig. 9)."""
-    plt, fig = _figure()
-    ax = fig.add_subplot(111)
+    """Hub force of one corner for several runs on one plot (paper Fig. 7 / Fig. 9).
+
+    With a ``rigid`` run and others, a lower panel shows each run minus the rigid one,
+    so that the effect of body flexibility is visible even where the curves overlap.
+    """
     name = f"hub_{corner}_{component}"
+    others = [k for k in results if k != "rigid"]
+    with_diff = "rigid" in results and bool(others)
+    plt, fig = _figure((9, 6) if with_diff else (9, 4.5))
+    if with_diff:
+        ax, ax_d = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [2.2, 1]})
+    else:
+        ax = fig.add_subplot(111)
     for label, r in results.items():
         ax.plot(r.t, r[name] / 1e3, label=f"{label} body", **STYLE.get(label, {}))
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel(f"{'vertical' if component == 'z' else component} hub force "
-                  f"{corner.upper()} [kN]")
+    label_y = (f"{'vertical' if component == 'z' else component} hub force "
+               f"{corner.upper()} [kN]")
+    ax.set_ylabel(label_y)
     ax.set_title(title or f"Force on the {corner.upper()} wheel hub", fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend()
+    last = ax
+    if with_diff:
+        rigid = results["rigid"]
+        for label in others:
+            r = results[label]
+            diff = r[name] - np.interp(r.t, rigid.t, rigid[name])
+            ax_d.plot(r.t, diff / 1e3, label=f"{label} - rigid",
+                      **{**STYLE.get(label, {}), "ls": "-"})
+        ax_d.axhline(0.0, color="k", lw=0.6)
+        ax_d.set_ylabel("difference [kN]")
+        ax_d.grid(True, alpha=0.3)
+        ax_d.legend(loc="upper right")
+        last = ax_d
+    last.set_xlabel("time [s]")
     fig.tight_layout()
     return _save(plt, fig, path)
 
