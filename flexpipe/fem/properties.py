@@ -1,0 +1,164 @@
+"""Per-cell properties: beam sections, and resolution of material, shell thickness and
+beam section for every cell of a block.
+
+Explicit arguments come first (a single value, or a mapping from cell-set name to value
+with an optional ``"default"``), then the properties the mesh file carried
+(:attr:`~flexpipe.mesh.Mesh.sections`, e.g. Nastran PSHELL/PBAR/MAT1).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from flexpipe.errors import InputError, MeshError
+from flexpipe.fem.material import Material
+from flexpipe.mesh.mesh import Mesh
+
+
+@dataclass(frozen=True)
+class BeamSection:
+    """Cross-section of a 3D beam, SI units.
+
+    Parameters
+    ----------
+    A : float
+        Area, m^2.
+    Iy, Iz : float
+        Second moments of area about the local y and z axes, m^4.
+    J : float
+        Torsion constant, m^4.
+    orientation : (3,) array_like, optional
+        Vector lying in the local x-y plane (Nastran CBAR convention); local
+        z = x cross v.  Default: global z, or global y for beams parallel to z.
+    """
+
+    A: float
+    Iy: float
+    Iz: float
+    J: float
+    orientation: tuple[float, float, float] | None = None
+
+    @classmethod
+    def rectangle(cls, b: float, h: float, **kw) -> BeamSection:
+        """Solid rectangle: width ``b`` along local z, height ``h`` along local y."""
+        a, c = max(b, h), min(b, h)
+        J = a * c**3 * (1 / 3 - 0.21 * c / a * (1 - c**4 / (12 * a**4)))
+        # Iy = int z^2 dA (z spans the width b), Iz = int y^2 dA (y spans the height h)
+        return cls(b * h, h * b**3 / 12, b * h**3 / 12, J, **kw)
+
+    @classmethod
+    def circle(cls, d: float, **kw) -> BeamSection:
+        """Solid circle of diameter ``d``."""
+        I = np.pi * d**4 / 64
+        return cls(np.pi * d**2 / 4, I, I, 2 * I, **kw)
+
+    @classmethod
+    def box(cls, b: float, h: float, t: float, **kw) -> BeamSection:
+        """Thin-walled rectangular tube, outer width ``b`` (local z) x height ``h`` (local
+        y), wall ``t`` (Bredt torsion)."""
+        bi, hi = b - 2 * t, h - 2 * t
+        Iy = (h * b**3 - hi * bi**3) / 12
+        Iz = (b * h**3 - bi * hi**3) / 12
+        bm, hm = b - t, h - t
+        J = 4 * (bm * hm) ** 2 * t / (2 * (bm + hm))
+        return cls(b * h - bi * hi, Iy, Iz, J, **kw)
+
+
+def per_cell(mesh: Mesh, bi: int, n: int, value, name: str, section_keys):
+    """Resolve a property (scalar, object or set->value mapping) to one value per cell."""
+    out = [None] * n
+    if value is not None and not isinstance(value, Mapping):
+        return [value] * n
+    mapping = dict(value or {})
+    default = mapping.pop("default", None)
+    if default is not None:
+        out = [default] * n
+    # properties stored with the mesh (e.g. PSHELL/MAT1), by cell set
+    for set_name, props in mesh.sections.items():
+        if set_name in mapping or bi not in mesh.cell_sets.get(set_name, {}):
+            continue
+        val = section_keys(props)
+        if val is not None:
+            for c in mesh.cell_sets[set_name][bi]:
+                if out[c] is None or default is None:
+                    out[c] = val
+    for set_name, val in mapping.items():
+        if set_name not in mesh.cell_sets:
+            raise InputError(
+                f"{name} given for cell set '{set_name}', which the mesh does not have; "
+                f"valid: {sorted(mesh.cell_sets)} or 'default'", file=mesh.source or None,
+                key=set_name,
+            )
+        for c in mesh.cell_sets[set_name].get(bi, ()):
+            out[c] = val
+    return out
+
+
+def material_arrays(mesh, bi, block, material):
+    def from_section(p):
+        if all(k in p for k in ("E", "nu", "rho")):
+            return Material(float(p["E"]), float(p["nu"]), float(p["rho"]))
+        return None
+
+    mats = per_cell(mesh, bi, len(block), material, "material", from_section)
+    if len(set(map(id, mats))) == 1 and mats[0] is not None:  # one material: no loops
+        m = mats[0]
+        return tuple(np.full(len(mats), float(v)) for v in (m.E, m.nu, m.rho))
+    missing = [i for i, m in enumerate(mats) if m is None]
+    if missing:
+        ids = block.ids[missing[:10]].tolist()
+        raise MeshError(
+            f"no material for {len(missing)} {block.type} element(s), e.g. ids {ids}; pass "
+            "material=Material(E, nu, rho) or a mapping {cell_set: Material, 'default': ...}",
+            file=mesh.source or None,
+        )
+    E = np.array([m.E for m in mats])
+    nu = np.array([m.nu for m in mats])
+    rho = np.array([m.rho for m in mats])
+    return E, nu, rho
+
+
+def shell_props(mesh, bi, block, thickness):
+    def from_section(p):
+        return float(p["thickness"]) if "thickness" in p else None
+
+    t = per_cell(mesh, bi, len(block), thickness, "thickness", from_section)
+    bad = [i for i, v in enumerate(t) if v is None or not np.isfinite(v) or v <= 0]
+    if bad:
+        ids = block.ids[bad[:10]].tolist()
+        raise MeshError(
+            f"{len(bad)} shell ({block.type}) element(s) have no positive thickness, e.g. ids "
+            f"{ids}; pass thickness=<m> (or a mapping by cell set) or give PSHELL T",
+            file=mesh.source or None,
+        )
+    return {"thickness": np.asarray(t, dtype=float)}
+
+
+def beam_props(mesh, bi, block, beam_section):
+    def from_section(p):
+        if all(k in p for k in ("A", "Iy", "Iz", "J")):
+            return BeamSection(float(p["A"]), float(p["Iy"]), float(p["Iz"]), float(p["J"]))
+        return None
+
+    secs = per_cell(mesh, bi, len(block), beam_section, "beam_section", from_section)
+    bad = [i for i, s in enumerate(secs) if s is None]
+    if bad:
+        ids = block.ids[bad[:10]].tolist()
+        raise MeshError(
+            f"{len(bad)} beam element(s) have no cross-section, e.g. ids {ids}; pass "
+            "beam_section=BeamSection(A, Iy, Iz, J) (or a mapping by cell set) or give PBAR",
+            file=mesh.source or None,
+        )
+    props = {k: np.array([getattr(s, k) for s in secs], dtype=float)
+             for k in ("A", "Iy", "Iz", "J")}
+    orient = np.array([s.orientation if s.orientation is not None else (np.nan,) * 3
+                       for s in secs], dtype=float)
+    if "orientation" in block.data:
+        given = np.asarray(block.data["orientation"], dtype=float)
+        use = np.isfinite(given).all(axis=1) & np.isnan(orient).any(axis=1)
+        orient[use] = given[use]
+    props["orientation"] = orient
+    return props
