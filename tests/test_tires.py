@@ -13,10 +13,10 @@ from __future__ import annotations
 import math
 import re
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _tirdata import REFERENCE_TIRS, SAMPLE, raw_numbers
 
 from flexpipe.errors import InputError
 from flexpipe.tires import (
@@ -30,19 +30,6 @@ from flexpipe.tires import (
     relax_slip_velocity,
     tire_from_file,
 )
-
-REPO = Path(__file__).resolve().parents[1]
-SAMPLE = REPO / "tires" / "sedan_205_55R16.tir"
-REFERENCE_TIRS = ["Sedan_Pac02Tire.tir", "mf_185_80R14.tir", "HMMWV_Pac02Tire.tir"]
-
-
-def raw_numbers(path: Path) -> dict[str, float]:
-    out = {}
-    for line in path.read_text(errors="replace").splitlines():
-        m = re.match(r"\s*([A-Z][A-Z0-9_]*)\s*=\s*([-+0-9.eE]+)\s*(\$.*)?$", line.strip())
-        if m:
-            out[m.group(1)] = float(m.group(2))
-    return out
 
 
 def load(path):

@@ -14,15 +14,10 @@ import math
 
 import numpy as np
 
+from flexpipe._arrays import readonly_floats
 from flexpipe.errors import InputError
 
 _SCALARS = (float, int, np.float64, np.float32)
-
-
-def _readonly(a) -> np.ndarray:
-    a = np.array(a, dtype=float, copy=True)
-    a.setflags(write=False)
-    return a
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -109,8 +104,9 @@ class Path:
         else:
             heading = np.full(2, seg_heading[0])
             curvature = np.zeros(2)
-        return cls(x=_readonly(x), y=_readonly(y), s=_readonly(s), heading=_readonly(heading),
-                   curvature=_readonly(curvature), name=name, source=source)
+        x, y, s, heading, curvature = map(readonly_floats, (x, y, s, heading, curvature))
+        return cls(x=x, y=y, s=s, heading=heading, curvature=curvature, name=name,
+                   source=source)
 
     # ------------------------------------------------------------------ queries
     @property

@@ -25,16 +25,11 @@ import pathlib
 
 import numpy as np
 
+from flexpipe._arrays import readonly_floats
 from flexpipe._io import atomic_path, read_numeric_rows
 from flexpipe.errors import InputError
 
 _SCALARS = (float, int, np.float64, np.float32, np.int64)
-
-
-def _as_readonly(a) -> np.ndarray:
-    a = np.array(a, dtype=float, copy=True)
-    a.setflags(write=False)
-    return a
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -74,9 +69,9 @@ class Road:
 
     def __post_init__(self):
         where = self.source or self.name or None
-        x = _as_readonly(self.x)
-        left = _as_readonly(self.left)
-        right = _as_readonly(self.right)
+        x = readonly_floats(self.x)
+        left = readonly_floats(self.left)
+        right = readonly_floats(self.right)
         if x.ndim != 1 or x.size < 2:
             raise InputError(f"a road needs at least 2 distance samples, got shape {x.shape}",
                              file=where)
@@ -103,8 +98,8 @@ class Road:
             raise InputError("give both the lateral grid y and the height grid z, or neither",
                              file=where)
         if self.y is not None:
-            y = _as_readonly(self.y)
-            z = _as_readonly(self.z)
+            y = readonly_floats(self.y)
+            z = readonly_floats(self.z)
             if y.ndim != 1 or y.size < 2 or np.any(np.diff(y) <= 0.0):
                 raise InputError("lateral grid y must hold >= 2 strictly increasing values",
                                  file=where)
@@ -118,7 +113,7 @@ class Road:
             object.__setattr__(self, "y", y)
             object.__setattr__(self, "z", z)
         if self.heading is not None:
-            heading = _as_readonly(self.heading)
+            heading = readonly_floats(self.heading)
             if heading.shape != x.shape or not np.all(np.isfinite(heading)):
                 raise InputError("heading must be finite with one value per distance sample",
                                  file=where)
