@@ -1,5 +1,6 @@
 """Mesh import/export: literal decks parsed to their literal values, Gmsh v2/v4 files
-written by meshio, round trips through every format (same M and K), and bad input."""
+written by meshio, round trips through every format (same M and K); bad input is in
+test_mesh_errors.py."""
 
 from __future__ import annotations
 
@@ -9,13 +10,14 @@ import warnings
 import meshio
 import numpy as np
 import pytest
+from _meshdata import STEEL
+from _meshdata import deck as _deck
+from _meshdata import write as _write
 
-from flexpipe.errors import MeshError, ModelError
-from flexpipe.fem import BeamSection, Material, assemble
+from flexpipe.errors import MeshError
+from flexpipe.fem import BeamSection, assemble
 from flexpipe.mesh import CellBlock, Mesh, MeshWarning, PointMass, RigidLink, read_mesh, write_mesh
 from flexpipe.mesh.generate import box, plate
-
-STEEL = Material(210e9, 0.3, 7850.0)
 
 
 def _row(*fields):
@@ -76,10 +78,6 @@ XYZ = {1: (0, 0, 0), 2: (1, 0, 0), 3: (1, 1, 0), 4: (0, 1, 0), 5: (0, 0, 1), 6: 
        13: (1, 0, 2), 14: (0.5, 0.5, 0.5)}
 
 
-def _write(tmp_path, name, text):
-    p = tmp_path / name
-    p.write_text(text)
-    return p
 
 
 def _by_type(mesh):
@@ -397,129 +395,6 @@ def test_surface_stl_as_shell_mid_surface(tmp_path):
 # ---------------------------------------------------------------- bad input
 
 
-def _deck(*cards):
-    return "BEGIN BULK\n" + "\n".join(cards) + "\nENDDATA\n"
-
-
-TET = ["GRID,1,,0.,0.,0.", "GRID,2,,1.,0.,0.", "GRID,3,,0.,1.,0.", "GRID,4,,0.,0.,1."]
-
-
-def test_missing_and_unknown_files(tmp_path):
-    with pytest.raises(MeshError, match="nope.bdf: file not found"):
-        read_mesh(tmp_path / "nope.bdf")
-    with pytest.raises(MeshError, match=r"x\.xyz.*unknown mesh format '\.xyz'"):
-        read_mesh(_write(tmp_path, "x.xyz", "1 2 3"))
-
-
-def test_corrupt_gmsh_names_file(tmp_path):
-    p = _write(tmp_path, "broken.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0\n")
-    with pytest.raises(MeshError, match="broken.msh: cannot read as gmsh"):
-        read_mesh(p)
-    p = tmp_path / "garbage.inp"
-    p.write_bytes(b"\x00\x01\x02binary")
-    with pytest.raises(MeshError, match="garbage.inp"):
-        read_mesh(p)
-
-
-def test_unsupported_element_types(tmp_path):
-    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0.5, 0, 0], [0.5, 0.5, 0], [0, 0.5, 0]])
-    p = tmp_path / "t6.msh"
-    meshio.write(p, meshio.Mesh(pts, [("triangle6", np.arange(6)[None])]), file_format="gmsh22",
-                 binary=False)
-    with pytest.raises(MeshError, match=r"t6.msh: element type 'triangle6'.*supported: .*quad"):
-        read_mesh(p)
-    bdf = _write(tmp_path, "penta.bdf", _deck(*TET, "GRID,5,,1.,1.,0.", "GRID,6,,1.,1.,1.",
-                                              "CPENTA,77,1,1,2,3,4,5,6"))
-    with pytest.raises(MeshError, match=r"penta.bdf, line 8: CPENTA 77: CPENTA is not supported"):
-        read_mesh(bdf)
-    inp = _write(tmp_path, "c20.inp", "*NODE\n1,0,0,0\n*ELEMENT, TYPE=C3D20\n1,1\n")
-    with pytest.raises(MeshError, match=r"c20.inp, line 3: element type 'C3D20' is not supported"):
-        read_mesh(inp)
-
-
-def test_nan_coordinates_name_node(tmp_path):
-    pts = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, np.nan]])
-    p = tmp_path / "nan.vtu"
-    meshio.write(p, meshio.Mesh(pts, [("tetra", np.array([[0, 1, 2, 3]]))]))
-    with pytest.raises(MeshError, match=r"nan.vtu: 1 node\(s\) have non-finite.*node ids \[4\]"):
-        read_mesh(p)
-
-
-def test_unreferenced_nodes_error_and_prune(tmp_path):
-    p = _write(tmp_path, "orphan.bdf", _deck(*TET, "GRID,99,,5.,5.,5.", "CTETRA,1,1,1,2,3,4"))
-    with pytest.raises(MeshError, match=r"orphan.bdf: 1 node.*ids \[99\].*prune_unreferenced=True"):
-        read_mesh(p)
-    mesh = read_mesh(p, prune_unreferenced=True)
-    assert mesh.node_ids.tolist() == [1, 2, 3, 4]
-    assert mesh.node_ids[mesh.blocks[0].cells].tolist() == [[1, 2, 3, 4]]
-
-
-def test_duplicate_grid_names_both_lines(tmp_path):
-    p = _write(tmp_path, "dup.bdf", _deck(*TET, "GRID,3,,0.,2.,0.", "CTETRA,1,1,1,2,3,4"))
-    with pytest.raises(MeshError, match=r"dup.bdf, line 6: GRID id 3 is defined twice: GRID at "
-                                        r"dup.bdf line 4 and GRID at dup.bdf line 6"):
-        read_mesh(p)
-
-
-def test_undefined_grid_and_bad_number(tmp_path):
-    p = _write(tmp_path, "undef.bdf", _deck(*TET, "CTETRA,8,1,1,2,3,42"))
-    with pytest.raises(MeshError, match=r"undef.bdf, line 6: CTETRA 8: .*GRID 42"):
-        read_mesh(p)
-    p = _write(tmp_path, "num.bdf", _deck("GRID,1,,0.,abc,0."))
-    with pytest.raises(MeshError, match=r"num.bdf, line 2: GRID 1: field X2 = 'abc' is not a"):
-        read_mesh(p)
-
-
-def test_coincident_nodes_warn_with_ids(tmp_path):
-    p = _write(tmp_path, "twin.bdf", _deck(*TET, "GRID,5,,1.,0.,0.", "GRID,6,,0.,1.,0.",
-                                           "GRID,7,,0.,0.,1.", "CTETRA,1,1,1,2,3,4",
-                                           "CTETRA,2,1,1,5,6,7"))
-    with pytest.warns(MeshWarning, match=r"twin.bdf: 3 pair\(s\) .*2 & 5"):
-        read_mesh(p)
-
-
-def test_inverted_tet_names_element(tmp_path):
-    p = _write(tmp_path, "inv.bdf", _deck(*TET, "CTETRA,31,1,1,3,2,4"))
-    with pytest.raises(MeshError, match=r"inv.bdf: 1 tetra element\(s\) are inverted.*ids \[31\]"):
-        read_mesh(p)
-
-
-def test_disconnected_parts_from_file(tmp_path):
-    far = ["GRID,5,,5.,0.,0.", "GRID,6,,6.,0.,0.", "GRID,7,,5.,1.,0.", "GRID,8,,5.,0.,1."]
-    p = _write(tmp_path, "two.bdf", _deck(*TET, *far, "CTETRA,1,1,1,2,3,4",
-                                          "CTETRA,2,1,5,6,7,8"))
-    mesh = read_mesh(p)
-    with pytest.raises(ModelError, match=r"two.bdf.*2 disconnected parts.*node [15] "):
-        assemble(mesh, STEEL)
-
-
-def test_shells_without_thickness_name_file_and_elements(tmp_path):
-    p = tmp_path / "plate.msh"
-    write_mesh(plate(0.2, 0.1, 2, 1), p)
-    mesh = read_mesh(p)
-    with pytest.raises(MeshError, match=r"plate.msh: 2 shell \(quad\) element\(s\) have no "
-                                        r"positive thickness, e.g. ids \[1, 2\]"):
-        assemble(mesh, STEEL)
-    assert assemble(read_mesh(p, thickness=0.001), STEEL).total_mass == pytest.approx(
-        7850.0 * 0.2 * 0.1 * 0.001, rel=1e-12)
-
-
-def test_writes_are_atomic(tmp_path, monkeypatch):
-    body = box(0.2, 0.1, 0.1, 1, 1, 1)
-    p = tmp_path / "a.msh"
-    p.write_text("old")
-
-    def crash(path, *args, **kwargs):  # a writer that dies half-way through
-        with open(path, "w") as fh:
-            fh.write("$MeshFormat\n")
-        raise RuntimeError("disk full")
-
-    monkeypatch.setattr(meshio, "write", crash)
-    with pytest.raises(RuntimeError, match="disk full"):
-        write_mesh(body, p)
-    assert p.read_text() == "old" and sorted(x.name for x in tmp_path.iterdir()) == ["a.msh"]
-
-
 def test_sample_meshes_match_their_files():
     from pathlib import Path
 
@@ -588,76 +463,3 @@ def test_nastran_cbeam_pbeam_and_deck_suffixes(tmp_path, ext):
     assert (s["A"], s["Iz"], s["Iy"], s["J"]) == (6e-4, 2e-8, 4.5e-8, 3e-8)
     assert (s["E"], s["nu"], s["rho"]) == (2.1e11, 0.3, 7850.0)
     assert assemble(mesh).total_mass == pytest.approx(7850.0 * 6e-4 * 1.0, rel=1e-12)
-
-
-@pytest.mark.parametrize("cards,match", [
-    (["GRID,5,,1.,1.,0.", "CTETRA,31,1,1,2,3,5"],                      # four nodes in z = 0
-     r"flat.bdf: 1 tetra element\(s\) have zero volume.*ids \[31\]"),
-    (["CTETRA,32,1,1,2,3,3"], r"flat.bdf: 1 tetra element\(s\) use the same node twice.*\[32\]"),
-    (["GRID,5,,2.,0.,0.", "GRID,6,,3.,0.,0.", "CQUAD4,33,1,1,2,5,6"],  # collinear nodes
-     r"flat.bdf: 1 quad shell element\(s\) have zero area.*ids \[33\]"),
-])
-def test_zero_volume_and_collapsed_elements_name_the_element(tmp_path, cards, match):
-    p = _write(tmp_path, "flat.bdf", _deck(*TET, *cards))
-    with pytest.raises(MeshError, match=match):
-        read_mesh(p, prune_unreferenced=True)
-
-
-@pytest.mark.parametrize("name,content", [
-    ("broken.vtu", b"<VTKFile type='UnstructuredGrid'"),        # truncated XML
-    ("empty.msh", b""),
-    ("binary.msh", b"$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00$EndMeshFormat\n$Nodes\n\x07"),
-    ("short.vtk", b"# vtk DataFile Version 4.2\nx\nASCII\nDATASET UNSTRUCTURED_GRID\n"
-                  b"POINTS 3 double\n0 0\n"),
-    ("junk.stl", b"\x00" * 30),
-    ("junk.obj", b"v 0 0\nf 1 2 3\n"),
-])
-def test_corrupt_files_raise_mesh_error_naming_the_file(tmp_path, name, content):
-    """meshio ends the process (sys.exit) on some unreadable files: flexpipe must turn
-    that into a MeshError naming the file instead."""
-    p = tmp_path / name
-    p.write_bytes(content)
-    with pytest.raises(MeshError, match=rf"{name.replace('.', r'[.]')}: "):
-        read_mesh(p, thickness=0.001)
-
-
-def test_unreadable_gmsh_says_why(tmp_path, capfd):
-    with pytest.raises(MeshError, match=r"empty.msh: cannot read as gmsh file \(the file is "
-                                        r"empty\)"):
-        read_mesh(_write(tmp_path, "empty.msh", ""))
-    with pytest.raises(MeshError, match=r"v9.msh: .*mesh format in .*got 9.9"):
-        read_mesh(_write(tmp_path, "v9.msh", "$MeshFormat\n9.9 0 8\n$EndMeshFormat\n"))
-    out, err = capfd.readouterr()
-    assert out == "" and err == ""                 # meshio's printout does not leak
-
-
-def test_mode_shape_files_are_written_atomically(tmp_path, monkeypatch):
-    from flexpipe.mesh.vtu import write_modes
-
-    body = box(0.2, 0.1, 0.1, 1, 1, 1)
-    shapes = np.ones((3 * body.n_nodes, 2))
-    p = tmp_path / "modes.vtu"
-    write_modes(p, body, [1.0, 2.0], shapes)
-    before = p.read_bytes()
-
-    def crash(path, *args, **kwargs):  # the VTU writer dies half-way through
-        with open(path, "w") as fh:
-            fh.write("<VTKFile")
-        raise RuntimeError("disk full")
-
-    monkeypatch.setattr(meshio, "write", crash)
-    with pytest.raises(RuntimeError, match="disk full"):
-        write_modes(p, body, [3.0, 4.0], 2 * shapes, per_mode_dir=tmp_path)
-    assert p.read_bytes() == before
-    assert sorted(x.name for x in tmp_path.iterdir()) == ["modes.vtu"]
-
-
-def test_abaqus_duplicate_node_and_element_ids_name_both_lines(tmp_path):
-    nodes = "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n"
-    p = _write(tmp_path, "dupn.inp", nodes + "3,0,2,0\n*ELEMENT, TYPE=C3D4\n1,1,2,3,4\n")
-    with pytest.raises(MeshError, match=r"dupn.inp, line 6: node 3 is defined twice: "
-                                        r"dupn.inp line 4 and dupn.inp line 6"):
-        read_mesh(p)
-    p = _write(tmp_path, "dupe.inp", nodes + "*ELEMENT, TYPE=C3D4\n7,1,2,3,4\n7,1,2,4,3\n")
-    with pytest.raises(MeshError, match=r"dupe.inp, line 8: element 7 is defined twice"):
-        read_mesh(p)
