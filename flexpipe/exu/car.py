@@ -168,9 +168,6 @@ class CarSystem:
         self.mount = mount
         self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
         self.wheel_node, self.wheel_obj, self.joint, self.torsion = [], [], [], []
-        ground = mbs.AddObject(eii.ObjectGround())
-        m_ground = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground,
-                                                        localPosition=[0.0, 0.0, 0.0]))
         self.tire_elem = []
         self.susp_spring = []
         self.spin_node, self.load_body, self.load_carrier = [], [], []
