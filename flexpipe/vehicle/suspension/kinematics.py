@@ -307,7 +307,10 @@ def solve_compliance(lk: Linkage, travel: float, *, rack: float = 0.0, patch_for
             K[:, i] = (kkt(lk.step(pose, e), lam)[0] - kkt(lk.step(pose, -e), lam)[0]) / (2 * h)
         m = len(g)
         A = np.block([[K, Gm.T], [Gm, np.zeros((m, m))]])
-        dz = np.linalg.lstsq(A, -res, rcond=None)[0]
+        try:
+            dz = np.linalg.solve(A, -res)
+        except np.linalg.LinAlgError:
+            dz = np.linalg.lstsq(A, -res, rcond=1e-14)[0]
         scale = min(1.0, 0.05 / max(np.max(np.abs(dz[:nx])), 1e-300))
         pose = lk.step(pose, dz[:nx] * scale)
         lam = lam + dz[nx:] * scale
