@@ -291,8 +291,11 @@ class Rack:
         return self.column_stiffness * (2 * np.pi / self.travel_per_rev) ** 2
 
     def wheel_angle_rad(self, rack_travel: float) -> float:
-        """Steering-wheel angle (rad) for ``rack_travel`` (m)."""
-        return 2 * np.pi * rack_travel / self.travel_per_rev
+        """Steering-wheel angle (rad, left turn > 0) for ``rack_travel`` (m, toward +y).
+
+        The rack moves to the right (-y) in a left turn: pinion and rack behind the axle,
+        as in the sample and in Chrono's sedan."""
+        return -2 * np.pi * rack_travel / self.travel_per_rev
 
 
 @dataclass(frozen=True)
