@@ -11,11 +11,17 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from _suspdata import (
+    SEDAN_FRONT,
+    SEDAN_REAR,
+    SEDAN_REAR_UNIVERSAL,
+    chrono_double_wishbone,
+    chrono_macpherson,
+    chrono_multi_link,
+)
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from _suspdata import (SEDAN_FRONT, SEDAN_REAR, SEDAN_REAR_UNIVERSAL, chrono_double_wishbone,
-                       chrono_macpherson, chrono_multi_link)
 from flexpipe.vehicle.suspension.kinematics import Linkage, solve_kinematics
 from flexpipe.vehicle.suspension.metrics import characteristics
 from flexpipe.vehicle.suspension.model import mirror_corner

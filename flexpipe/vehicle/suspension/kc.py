@@ -19,8 +19,7 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from flexpipe.vehicle.suspension.kinematics import (Linkage, solve_compliance,
-                                                    solve_kinematics)
+from flexpipe.vehicle.suspension.kinematics import Linkage, solve_compliance, solve_kinematics
 from flexpipe.vehicle.suspension.metrics import MIRROR, characteristics, rates, roll_centre
 from flexpipe.vehicle.suspension.model import Axle
 from flexpipe.vehicle.suspension.statics import spring_preload, wheel_rate, with_preload

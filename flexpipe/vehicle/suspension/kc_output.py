@@ -46,12 +46,12 @@ def plot_travel(res, path: Path) -> None:
     for name in res.summary:
         par = res.tables[f"{name}_parallel_travel"]
         s = par["wheel travel [mm]"]
-        for ax, q in zip(axs.flat, PANELS):
+        for ax, q in zip(axs.flat, PANELS, strict=True):
             ax.plot(par[q], s, label=f"{name}")
             if q == "roll centre height [mm]":
                 opp = res.tables[f"{name}_opposite_travel"]
                 ax.plot(opp[q], opp["wheel travel [mm]"], ls="--", label=f"{name}, opposite")
-    for ax, q in zip(axs.flat, PANELS):
+    for ax, q in zip(axs.flat, PANELS, strict=True):
         ax.set_xlabel(q)
         ax.set_ylabel("wheel travel [mm]")
         ax.grid(True, alpha=0.3)

@@ -230,7 +230,7 @@ class Linkage:
 
 
 def _newton(lk: Linkage, pose, residual, n_unknown, *, tol=1e-11, max_iter=60, what=""):
-    for it in range(max_iter):
+    for _ in range(max_iter):
         r, J, names = residual(pose)
         if np.max(np.abs(r)) < tol:
             return pose
@@ -293,7 +293,7 @@ def solve_compliance(lk: Linkage, travel: float, *, rack: float = 0.0, patch_for
         return F, g, Gm, names
 
     h = 1e-7
-    for it in range(80):
+    for _ in range(80):
         F, g, Gm, names = kkt(pose, lam)
         res = np.concatenate([F, g])
         if np.max(np.abs(g)) < 1e-11 and np.max(np.abs(F)) < 1e-7 * (1 + np.max(np.abs(lam))):

@@ -13,8 +13,14 @@ import numpy as np
 
 from flexpipe.errors import InputError, ModelError
 from flexpipe.vehicle._toml import Table, parse
-from flexpipe.vehicle.suspension.model import (BUSHING_DOFS, AntiRollBar, Axle, Bushing, Rack,
-                                                mirror_corner)
+from flexpipe.vehicle.suspension.model import (
+    BUSHING_DOFS,
+    AntiRollBar,
+    Axle,
+    Bushing,
+    Rack,
+    mirror_corner,
+)
 from flexpipe.vehicle.suspension.templates import HARDPOINTS, PARTS, SPRING_PART, build
 
 AXLES = ("front", "rear")
@@ -200,21 +206,27 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
                                   (f"{axle}_arb_bushing_r", hp["arb_bushing"] * [1, -1, 1])))
         at.finish()
     t.finish()
-    _check_assembles(left, t)
+    _check_assembles(left, t, hpt)
     return Axle(axle, left, mirror_corner(left, axle[0] + "r"), anti_roll_bar=arb,
                 wheel_load=wheel_load)
 
 
-def _check_assembles(corner, t: Table) -> None:
+def _check_assembles(corner, t: Table, hpt: Table) -> None:
+    """Every constraint must hold at the design position; name the one that does not."""
     from flexpipe.vehicle.suspension.kinematics import Linkage
 
     lk = Linkage(corner)
     g, _, names = lk.constraints(lk.design())
     g[-1] -= corner.wheel_center[2]
     k = int(np.argmax(np.abs(g)))
-    if abs(g[k]) > 1e-6:
-        raise t.error("hardpoints_m", f"the linkage does not assemble at the design position: "
-                                      f"{names[k]} has residual {g[k]:.3g} (m or rad)")
+    if abs(g[k]) <= 1e-6:
+        return
+    msg = (f"the linkage does not assemble at the design position: {names[k]} has "
+           f"residual {g[k]:.3g} (m or rad)")
+    if "(universal)" in names[k] and "universal_axes" in t.data:
+        raise t.error("universal_axes", msg + "; the two axes must be perpendicular")
+    joint = names[k].split("'")[1] if "'" in names[k] else None
+    raise hpt.error(joint if joint in hpt.data else None, msg)
 
 
 def load_suspension(path) -> Suspension:

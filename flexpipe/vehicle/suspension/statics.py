@@ -14,8 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from flexpipe.errors import InputError
-from flexpipe.vehicle.suspension.kinematics import (G, Linkage, solve_compliance,
-                                                    solve_kinematics)
+from flexpipe.vehicle.suspension.kinematics import G, Linkage, solve_compliance, solve_kinematics
 from flexpipe.vehicle.suspension.metrics import characteristics, rates
 from flexpipe.vehicle.suspension.model import CornerLinkage
 

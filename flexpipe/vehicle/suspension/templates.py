@@ -15,8 +15,16 @@ from __future__ import annotations
 import numpy as np
 
 from flexpipe.errors import InputError
-from flexpipe.vehicle.suspension.model import (BODY, RACK, Bushing, CornerLinkage,
-                                                ForceElement, Joint, Link, Part)
+from flexpipe.vehicle.suspension.model import (
+    BODY,
+    RACK,
+    Bushing,
+    CornerLinkage,
+    ForceElement,
+    Joint,
+    Link,
+    Part,
+)
 
 #: required and optional hardpoints per template
 HARDPOINTS = {
