@@ -196,3 +196,28 @@ def test_right_corner_is_the_mirror_image():
         cr = characteristics(Linkage(right), solve_kinematics(Linkage(right), s))
         for k in ("camber", "toe", "caster", "kpi"):
             assert cr[k] == pytest.approx(cl[k], abs=1e-9)
+
+
+def test_revolute_joint_equals_spherical_plus_inline_pivot():
+    """The templates pivot arms by a spherical + in-line pair; a revolute joint about the
+    same line must give the same motion."""
+    from dataclasses import replace
+
+    from flexpipe.vehicle.suspension.model import Joint
+
+    left = build("double_wishbone", _hp(SEDAN_FRONT), wheel_radius=0.3, steered=True)
+    joints = []
+    for j in left.joints:
+        if j.kind == "inline":
+            continue
+        if j.kind == "spherical" and "body" in (j.a, j.b):
+            rear = j.name.replace("front", "rear")
+            axis = left.hardpoints[rear] - j.point
+            j = Joint(j.name, "revolute", j.a, j.b, j.point, axis=axis, mount=j.mount)
+        joints.append(j)
+    rev = replace(left, joints=tuple(joints))
+    for s in (-0.07, 0.03, 0.08):
+        a = characteristics(Linkage(left), solve_kinematics(Linkage(left), s))
+        b = characteristics(Linkage(rev), solve_kinematics(Linkage(rev), s))
+        for k in ("camber", "toe", "caster"):
+            assert b[k] == pytest.approx(a[k], abs=1e-9)

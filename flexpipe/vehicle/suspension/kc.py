@@ -240,6 +240,7 @@ def _summary(axle, par, opp, lon, lat, steer) -> dict:
            "bump steer [deg/m]": par["bump steer [deg/m]"][i],
            "roll centre height [mm]": par["roll centre height [mm]"][i],
            "spring motion ratio [-]": par["spring motion ratio [-]"][i],
+           "anti-dive/anti-squat angle [deg]": par["side view angle [deg]"][i],
            "kinematic wheel rate [N/m]": par["kinematic wheel rate [N/m]"][i],
            "wheel rate [N/m]": wheel_rate(_wheel_load_preload(axle, c)),
            "roll stiffness [N m/deg]": opp["roll stiffness [N m/deg]"][

@@ -66,7 +66,9 @@ def rates(lk: Linkage, pose: Pose) -> dict:
         ``spring_mr``/``damper_mr`` (-dL/ds), ``patch`` and ``patch_velocity`` (left
         convention, d/ds of the knuckle point at the contact patch), ``ic_y``/``ic_z``
         front-view instant centre (m), ``side_view_angle`` (deg, of the contact-patch
-        path: atan(-dx/dz), > 0 when the patch moves rearward in bump... see docs),
+        path: atan(dx/dz), > 0 when the patch moves forward in bump, i.e. the side-view
+        swing arm's instant centre lies behind and above it: the anti-dive angle at the
+        front, anti-lift/anti-squat angle at the rear, for forces at the patch),
         ``wheel_center_velocity``, ``part_dz`` (d z_cm / ds per part).
     """
     c = lk.c
