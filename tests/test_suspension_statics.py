@@ -77,3 +77,22 @@ def test_preload_times_mr_is_wheel_load_minus_part_weights():
     # the equilibrium (compliance) solve with that preload and gravity needs the wheel load
     lk = Linkage(with_preload(c, p))
     assert solve_compliance(lk, 0.0, gravity=True).force == pytest.approx(load, rel=1e-8)
+
+
+def test_macpherson_strut_top_bushing_keeps_the_strut_sliding():
+    """A strut-top bushing stiff across the strut and free in rotation must leave the
+    wheel rate at the kinematic k MR^2 (the strut still slides in its tube)."""
+    hp = {"lower_arm_front": (0.22, 0.52, -0.156), "lower_arm_rear": (-0.30, 0.507, -0.137),
+          "lower_arm_outer": (-0.0217, 0.9406, -0.1740), "strut_top": (-0.115, 0.785, 0.579),
+          "strut_lower": (-0.0740, 0.8533, 0.2485), "tie_rod_inner": (-0.30, 0.52, -0.059),
+          "tie_rod_outer": (-0.2374, 0.8950, -0.0161), "spring_upper": (-0.115, 0.785, 0.579),
+          "spring_lower": (-0.0740, 0.8533, 0.2485), "damper_upper": (-0.115, 0.785, 0.579),
+          "damper_lower": (-0.0740, 0.8533, 0.2485), "wheel_center": (-0.04, 1.10, -0.026)}
+    kw = dict(wheel_radius=0.3, forces={"spring": {"rate": K}})
+    rigid = build("macpherson", hp, **kw)
+    lk = Linkage(rigid)
+    mr = rates(lk, solve_kinematics(lk, 0.0))["spring_mr"]
+    assert wheel_rate(rigid) == pytest.approx(K * mr**2, rel=1e-6)
+    bush = Bushing([1e10, 1e10, 1e10, 0.0, 0.0, 0.0])
+    soft = build("macpherson", hp, bushings={"strut_top": bush}, **kw)
+    assert wheel_rate(soft) == pytest.approx(K * mr**2, rel=1e-5)

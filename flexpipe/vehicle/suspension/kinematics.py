@@ -193,8 +193,11 @@ class Linkage:
             if b is None:
                 continue
             part = j.b if j.a == BODY else j.a
-            p, Jp = self.point(pose, part, j.point)
             o = self.idx[part]
+            if j.kind == "inline" and j.a != BODY:
+                Q += self._sliding_bushing(pose, j, o)
+                continue
+            p, Jp = self.point(pose, part, j.point)
             d = np.concatenate([b.frame.T @ (p - j.point), b.frame.T @ rotvec(pose.R[o])])
             f = b.force(d)
             Q += Jp.T @ (b.frame @ f[:3])
@@ -220,6 +223,23 @@ class Linkage:
                 Q[6 * i + 2] -= part.mass * G
         if self.rack_free and rack_stiffness is not None:
             Q[-1] -= rack_stiffness * pose.rack
+        return Q
+
+    def _sliding_bushing(self, pose: Pose, j, o: int) -> np.ndarray:
+        """Bushing of an in-line joint whose line is fixed in the part (strut top mount):
+        it resists the body point's offset from the line and the tilt of the line, not
+        the slide along it or the spin about it."""
+        b = j.bushing
+        u, _ = self.vector(pose, j.a, j.axis)
+        p0, _ = self.point(pose, j.a, j.point)
+        q_world = p0 + ((j.point - p0) @ u) * u       # point of the line nearest the mount
+        q_design = pose.R[o].T @ (q_world - pose.r[o]) + self.cm0[o]
+        q, Jq = self.point(pose, j.a, q_design)
+        perp = np.eye(3) - np.outer(u, u)
+        f = b.force(np.concatenate([b.frame.T @ (perp @ (q - j.point)),
+                                    b.frame.T @ (perp @ rotvec(pose.R[o]))]))
+        Q = Jq.T @ (perp @ (b.frame @ f[:3]))
+        Q[6 * o + 3:6 * o + 6] += perp @ (b.frame @ f[3:])
         return Q
 
     def contact_patch0(self) -> np.ndarray:
