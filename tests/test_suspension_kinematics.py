@@ -221,3 +221,22 @@ def test_revolute_joint_equals_spherical_plus_inline_pivot():
         b = characteristics(Linkage(rev), solve_kinematics(Linkage(rev), s))
         for k in ("camber", "toe", "caster"):
             assert b[k] == pytest.approx(a[k], abs=1e-9)
+
+
+def test_sample_car_file_matches_the_independent_closure():
+    """The sample car file (Chrono's hardpoints + location_m) gives the same curves as the
+    loop closures of the typed, already-placed hardpoints."""
+    from pathlib import Path
+
+    from flexpipe.vehicle.suspension.spec import load_suspension
+
+    susp = load_suspension(Path(__file__).resolve().parents[1] / "cars" / "sedan_linkage.toml")
+    for axle, hp, ref in (("front", SEDAN_FRONT, dw_reference),
+                          ("rear", SEDAN_REAR, ml_reference)):
+        lk = Linkage(susp.axles[axle].left)
+        for s in (-0.08, 0.0, 0.05):
+            ch = characteristics(lk, solve_kinematics(lk, s))
+            w, spin, lo, up = ref(_hp(hp), s)
+            assert np.allclose((ch["camber"], ch["toe"], ch["caster"]),
+                               _reference_angles(spin, lo, up), atol=1e-6)
+            assert np.allclose(ch["wheel_center"], w, atol=1e-7)
