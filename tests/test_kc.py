@@ -83,3 +83,20 @@ def test_api_kc_returns_tables():
     res = fp.kc(SAMPLE, n=3, travel=0.02, axles=["rear"])
     assert set(res.summary) == {"rear"}
     assert res.tables["rear_parallel_travel"]["wheel travel [mm]"].tolist() == [-20, 0, 20]
+
+
+def test_right_corner_compliance_mirrors_the_left():
+    """Mirrored bushings and seats: equal wheel rates, and a lateral patch force on the
+    right corner gives the toe/camber the mirrored force gives on the left."""
+    from flexpipe.vehicle.suspension.kinematics import solve_compliance
+    from flexpipe.vehicle.suspension.metrics import characteristics
+    from flexpipe.vehicle.suspension.statics import wheel_rate
+
+    for axle in load_suspension(SAMPLE).axles.values():
+        assert wheel_rate(axle.right) == pytest.approx(wheel_rate(axle.left), rel=1e-7)
+        out = []
+        for corner, fy in ((axle.left, 1500.0), (axle.right, -1500.0)):
+            lk = Linkage(corner)
+            ch = characteristics(lk, solve_compliance(lk, 0.0, patch_force=(300.0, fy, 0.0)))
+            out.append((ch["toe"], ch["camber"]))
+        assert out[1] == pytest.approx(out[0], abs=1e-9)

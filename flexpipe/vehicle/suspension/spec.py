@@ -203,7 +203,9 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
                           hp["arb_bushing"], hp["arb_arm_end"], hp["drop_link_lower"],
                           SPRING_PART[template],
                           mounts=((f"{axle}_arb_bushing_l", hp["arb_bushing"]),
-                                  (f"{axle}_arb_bushing_r", hp["arb_bushing"] * [1, -1, 1])))
+                                  (f"{axle}_arb_bushing_r", hp["arb_bushing"] * [1, -1, 1])),
+                          bushing_stiffness=(_bushing(at.sub("bushing"))
+                                             if at.has("bushing") else None))
         at.finish()
     t.finish()
     _check_assembles(left, t, hpt)
