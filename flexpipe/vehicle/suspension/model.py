@@ -43,6 +43,8 @@ class Part:
     inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
 
     def __post_init__(self):
+        if not self.mass >= 0:
+            raise ValueError(f"part {self.name!r}: mass must be >= 0, got {self.mass}")
         object.__setattr__(self, "cm", _vec(self.cm))
         object.__setattr__(self, "inertia", np.array(self.inertia, float).reshape(3, 3))
 
@@ -109,6 +111,12 @@ class Joint:
     def __post_init__(self):
         if self.kind not in JOINT_KINDS:
             raise ValueError(f"joint kind {self.kind!r}; valid: {JOINT_KINDS}")
+        if self.kind != "spherical" and self.axis is None:
+            raise ValueError(f"joint {self.name!r}: a {self.kind} joint needs an axis")
+        if self.kind == "universal" and self.axis_b is None:
+            raise ValueError(f"joint {self.name!r}: a universal joint needs axis_b")
+        if BODY in (self.a, self.b) and self.mount is None:
+            raise ValueError(f"joint {self.name!r} to the body needs a mount name")
         object.__setattr__(self, "point", _vec(self.point))
         for k in ("axis", "axis_b"):
             if getattr(self, k) is not None:
