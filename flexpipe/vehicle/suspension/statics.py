@@ -1,10 +1,11 @@
-"""Static corner quantities: spring preload for a wheel load, wheel rate, force compliance.
+"""Static corner quantities: spring preload for a wheel load and wheel rate.
 
 The preload follows from virtual work at the design position: with s the wheel-centre
 travel, MR = -dL/ds of the spring and dz_i/ds of every part's centre of mass,
 ``preload * MR = wheel_load * dz_patch/ds - sum(m_i g dz_i/ds)``.
 The wheel rate is d(rig force)/ds from compliance solves (bushings, compliant links,
 spring, stops), so bushing torsion and compliance enter as they do on a K&C rig.
+Force compliance at the contact patch is in :mod:`flexpipe.vehicle.suspension.kc`.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.vehicle.suspension.kinematics import G, Linkage, solve_compliance, solve_kinematics
-from flexpipe.vehicle.suspension.metrics import characteristics, rates
+from flexpipe.vehicle.suspension.metrics import rates
 from flexpipe.vehicle.suspension.model import CornerLinkage
 
 
@@ -62,22 +63,3 @@ def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4) -
     lk = Linkage(corner)
     f = [solve_compliance(lk, s).force for s in (travel - h, travel + h)]
     return (f[1] - f[0]) / (2 * h)
-
-
-def force_compliance(corner: CornerLinkage, direction: int, forces, *,
-                     rack_stiffness=None) -> list[dict]:
-    """Characteristics under a force at the contact patch along body axis ``direction``
-    (0 longitudinal, 1 lateral; N, positive along +x/+y of the left corner), wheel centre
-    height held at design.  Returns one characteristics dict per force with the rig force."""
-    lk = Linkage(corner)
-    out, pose = [], None
-    sign = 1.0 if (direction != 1 or corner.side > 0) else -1.0
-    for fv in forces:
-        F = np.zeros(3)
-        F[direction] = sign * fv
-        pose = solve_compliance(lk, 0.0, patch_force=F, rack_stiffness=rack_stiffness,
-                                pose=pose)
-        ch = characteristics(lk, pose)
-        ch["force"] = fv
-        out.append(ch)
-    return out
