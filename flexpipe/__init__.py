@@ -28,6 +28,7 @@ _EXPORTS = {
     "simulate": "flexpipe.vehicle",
     "compare": "flexpipe.vehicle",
     "Result": "flexpipe.vehicle",
+    "kc": "flexpipe.vehicle.suspension.kc",
     "FlexpipeError": "flexpipe.errors",
     "InputError": "flexpipe.errors",
     "MeshError": "flexpipe.errors",
