@@ -6,9 +6,11 @@ line of ``$$$$``, followed by the data block.  The parts used here:
 
 * ``$ROAD_CRG``: ``REFERENCE_LINE_START_U / END_U / INCREMENT`` (the distance grid ``u``),
   ``LONG_SECTION_V_RIGHT / LEFT / INCREMENT`` (the lateral grid ``v``, positive left),
-  ``REFERENCE_LINE_START_Z / START_S / END_S / START_B / END_B`` (elevation, slope and
-  banking of the reference line; slope and banking vary linearly from start to end unless
-  given as data channels), ``REFERENCE_LINE_START_PHI`` (heading).
+  ``REFERENCE_LINE_START_X / START_Y / START_PHI`` (plan position and heading of the
+  reference line; ``END_X / END_Y`` close a heading channel's integration),
+  ``REFERENCE_LINE_START_Z / START_S / START_B`` (elevation, slope and banking; without a
+  data channel the start value holds along the whole road, as in OpenCRG, and a different
+  ``END_S`` / ``END_B`` / ``END_PHI`` gives a warning).  Any other key is an error.
 * ``$KD_DEFINITION``: ``#:FMT`` and the channels ``D:long section <i>,m`` (by index, the
   lateral position is ``v_right + (i-1) v_increment``) or ``D:long section at v = <v>,m``
   and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.  ``U:`` lines
@@ -21,7 +23,11 @@ line of ``$$$$``, followed by the data block.  The parts used here:
   ``../shared/reference/roads`` are ``KRBI`` (compact single-precision binary).
 
 The height at ``(u, v)`` is ``z_grid(u, v) + z_ref(u) + b(u) v``, with ``z_ref`` the
-integral of the slope.  NaNs at the lateral borders of a cross section are replaced by the
+integral of the slope (``v`` held at the outermost long section beyond it).  The road is
+placed in the global plane by its reference line (:class:`~flexpipe.roads.refline.ReferenceLine`,
+the OpenCRG ``(x, y) <-> (u, v)`` map); :meth:`Road.height_xy` evaluates it at global
+positions, :meth:`Road.height` at ``(u, v)``.  Heights equal pyopencrg's (tested at 10,000
+random points of a curved, sloped, banked road and of the reference files).  NaNs at the lateral borders of a cross section are replaced by the
 nearest valid value of that cross section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last");
 NaNs between valid values, or cross sections without any valid value, are errors.
 ``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS`` sections are not applied (a warning says so).
@@ -29,6 +35,7 @@ NaNs between valid values, or cross sections without any valid value, are errors
 
 from __future__ import annotations
 
+import difflib
 import math
 import pathlib
 import re
@@ -38,6 +45,7 @@ import numpy as np
 
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
+from flexpipe.roads.refline import ReferenceLine
 from flexpipe.roads.road import Road
 
 _LONG_SECTION = re.compile(r"long\s+section\s+(at\s+v\s*=\s*)?([-+0-9.eEdD]+)\s*,\s*m",
@@ -80,6 +88,15 @@ def _parse_header(lines, path):
     return sections
 
 
+#: Keys of the ``$ROAD_CRG`` section (OpenCRG 1.2); any other key is an error.
+ROAD_CRG_KEYS = tuple(f"REFERENCE_LINE_{k}" for k in (
+    "START_U", "END_U", "INCREMENT", "START_S", "END_S", "START_B", "END_B", "START_X",
+    "START_Y", "END_X", "END_Y", "OFFSET_X", "OFFSET_Y", "START_PHI", "END_PHI", "OFFSET_PHI",
+    "START_Z", "END_Z", "OFFSET_Z", "START_LON", "START_LAT", "END_LON", "END_LAT",
+    "START_ALT", "END_ALT")) + ("LONG_SECTION_V_RIGHT", "LONG_SECTION_V_LEFT",
+                                "LONG_SECTION_V_INCREMENT")
+
+
 def _road_params(section, path):
     params = {}
     for k, body in section["_items"]:
@@ -87,11 +104,24 @@ def _road_params(section, path):
             raise InputError(f"expected 'KEY = value' in $ROAD_CRG, got {body!r}", file=path,
                              line=k)
         key, value = (t.strip() for t in body.split("=", 1))
+        key = key.upper()
+        if key not in ROAD_CRG_KEYS:
+            close = difflib.get_close_matches(key, ROAD_CRG_KEYS, n=2, cutoff=0.7)
+            hint = f" (did you mean {' or '.join(close)}?)" if close else ""
+            raise InputError(f"unknown $ROAD_CRG key {key}{hint}; valid: "
+                             f"{', '.join(ROAD_CRG_KEYS)}", file=path, line=k, key=key)
+        if key in params:
+            raise InputError(f"{key} is given twice (first on line {params[key][1]})",
+                             file=path, line=k, key=key)
         try:
-            params[key.upper()] = (float(value.replace("D", "E").replace("d", "e")), k)
+            number = float(value.replace("D", "E").replace("d", "e"))
         except ValueError:
             raise InputError(f"value of {key} is not a number: {value!r}", file=path,
-                             line=k) from None
+                             line=k, key=key) from None
+        if not math.isfinite(number):
+            raise InputError(f"value of {key} must be a finite number, got {value!r}",
+                             file=path, line=k, key=key)
+        params[key] = (number, k)
     return params
 
 
@@ -151,9 +181,11 @@ def _parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int, first_line: in
                 try:
                     v = float(s.replace("D", "E").replace("d", "e"))
                 except ValueError:
-                    raise InputError(f"data value {f!r} is not a number (fields are {width} "
-                                     f"characters wide in format {fmt})", file=path,
-                                     line=k) from None
+                    v = math.nan
+                if not math.isfinite(v):
+                    raise InputError(f"data value {f!r} is not a finite number (fields are "
+                                     f"{width} characters wide in format {fmt}; a missing "
+                                     "value starts with '*')", file=path, line=k)
             if not row:
                 rows_line.append(k)
             row.append(v)
@@ -234,6 +266,10 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         raise InputError(f"need REFERENCE_LINE_END_U > START_U and INCREMENT > 0, got "
                          f"{u0:g}, {u1:g}, {du:g}", file=path, line=p.get(
                              "REFERENCE_LINE_INCREMENT", (0, None))[1])
+    if (u1 - u0) / du > 1e8:
+        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m in steps of {du:g} m "
+                         "gives more than 1e8 cross sections; check both values", file=path,
+                         line=p.get("REFERENCE_LINE_END_U", (0, None))[1])
     n_u = int(round((u1 - u0) / du)) + 1
     if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
         raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
@@ -269,36 +305,98 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     if fmt[2] == "F":
         vals, row_line = _parse_text_values(data, fmt, len(channels), n_u, sep_line + 1, path)
     else:
+        _reject_text_as_binary(data, fmt, sep_line + 1, path)
         vals = _parse_binary_values(data, fmt, len(channels), n_u, path)
         row_line = None
-    z = vals[:, sec_idx][:, order]
-    z = _fill_border_nans(z, u0 + du * np.arange(n_u), row_line, path)
     u = u0 + du * np.arange(n_u)
+    z = vals[:, sec_idx][:, order]
+    z = _fill_border_nans(z, u, row_line, path)
     v = v[order]
-
-    def channel(kind, start_key, end_key):
-        if kind in kinds:
-            c = vals[:, kinds.index(kind)]
-            if not np.all(np.isfinite(c[1:])):
-                raise InputError(f"reference line {kind} channel has NaN values", file=path)
-            return c
-        a = get(start_key, 0.0)
-        b = get(end_key, a)
-        return a + (b - a) * (u - u0) / (u1 - u0)
-
-    slope = channel("slope", "REFERENCE_LINE_START_S", "REFERENCE_LINE_END_S")
-    bank = channel("banking", "REFERENCE_LINE_START_B", "REFERENCE_LINE_END_B")
-    z_ref = get("REFERENCE_LINE_START_Z", 0.0) + np.concatenate(
-        [[0.0], np.cumsum(0.5 * (slope[1:] + slope[:-1]) * du)])
+    plan, z_ref, bank = _reference_line(p, kinds, vals, u, path, get)
     z = z + z_ref[:, None] + bank[:, None] * v[None, :]
     heading = None
-    if "phi" in kinds:
-        heading = vals[:, kinds.index("phi")].copy()
-        heading[0] = heading[1] if n_u > 1 else get("REFERENCE_LINE_START_PHI", 0.0)
-    elif get("REFERENCE_LINE_START_PHI", 0.0) != 0.0:
-        heading = np.full(n_u, get("REFERENCE_LINE_START_PHI", 0.0))
-    return Road.from_grid(u, v, z, track_width=track_width, heading=heading,
+    if not plan.straight or plan.phi_start != 0.0:
+        heading = np.concatenate([[plan.phi[0]], plan.phi])
+    return Road.from_grid(u, v, z, track_width=track_width, heading=heading, plan=plan,
                           name=path.stem if name is None else name, source=str(path))
+
+
+def _reference_line(p, kinds, vals, u, path, get):
+    """Plan position, elevation and banking of the reference line (OpenCRG definitions).
+
+    ``phi`` and ``slope`` channels hold one value per interval (the value of record ``i``
+    belongs to the interval from ``i-1`` to ``i``; the first is not used); ``banking`` one
+    value per record.  Without a channel the start value holds for the whole road (the
+    OpenCRG reference behaviour; a different end value gives a warning).
+    """
+    n_u, du = u.size, u[1] - u[0]
+    length = u[-1] - u[0]
+    tol = max(1e-6 * length, 1e-4)
+
+    def column(kind, first):
+        c = vals[first:, kinds.index(kind)]
+        bad = np.flatnonzero(~np.isfinite(c))
+        if bad.size:
+            raise InputError(f"reference line {kind} channel value of record "
+                             f"{bad[0] + first + 1} is {c[bad[0]]}; all values must be finite",
+                             file=path)
+        return c
+
+    def constant(start_key, end_key, what):
+        a = get(start_key, 0.0)
+        b = get(end_key, a)
+        if abs(b - a) > 1e-6 * max(1.0, abs(a)):
+            warnings.warn(f"{path}: no {what} channel and {end_key} = {b:g} differs from "
+                          f"{start_key} = {a:g}; OpenCRG uses the start value for the whole "
+                          f"road (add a 'reference line {what}' channel for a varying one)",
+                          UserWarning, stacklevel=4)
+        return a
+
+    x0, y0 = get("REFERENCE_LINE_START_X", 0.0), get("REFERENCE_LINE_START_Y", 0.0)
+    xe, ye = p.get("REFERENCE_LINE_END_X", (None,))[0], p.get("REFERENCE_LINE_END_Y", (None,))[0]
+    if "phi" in kinds:
+        phi = column("phi", 1)
+        plan = ReferenceLine.from_heading(u[0], du, phi, x0=x0, y0=y0)
+        if xe is not None and ye is not None:
+            err = math.hypot(plan.x[-1] - xe, plan.y[-1] - ye)
+            if err > tol:
+                warnings.warn(f"{path}: the integrated headings end {err:.4g} m away from "
+                              "REFERENCE_LINE_END_X/Y; the difference is spread along the "
+                              "line", UserWarning, stacklevel=3)
+            plan = ReferenceLine.from_heading(u[0], du, phi, x0=x0, y0=y0, x_end=xe, y_end=ye)
+    else:
+        phi0 = constant("REFERENCE_LINE_START_PHI", "REFERENCE_LINE_END_PHI", "phi")
+        plan = ReferenceLine.from_heading(u[0], du, np.full(n_u - 1, phi0), x0=x0, y0=y0)
+        if xe is not None and ye is not None:
+            err = math.hypot(plan.x[-1] - xe, plan.y[-1] - ye)
+            if err > tol:
+                warnings.warn(f"{path}: REFERENCE_LINE_END_X/Y lie {err:.4g} m from the end of "
+                              "the straight line given by the start position and heading; "
+                              "the end position is not used", UserWarning, stacklevel=3)
+    z0 = get("REFERENCE_LINE_START_Z", 0.0)
+    slope = column("slope", 1) if "slope" in kinds else np.full(
+        n_u - 1, constant("REFERENCE_LINE_START_S", "REFERENCE_LINE_END_S", "slope"))
+    z_ref = np.empty(n_u)
+    z_ref[0] = z0
+    z_ref[1:] = z0 + np.cumsum(du * slope)
+    ze = p.get("REFERENCE_LINE_END_Z", (None,))[0]
+    if "slope" in kinds and ze is not None:
+        z_ref += np.linspace(0.0, 1.0, n_u) * (ze - z_ref[-1])
+    bank = column("banking", 0) if "banking" in kinds else np.full(
+        n_u, constant("REFERENCE_LINE_START_B", "REFERENCE_LINE_END_B", "banking"))
+    return plan, z_ref, bank
+
+
+def _reject_text_as_binary(data: bytes, fmt: str, first_line: int, path):
+    """A binary format whose data block is plain text would read as ~1e-10 m garbage."""
+    head = data[:4096]
+    if not head:
+        return
+    text = sum(32 <= b < 127 or b in (9, 10, 13) for b in head)
+    if text == len(head) and any(ch in head for ch in b"0123456789") and b"\n" in head:
+        raise InputError(f"$KD_DEFINITION declares the binary format {fmt} but the data "
+                         f"block is text; for text data use {'L' + fmt[1] + 'FI'} (or "
+                         f"{'K' + fmt[1] + 'FI'})", file=path, line=first_line)
 
 
 def _fill_border_nans(z, u, row_line, path):
@@ -342,7 +440,9 @@ def write_crg(road: Road, path, *, fmt: str = "KRBI", comment: str = "") -> None
     ----------
     road : Road
         Must have uniform ``x`` spacing.  A road without a lateral grid is written with two
-        long sections at ``-track_width/2`` (right) and ``+track_width/2`` (left).
+        long sections at ``-track_width/2`` (right) and ``+track_width/2`` (left).  The
+        reference line's start position is written, and for a curved one its heading as a
+        ``reference line phi`` channel; slope and banking are part of the written heights.
     path : str or pathlib.Path
         Output file.
     fmt : {'KRBI', 'KDBI', 'LRFI', 'LDFI'}
@@ -373,7 +473,17 @@ def write_crg(road: Road, path, *, fmt: str = "KRBI", comment: str = "") -> None
                        ("LONG_SECTION_V_RIGHT", v[0]), ("LONG_SECTION_V_LEFT", v[-1]),
                        ("LONG_SECTION_V_INCREMENT", dv[0])):
         head.append(f"{key:<26}= {value:.16e}")
+    plan = road.plan
+    curved = plan is not None and not plan.straight
+    if plan is not None:
+        head += [f"{'REFERENCE_LINE_START_X':<26}= {plan.x[0]:.16e}",
+                 f"{'REFERENCE_LINE_START_Y':<26}= {plan.y[0]:.16e}"]
+        if not curved:
+            head.append(f"{'REFERENCE_LINE_START_PHI':<26}= {plan.phi_start:.16e}")
     head += ["$", "$KD_DEFINITION", f"#:{fmt}", f"U:reference line u,m,{road.x[0]:.3f},{du:.3f}"]
+    if curved:
+        head.append("D:reference line phi,rad")
+        z = np.column_stack([np.r_[np.nan, plan.phi], z])
     head += [f"D:long section {j + 1},m" for j in range(v.size)]
     head += ["$", "$" * 72]
     body = "\n".join(line[:72] for line in head) + "\n"

@@ -90,7 +90,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         from flexpipe.roads import load_road
 
         road = load_road(road)
-    if isinstance(path, (str, Path)) and path != "straight":
+    if isinstance(path, (str, Path)) and path not in ("straight", "road"):
         from flexpipe.driver import read_path
 
         path = read_path(path)

@@ -160,7 +160,7 @@ class CarController:
         e = 0.05
         x = np.concatenate([P[:, 0], P[:, 0] + e, P[:, 0] - e, P[:, 0], P[:, 0]])
         y = np.concatenate([P[:, 1], P[:, 1], P[:, 1], P[:, 1] + e, P[:, 1] - e])
-        z = np.asarray(self.road.height(x, y), dtype=float).reshape(5, -1)
+        z = np.asarray(self.road.height_xy(x, y), dtype=float).reshape(5, -1)
         gx = (z[1] - z[2]) / (2 * e)
         gy = (z[3] - z[4]) / (2 * e)
         n = np.column_stack([-gx, -gy, np.ones_like(gx)])
@@ -270,7 +270,7 @@ class CarController:
         F_explicit = F.copy()
         F_explicit[:, 2] -= F_lin
         ahead = st.wheel_p + self.road_lead * self.h * st.wheel_v
-        z_ref = np.asarray(self.road.height(ahead[:, 0], ahead[:, 1]), dtype=float) + self.r0
+        z_ref = np.asarray(self.road.height_xy(ahead[:, 0], ahead[:, 1]), dtype=float) + self.r0
 
         from flexpipe.exu.car import CarLoads
 
