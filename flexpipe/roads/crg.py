@@ -26,11 +26,12 @@ The height at ``(u, v)`` is ``z_grid(u, v) + z_ref(u) + b(u) v``, with ``z_ref``
 integral of the slope (``v`` held at the outermost long section beyond it).  The road is
 placed in the global plane by its reference line (:class:`~flexpipe.roads.refline.ReferenceLine`,
 the OpenCRG ``(x, y) <-> (u, v)`` map); :meth:`Road.height_xy` evaluates it at global
-positions, :meth:`Road.height` at ``(u, v)``.  Heights equal pyopencrg's (tested at 10,000
-random points of a curved, sloped, banked road and of the reference files).  NaNs at the lateral borders of a cross section are replaced by the
-nearest valid value of that cross section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last");
-NaNs between valid values, or cross sections without any valid value, are errors.
-``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS`` sections are not applied (a warning says so).
+positions, :meth:`Road.height` at ``(u, v)``. Heights equal pyopencrg's (tested at 10,000
+random points of a curved, sloped, banked road and of the reference files). NaNs at the
+lateral borders of a cross section are replaced by the nearest valid value of that cross
+section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last"); NaNs between valid values, or cross
+sections without any valid value, are errors. ``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS``
+sections are not applied (a warning says so).
 """
 
 from __future__ import annotations
