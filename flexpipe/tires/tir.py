@@ -12,7 +12,8 @@ Format handled
 
 Checks (all raise :class:`~flexpipe.errors.InputError` naming the file and line): a line
 that is neither a section, key, table header nor table row; a key before the first
-section; a duplicate key; a non-numeric value in a coefficient section; an unknown key in
+section; a duplicate key; a non-numeric or non-finite value in a coefficient section; the
+physical ranges of :mod:`flexpipe.tires.checks`; an unknown key in
 a coefficient section of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file);
 an unknown unit name.  Missing required sections raise naming the file and the section.
 Unknown sections are kept and produce a :class:`UserWarning`.
@@ -39,6 +40,7 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.tires import _keys
+from flexpipe.tires.checks import check_tir
 
 _SECTION_RE = re.compile(r"^\[\s*([A-Za-z0-9_\- ]+?)\s*\]$")
 _KEY_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
@@ -62,11 +64,14 @@ class TirTable:
         Read-only values, converted to SI for known tables.
     line : int
         Line number of the ``{...}`` header.
+    row_lines : tuple of int
+        Line number of every row.
     """
 
     columns: tuple[str, ...]
     data: np.ndarray
     line: int
+    row_lines: tuple[int, ...] = ()
 
     def column(self, name: str) -> np.ndarray:
         """Return the column ``name`` (case-insensitive)."""
@@ -381,6 +386,9 @@ def read_tir(path) -> TireProperties:
             if current in _keys.NUMERIC_SECTIONS and isinstance(value, str):
                 raise InputError(f"[{current}] {key} must be a number, got '{m.group(2).strip()}'",
                                  file=path, line=lineno, key=key)
+            if isinstance(value, float) and not math.isfinite(value):
+                raise InputError(f"[{current}] {key} = {m.group(2).strip()} is not a finite "
+                                 "number", file=path, line=lineno, key=key)
             sections[current][key] = value
             lines[(current, key)] = lineno
             continue
@@ -390,16 +398,21 @@ def read_tir(path) -> TireProperties:
             if not cols or current in tables:
                 why = "an empty table header" if not cols else "a second table in the section"
                 raise InputError(f"[{current}] has {why}", file=path, line=lineno)
-            tables[current] = (cols, [], lineno)
+            tables[current] = (cols, [], lineno, [])
             table_open = current
             continue
         if table_open is not None:
-            cols, rows, _ = tables[table_open]
+            cols, rows, _, row_lines = tables[table_open]
             parts = body.replace(",", " ").split()
             if len(parts) != len(cols) or not all(_NUMBER_RE.match(p) for p in parts):
                 raise InputError(f"[{current}] table row '{body}' must hold {len(cols)} numbers "
                                  f"({' '.join(cols)})", file=path, line=lineno)
-            rows.append([float(p.replace("d", "e").replace("D", "E")) for p in parts])
+            row = [float(p.replace("d", "e").replace("D", "E")) for p in parts]
+            if not all(math.isfinite(x) for x in row):
+                raise InputError(f"[{current}] table row '{body}' holds a non-finite number",
+                                 file=path, line=lineno)
+            rows.append(row)
+            row_lines.append(lineno)
             continue
         raise InputError(f"cannot parse '{body}' in [{current}]: expected KEY = value, "
                          "a [SECTION] header or a {{table}} header", file=path, line=lineno)
@@ -432,7 +445,7 @@ def read_tir(path) -> TireProperties:
             sections[sec][key] = value * _scale(dims, factors)
 
     frozen_tables = {}
-    for name, (cols, rows, lineno) in tables.items():
+    for name, (cols, rows, lineno, row_lines) in tables.items():
         if not rows:
             raise InputError(f"[{name}] table {{{' '.join(cols)}}} has no rows", file=path,
                              line=lineno)
@@ -441,7 +454,8 @@ def read_tir(path) -> TireProperties:
         if dims is not None and len(dims) == data.shape[1]:
             data = data * np.array([_scale(d, factors) for d in dims])
         data.setflags(write=False)
-        frozen_tables[name] = TirTable(cols, data, lineno)
+        frozen_tables[name] = TirTable(cols, data, lineno, tuple(row_lines))
+    check_tir(path, fmt, int(use_mode), sections, lines, frozen_tables)
 
     return TireProperties(
         path=path,
