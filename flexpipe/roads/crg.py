@@ -49,8 +49,7 @@ from flexpipe.errors import InputError
 from flexpipe.roads.refline import ReferenceLine
 from flexpipe.roads.road import Road
 
-_LONG_SECTION = re.compile(r"long\s+section\s+(at\s+v\s*=\s*)?([-+0-9.eEdD]+)\s*,\s*m",
-                           re.IGNORECASE)
+_LONG_SECTION = re.compile(r"long\s+section\s+(at\s+v\s*=\s*)?([-+0-9.eEdD]+)", re.IGNORECASE)
 
 
 def _header_lines(raw: bytes, path):
@@ -139,21 +138,37 @@ def _channels(section, path):
                                  line=k)
         elif head == "D:":
             desc = body[2:].strip()
-            m = _LONG_SECTION.search(desc)
-            low = desc.lower()
+            items = [t.strip() for t in desc.split(",")]
+            label, unit = items[0], (items[1] if len(items) > 1 else "")
+            m = _LONG_SECTION.fullmatch(label)
+            low = label.lower()
             if m:
-                pos = float(m.group(2).replace("D", "E").replace("d", "e"))
+                if unit != "m":
+                    raise InputError(f"channel {desc!r} has unit {unit!r}; long sections are "
+                                     "in 'm'", file=path, line=k)
+                try:
+                    pos = float(m.group(2).replace("D", "E").replace("d", "e"))
+                except ValueError:
+                    raise InputError(f"channel {desc!r}: {m.group(2)!r} is not a number",
+                                     file=path, line=k) from None
                 channels.append(("v" if m.group(1) else "index", pos, k))
             elif low.startswith("reference line"):
-                what = low[len("reference line"):].split(",")[0].strip()
-                if what not in ("phi", "slope", "banking"):
+                what = " ".join(low[len("reference line"):].split())
+                units = {"phi": "rad", "slope": "m/m", "banking": "m/m"}
+                if what not in units:
                     raise InputError(f"reference line channel {what!r} is not supported; "
                                      "supported: phi, slope, banking", file=path, line=k)
+                if unit != units[what]:
+                    raise InputError(f"channel {desc!r} has unit {unit!r}; 'reference line "
+                                     f"{what}' is in '{units[what]}'", file=path, line=k)
+                if what in [c[0] for c in channels]:
+                    raise InputError(f"channel 'reference line {what}' is given twice",
+                                     file=path, line=k)
                 channels.append((what, 0.0, k))
             else:
                 raise InputError(f"unknown data channel {desc!r}; expected 'long section "
                                  "<i>,m', 'long section at v = <v>,m' or 'reference line "
-                                 "phi/slope/banking'", file=path, line=k)
+                                 "phi,rad / slope,m/m / banking,m/m'", file=path, line=k)
     if fmt is None:
         raise InputError("$KD_DEFINITION has no '#:' data format line", file=path,
                          line=section["_line"])

@@ -8,6 +8,8 @@ the line, the key and the valid range:
   (``UNLOADED_RADIUS``, ``FNOMIN``, ``VERTICAL_STIFFNESS``, ``FZMAX`` > 0; damping and
   ``FZMIN`` >= 0; a given ``RIM_RADIUS`` < ``UNLOADED_RADIUS``; ``FZMIN`` < ``FZMAX``);
   dimensions the models do not use (``WIDTH``, ``BOTTOMING_RADIUS`` ...) are not checked;
+* radius, nominal load and vertical stiffness must be those of a road-vehicle tyre
+  (0.05-5 m, 10 N-2 MN, 1e3-1e9 N/m): outside, a ``[UNITS]`` entry is usually wrong;
 * input ranges must be ordered and hold zero (``KPUMIN <= 0 <= KPUMAX``, ``KPUMIN <
   KPUMAX``; the same for ``ALPMIN/ALPMAX`` (within +-pi/2) and ``CAMMIN/CAMMAX``), since the
   model clips its inputs to them;
@@ -38,6 +40,11 @@ _NONNEGATIVE = {
     "VERTICAL_FORCE_RANGE": ("FZMIN",),
     "PARAMETER": ("ROLLING_RESISTANCE", "RELAX_LENGTH_X", "RELAX_LENGTH_Y"),
 }
+_PLAUSIBLE = (  # section, key, low, high (SI): any road-vehicle tyre, bicycle to mining truck
+    ("DIMENSION", "UNLOADED_RADIUS", 0.05, 5.0, "m"),
+    ("VERTICAL", "FNOMIN", 10.0, 2e6, "N"),
+    ("VERTICAL", "VERTICAL_STIFFNESS", 1e3, 1e9, "N/m"),
+)
 _RANGES = (  # section, low key, high key, default low, default high, absolute limit
     ("LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", -1.5, 1.5, math.inf),
     ("SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", -1.5707, 1.5707, math.pi / 2 + 1e-3),
@@ -70,6 +77,11 @@ def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
             v = value(sec, key)
             if v is not None and not v >= 0.0:
                 fail(sec, key, v, ">= 0")
+    for sec, key, lo, hi, unit in _PLAUSIBLE:
+        v = value(sec, key)
+        if v is not None and not lo <= v <= hi:
+            fail(sec, key, v, f"{lo:g} .. {hi:g} {unit} after the [UNITS] conversion (a tyre "
+                              "outside it usually means a wrong [UNITS] entry)")
     r0, rim = value("DIMENSION", "UNLOADED_RADIUS"), value("DIMENSION", "RIM_RADIUS")
     if r0 is not None and rim is not None and rim > 0.0 and rim >= r0:
         fail("DIMENSION", "RIM_RADIUS", rim, f"< UNLOADED_RADIUS = {r0:g} m")

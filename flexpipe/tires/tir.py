@@ -13,9 +13,10 @@ Format handled
 Checks (all raise :class:`~flexpipe.errors.InputError` naming the file and line): a line
 that is neither a section, key, table header nor table row; a key before the first
 section; a duplicate key; a non-numeric or non-finite value in a coefficient section; the
-physical ranges of :mod:`flexpipe.tires.checks`; an unknown key in
-a coefficient section of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file);
-an unknown unit name.  Missing required sections raise naming the file and the section.
+physical ranges of :mod:`flexpipe.tires.checks`; an unknown key in a coefficient section
+of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file); an unknown unit name; a
+key or section name one letter away from a known one. Missing required sections raise
+naming the file and the section.
 Unknown sections are kept and produce a :class:`UserWarning`.
 
 Units
@@ -292,11 +293,21 @@ def _check_keys(path, fmt, sections, lines):
             allowed = _keys.KNOWN_SECTIONS.get(name)
             if allowed is None:
                 if name not in _keys.FREE_SECTIONS and name not in _keys.PAC2002_STRICT:
+                    close = difflib.get_close_matches(name, _ALL_SECTIONS, n=1, cutoff=0.85)
+                    if close:   # a misspelt known section would silently drop its data
+                        raise InputError(f"unknown section [{name}] (did you mean "
+                                         f"[{close[0]}]?)", file=path,
+                                         line=lines[(name, "")], key=name)
                     warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
                                   " kept but not used", UserWarning, stacklevel=4)
                 continue
             for key in sec:
                 if key not in allowed:
+                    close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.85)
+                    if close:   # a misspelt known key would silently fall back to a default
+                        raise InputError(f"unknown key {key} in [{name}] (did you mean "
+                                         f"{close[0]}?)", file=path, line=lines[(name, key)],
+                                         key=key)
                     warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
                                   f"known entry of [{name}]; ignored", UserWarning,
                                   stacklevel=4)
@@ -308,6 +319,10 @@ def _check_keys(path, fmt, sections, lines):
                 raise InputError(
                     f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
                     f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
+
+
+_ALL_SECTIONS = sorted(set(_keys.KNOWN_SECTIONS) | set(_keys.FREE_SECTIONS)
+                       | set(_keys.PAC2002_STRICT) | set(_keys.FIALA_STRICT))
 
 
 #: Sections a PAC2002 file needs, by USE_MODE % 10.
