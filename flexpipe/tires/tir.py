@@ -303,7 +303,7 @@ def _check_keys(path, fmt, sections, lines):
                 continue
             for key in sec:
                 if key not in allowed:
-                    close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.85)
+                    close = [k for k in sorted(allowed) if _one_edit(key, k)]
                     if close:   # a misspelt known key would silently fall back to a default
                         raise InputError(f"unknown key {key} in [{name}] (did you mean "
                                          f"{close[0]}?)", file=path, line=lines[(name, key)],
@@ -319,6 +319,21 @@ def _check_keys(path, fmt, sections, lines):
                 raise InputError(
                     f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
                     f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
+
+
+def _one_edit(a: str, b: str) -> bool:
+    """True if ``a`` becomes ``b`` by one insertion, deletion, substitution or swap of two
+    neighbours -- except a changed digit (``Q_FZ4`` is another coefficient, not a typo)."""
+    if a == b or abs(len(a) - len(b)) > 1:
+        return False
+    if len(a) == len(b):
+        diff = [i for i in range(len(a)) if a[i] != b[i]]
+        if len(diff) == 1:
+            return not (a[diff[0]].isdigit() and b[diff[0]].isdigit())
+        return (len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]]
+                and a[diff[1]] == b[diff[0]])
+    short, long_ = (a, b) if len(a) < len(b) else (b, a)
+    return any(long_[:i] + long_[i + 1:] == short for i in range(len(long_)))
 
 
 _ALL_SECTIONS = sorted(set(_keys.KNOWN_SECTIONS) | set(_keys.FREE_SECTIONS)
@@ -445,6 +460,9 @@ def read_tir(path) -> TireProperties:
         if name not in sections:
             raise InputError(f"required section [{name}] is missing for a {fmt or 'tyre'} "
                              f"file with USE_MODE {int(use_mode)}", file=path, key=name)
+        if not sections[name] and name not in tables:
+            raise InputError(f"required section [{name}] is empty (truncated file?)",
+                             file=path, line=lines[(name, "")], key=name)
     if "PROPERTY_FILE_FORMAT" not in sections["MODEL"]:
         raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002' or 'FIALA')",
                          file=path, line=lines[("MODEL", "")], key="PROPERTY_FILE_FORMAT")
