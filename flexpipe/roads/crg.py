@@ -223,6 +223,11 @@ def _parse_binary_values(raw: bytes, fmt: str, n_ch: int, n_u: int, path):
     if fmt[0] == "L":
         row_bytes = -(-row_bytes // 80) * 80
     need = row_bytes * n_u
+    if len(raw) % 80:
+        raise InputError(f"binary data block has {len(raw)} bytes, not a whole number of "
+                         f"80-byte records (truncated file?); {n_u} rows x {n_ch} channels in "
+                         f"format {fmt} need {need} bytes padded to {-(-need // 80) * 80}",
+                         file=path)
     if len(raw) < need:
         raise InputError(f"binary data block has {len(raw)} bytes, expected at least {need} "
                          f"({n_u} rows x {n_ch} channels, format {fmt})", file=path)
