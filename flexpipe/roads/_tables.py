@@ -41,6 +41,10 @@ def read_toml(path) -> dict:
     except tomllib.TOMLDecodeError as exc:
         line = getattr(exc, "lineno", None)
         raise InputError(f"TOML syntax error: {exc}", file=path, line=line) from None
+    except RecursionError:
+        raise InputError("TOML nesting too deep to parse (arrays or tables nested thousands "
+                         "of levels); a road, path or driver file is a few flat tables",
+                         file=path) from None
 
 
 class TableReader:
