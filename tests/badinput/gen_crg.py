@@ -167,15 +167,17 @@ def cases():
                               "long section at v = 1,m"]),
             ("unit_mm", ["long section 1,mm", "long section 2,mm", "long section 3,mm"]),
             ("no_unit", ["long section 1", "long section 2", "long section 3"]),
-            ("phi_in_degrees", ["reference line phi,deg", "long section 1,m",
-                                "long section 2,m"]),
-            ("slope_in_percent", ["reference line slope,%", "long section 1,m",
-                                  "long section 2,m"]),
-            ("unknown_reference_channel", ["reference line curvature,1/m",
-                                           "long section 1,m", "long section 2,m"]),
             ("phi_twice", ["reference line phi,rad", "reference line phi,rad",
                            "long section 1,m"])):
         yield f"channels_{label}", "chan.crg", _build(sk[0], chans, sk[2]), "error"
+    wide = [[0.001] + r for r in sk[2]]           # one reference channel + 3 long sections
+    for label, chan in (("phi_in_degrees", "reference line phi,deg"),
+                        ("slope_in_percent", "reference line slope,%"),
+                        ("banking_no_unit", "reference line banking"),
+                        ("unknown_reference_channel", "reference line curvature,1/m")):
+        yield f"channels_{label}", "chan.crg", _build(sk[0], [chan] + sk[1], wide), "error"
+    yield "ok_slope_channel", "slope.crg", _build(
+        sk[0], ["reference line slope,m/m"] + sk[1], wide), "ok"
     # ---- typos and missing keys or sections
     for key, typo in (("REFERENCE_LINE_END_U", "REFERENCE_LINE_END_UU"),
                       ("REFERENCE_LINE_INCREMENT", "REFRENCE_LINE_INCREMENT"),
