@@ -267,7 +267,10 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     sections = _parse_header(lines, path)
     for missing in ("ROAD_CRG", "KD_DEFINITION"):
         if missing not in sections:
-            raise InputError(f"no ${missing} section", file=path)
+            close = difflib.get_close_matches(missing, list(sections), n=1, cutoff=0.7)
+            hint = (f"; ${close[0]} on line {sections[close[0]]['_line']} is misspelt?"
+                    if close else f"; sections found: {', '.join(sections) or 'none'}")
+            raise InputError(f"no ${missing} section{hint}", file=path)
     for ignored in ("ROAD_CRG_MODS", "ROAD_CRG_OPTS", "ROAD_CRG_FILE"):
         if ignored in sections and sections[ignored]["_items"]:
             warnings.warn(f"{path}: ${ignored} is not applied by flexpipe", stacklevel=2)
@@ -294,7 +297,8 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     n_u = int(round((u1 - u0) / du)) + 1
     if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
         raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
-                         f"of the increment {du:g} m", file=path)
+                         f"of the increment {du:g} m", file=path,
+                         line=p.get("REFERENCE_LINE_END_U", (0, None))[1])
     fmt, channels = _channels(sections["KD_DEFINITION"], path)
     kinds = [c[0] for c in channels]
     sec_idx = [i for i, c in enumerate(channels) if c[0] in ("index", "v")]
@@ -320,7 +324,9 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         v = np.array([channels[i][1] for i in sec_idx])
     order = np.argsort(v)
     if np.any(np.diff(v[order]) <= 0.0):
-        raise InputError("two long sections share the same lateral position", file=path)
+        raise InputError(f"two long sections share the same lateral position (v = "
+                         f"{np.sort(v)[np.flatnonzero(np.diff(np.sort(v)) <= 0.0)[0]]:g} m)",
+                         file=path, line=sections["KD_DEFINITION"]["_line"])
 
     data = raw[data_offset:]
     if fmt[2] == "F":
@@ -421,6 +427,12 @@ def _reject_text_as_binary(data: bytes, fmt: str, first_line: int, path):
 
 
 def _fill_border_nans(z, u, row_line, path):
+    if np.isinf(z).any():
+        i, j = np.argwhere(np.isinf(z))[0]
+        raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}), long section "
+                         f"{j + 1} holds {z[i, j]}; heights must be finite (NaN marks a "
+                         "missing value)", file=path,
+                         line=None if row_line is None else int(row_line[i]))
     bad = ~np.isfinite(z)
     if not bad.any():
         return z
