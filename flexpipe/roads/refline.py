@@ -204,10 +204,9 @@ class ReferenceLine:
         """Interval to start the walk from: the previous call's result for points that
         moved less than one sample spacing since (a vehicle's contact points), else the
         interval before the nearest reference point."""
-        prev = self._cache.get("hint")
-        if prev is not None and prev[0].shape == px.shape:
-            if np.max(np.abs(px - prev[0]) + np.abs(py - prev[1])) < self.du:
-                return prev[2].copy()
+        prev = self._cache.get("hints", {}).get(px.size)
+        if prev is not None and np.max(np.abs(px - prev[0]) + np.abs(py - prev[1])) < self.du:
+            return prev[2].copy()
         return np.clip(self._nearest(px, py) - 1, 0, self.n - 2)
 
     def _xy_to_uv_curved(self, px, py):
@@ -223,7 +222,10 @@ class ReferenceLine:
                 break
             j[idx[move]] += np.where(fwd[move], 1, -1)
             idx = idx[move]
-        self._cache["hint"] = (px.copy(), py.copy(), j.copy())
+        hints = self._cache.setdefault("hints", {})   # one per point-set size (few sizes)
+        if len(hints) > 16:
+            hints.clear()
+        hints[px.size] = (px.copy(), py.copy(), j.copy())
         back, ahead = self._side(j, px, py)
         n1, n2 = self._normals()
         x1, y1, x2, y2 = self.x[j], self.y[j], self.x[j + 1], self.y[j + 1]
