@@ -175,3 +175,12 @@ def test_car_follows_curved_road(tmp_path, monkeypatch):
     # the car climbs with the road: body height above the road surface stays the ride height
     gap = r["z"] - ref.xy_to_z(r["x"], r["y"])
     assert np.ptp(gap[late]) < 0.05
+
+
+def test_run_pair_path_road_needs_a_road(tmp_path):
+    from flexpipe.errors import InputError
+    from flexpipe.scenarios.runner import run_pair
+
+    car = pathlib.Path(__file__).resolve().parents[1] / "cars" / "sedan.toml"
+    with pytest.raises(InputError, match="path 'road'"):
+        run_pair(car, road=None, path="road", speed=10.0, t_end=1.0, out=tmp_path, title="t")
