@@ -1,9 +1,13 @@
 """The :class:`Road` data object and its CSV form.
 
-A road is described in path coordinates: ``s`` is the distance along the driven path (m)
-and ``lateral`` the offset from the path centre line, positive to the left (m).  The height
-is given either by two wheel tracks (``left`` at ``+track_width/2``, ``right`` at
-``-track_width/2``) or, for OpenCRG roads, by a full grid ``z[i, j]`` at ``(x[i], y[j])``.
+A road is described in road coordinates: ``s`` (OpenCRG ``u``) is the distance along its
+reference line (m) and ``lateral`` (``v``) the offset from it, positive to the left (m).
+The height is given either by two wheel tracks (``left`` at ``+track_width/2``, ``right``
+at ``-track_width/2``) or, for OpenCRG roads, by a full grid ``z[i, j]`` at
+``(x[i], y[j])``.  :meth:`Road.height` takes road coordinates; :meth:`Road.height_xy`
+takes global plane positions: a road with a :attr:`Road.plan` (OpenCRG) lies where its
+reference line puts it (curved or straight), any other road along the global x axis
+(``s = x``, ``lateral = y``).  :meth:`Road.reference_path` gives the line as a driver path.
 
 Evaluation rules (:meth:`Road.height`)
 -------------------------------------
