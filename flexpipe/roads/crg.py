@@ -44,8 +44,14 @@ import warnings
 
 import numpy as np
 
-from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
+from flexpipe.roads.crg_data import (
+    fill_border_nans,
+    parse_binary_values,
+    parse_text_values,
+    reject_text_as_binary,
+)
+from flexpipe.roads.crg_write import write_crg  # noqa: F401 (re-exported)
 from flexpipe.roads.refline import ReferenceLine
 from flexpipe.roads.road import Road
 
@@ -175,71 +181,6 @@ def _channels(section, path):
     return fmt, channels
 
 
-def _parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int, first_line: int, path):
-    """Values of a formatted data block, shape (n_u, n_ch), and each row's first line."""
-    width = 10 if fmt[1] == "R" else 20
-    lines = raw.decode("latin-1").splitlines()
-    values, rows_line, row = [], [], []
-    per_line = 80 // width
-    for offset, text in enumerate(lines):
-        k = first_line + offset
-        fields = [text[i:i + width] for i in range(0, min(len(text), per_line * width), width)]
-        if fmt[0] == "K":
-            while fields and not fields[-1].strip():
-                fields.pop()
-        for f in fields:
-            if fmt[0] == "L" and len(row) == n_ch:
-                break
-            s = f.strip()
-            if s.startswith("*"):
-                v = math.nan
-            else:
-                try:
-                    v = float(s.replace("D", "E").replace("d", "e"))
-                except ValueError:
-                    v = math.nan
-                if not math.isfinite(v):
-                    raise InputError(f"data value {f!r} is not a finite number (fields are "
-                                     f"{width} characters wide in format {fmt}; a missing "
-                                     "value starts with '*')", file=path, line=k)
-            if not row:
-                rows_line.append(k)
-            row.append(v)
-            if len(row) == n_ch:
-                values.append(row)
-                row = []
-                if len(values) == n_u:
-                    return np.array(values), np.array(rows_line)
-        if fmt[0] == "L" and row and len(row) < n_ch and len(fields) < per_line:
-            raise InputError(f"data row has {len(row)} values, expected {n_ch}", file=path,
-                             line=k)
-    raise InputError(f"data block holds {len(values)} complete rows, expected {n_u} "
-                     f"(from REFERENCE_LINE_START_U/END_U/INCREMENT)", file=path)
-
-
-def _parse_binary_values(raw: bytes, fmt: str, n_ch: int, n_u: int, path):
-    dtype = np.dtype(">f4") if fmt[1] == "R" else np.dtype(">f8")
-    row_bytes = n_ch * dtype.itemsize
-    if fmt[0] == "L":
-        row_bytes = -(-row_bytes // 80) * 80
-    need = row_bytes * n_u
-    if len(raw) % 80:
-        raise InputError(f"binary data block has {len(raw)} bytes, not a whole number of "
-                         f"80-byte records (truncated file?); {n_u} rows x {n_ch} channels in "
-                         f"format {fmt} need {need} bytes padded to {-(-need // 80) * 80}",
-                         file=path)
-    if len(raw) < need:
-        raise InputError(f"binary data block has {len(raw)} bytes, expected at least {need} "
-                         f"({n_u} rows x {n_ch} channels, format {fmt})", file=path)
-    if fmt[0] == "K":
-        vals = np.frombuffer(raw, dtype=dtype, count=n_u * n_ch).reshape(n_u, n_ch)
-    else:
-        per_row = row_bytes // dtype.itemsize
-        vals = np.frombuffer(raw, dtype=dtype, count=n_u * per_row).reshape(n_u, per_row)
-        vals = vals[:, :n_ch]
-    return vals.astype(float)
-
-
 def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road:
     """Read an OpenCRG file (formats KRBI, KDBI, LRFI, LDFI and the other combinations).
 
@@ -330,14 +271,14 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
 
     data = raw[data_offset:]
     if fmt[2] == "F":
-        vals, row_line = _parse_text_values(data, fmt, len(channels), n_u, sep_line + 1, path)
+        vals, row_line = parse_text_values(data, fmt, len(channels), n_u, sep_line + 1, path)
     else:
-        _reject_text_as_binary(data, fmt, sep_line + 1, path)
-        vals = _parse_binary_values(data, fmt, len(channels), n_u, path)
+        reject_text_as_binary(data, fmt, sep_line + 1, path)
+        vals = parse_binary_values(data, fmt, len(channels), n_u, path)
         row_line = None
     u = u0 + du * np.arange(n_u)
     z = vals[:, sec_idx][:, order]
-    z = _fill_border_nans(z, u, row_line, path)
+    z = fill_border_nans(z, u, row_line, path)
     v = v[order]
     plan, z_ref, bank = _reference_line(p, kinds, vals, u, path, get)
     z = z + z_ref[:, None] + bank[:, None] * v[None, :]
@@ -412,130 +353,3 @@ def _reference_line(p, kinds, vals, u, path, get):
     bank = column("banking", 0) if "banking" in kinds else np.full(
         n_u, constant("REFERENCE_LINE_START_B", "REFERENCE_LINE_END_B", "banking"))
     return plan, z_ref, bank
-
-
-def _reject_text_as_binary(data: bytes, fmt: str, first_line: int, path):
-    """A binary format whose data block is plain text would read as ~1e-10 m garbage."""
-    head = data[:4096]
-    if not head:
-        return
-    text = sum(32 <= b < 127 or b in (9, 10, 13) for b in head)
-    if text == len(head) and any(ch in head for ch in b"0123456789") and b"\n" in head:
-        raise InputError(f"$KD_DEFINITION declares the binary format {fmt} but the data "
-                         f"block is text; for text data use {'L' + fmt[1] + 'FI'} (or "
-                         f"{'K' + fmt[1] + 'FI'})", file=path, line=first_line)
-
-
-def _fill_border_nans(z, u, row_line, path):
-    if np.isinf(z).any():
-        i, j = np.argwhere(np.isinf(z))[0]
-        raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}), long section "
-                         f"{j + 1} holds {z[i, j]}; heights must be finite (NaN marks a "
-                         "missing value)", file=path,
-                         line=None if row_line is None else int(row_line[i]))
-    bad = ~np.isfinite(z)
-    if not bad.any():
-        return z
-    z = z.copy()
-    for i in np.flatnonzero(bad.any(axis=1)):
-        good = np.flatnonzero(~bad[i])
-        where = dict(file=path, line=None if row_line is None else int(row_line[i]))
-        if good.size == 0:
-            raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has no valid "
-                             "height; every cross section needs at least one", **where)
-        lo, hi = good[0], good[-1]
-        if hi - lo + 1 != good.size:
-            raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has a NaN "
-                             "between valid heights; NaN is only allowed at the borders",
-                             **where)
-        z[i, :lo] = z[i, lo]
-        z[i, hi + 1:] = z[i, hi]
-    return z
-
-
-def _fmt_text(v: float, width: int) -> str:
-    if not math.isfinite(v):
-        return "*missing*".ljust(width)[:width]
-    for prec in range(width - 3, 0, -1):
-        s = f"{v:{width}.{prec}f}"
-        if len(s) <= width:
-            return s
-    s = f"{v:{width}.{width - 7}E}"
-    if len(s) > width:
-        raise InputError(f"value {v!r} does not fit a {width}-character CRG field")
-    return s
-
-
-def write_crg(road: Road, path, *, fmt: str = "KRBI", comment: str = "") -> None:
-    """Write ``road`` as an OpenCRG file (atomically).
-
-    Parameters
-    ----------
-    road : Road
-        Must have uniform ``x`` spacing.  A road without a lateral grid is written with two
-        long sections at ``-track_width/2`` (right) and ``+track_width/2`` (left).  The
-        reference line's start position is written, and for a curved one its heading as a
-        ``reference line phi`` channel; slope and banking are part of the written heights.
-    path : str or pathlib.Path
-        Output file.
-    fmt : {'KRBI', 'KDBI', 'LRFI', 'LDFI'}
-        Data format (binary single/double, text single/double).
-    comment : str
-        Text for the ``$CT`` block.
-    """
-    fmt = fmt.upper()
-    if fmt not in ("KRBI", "KDBI", "LRFI", "LDFI"):
-        raise InputError(f"CRG format {fmt!r} not writable; valid: KRBI, KDBI, LRFI, LDFI")
-    if not road._dx:
-        raise InputError(f"road '{road.name}' has non-uniform distance samples; OpenCRG needs "
-                         "a constant REFERENCE_LINE_INCREMENT")
-    if road.z is None:
-        v = np.array([-0.5, 0.5]) * road.track_width
-        z = np.column_stack([road.right, road.left])
-    else:
-        v, z = road.y, road.z
-    dv = np.diff(v)
-    if np.any(np.abs(dv - dv[0]) > 1e-9 * max(1.0, abs(v[-1]))):
-        raise InputError("the lateral grid is not uniform; write_crg needs a uniform grid")
-    du = road._dx
-    head = ["$CT", *(comment.splitlines() or [road.name or "flexpipe road"]), "$",
-            "$ROAD_CRG"]
-    for key, value in (("REFERENCE_LINE_START_U", road.x[0]),
-                       ("REFERENCE_LINE_END_U", road.x[-1]),
-                       ("REFERENCE_LINE_INCREMENT", du),
-                       ("LONG_SECTION_V_RIGHT", v[0]), ("LONG_SECTION_V_LEFT", v[-1]),
-                       ("LONG_SECTION_V_INCREMENT", dv[0])):
-        head.append(f"{key:<26}= {value:.16e}")
-    plan = road.plan
-    curved = plan is not None and not plan.straight
-    if plan is not None:
-        head += [f"{'REFERENCE_LINE_START_X':<26}= {plan.x[0]:.16e}",
-                 f"{'REFERENCE_LINE_START_Y':<26}= {plan.y[0]:.16e}"]
-        if not curved:
-            head.append(f"{'REFERENCE_LINE_START_PHI':<26}= {plan.phi_start:.16e}")
-    head += ["$", "$KD_DEFINITION", f"#:{fmt}", f"U:reference line u,m,{road.x[0]:.3f},{du:.3f}"]
-    if curved:
-        head.append("D:reference line phi,rad")
-        z = np.column_stack([np.r_[np.nan, plan.phi], z])
-    head += [f"D:long section {j + 1},m" for j in range(v.size)]
-    head += ["$", "$" * 72]
-    body = "\n".join(line[:72] for line in head) + "\n"
-    with atomic_path(path) as tmp:
-        with open(tmp, "wb") as fh:
-            fh.write(body.encode("ascii"))
-            if fmt[2] == "B":
-                dtype = ">f4" if fmt[1] == "R" else ">f8"
-                flat = np.asarray(z, dtype=float).ravel()
-                per_record = 80 // np.dtype(dtype).itemsize
-                pad = (-flat.size) % per_record
-                block = np.concatenate([flat, np.full(pad, np.nan)]).astype(dtype)
-                fh.write(block.tobytes())
-            else:
-                width = 10 if fmt[1] == "R" else 20
-                per_line = 80 // width
-                out = []
-                for row in z:
-                    fields = [_fmt_text(float(val), width) for val in row]
-                    out += ["".join(fields[i:i + per_line])
-                            for i in range(0, len(fields), per_line)]
-                fh.write(("\n".join(out) + "\n").encode("ascii"))
