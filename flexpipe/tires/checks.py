@@ -1,4 +1,9 @@
-"""Physical range checks of a ``.tir`` file (values in SI, after the ``[UNITS]`` conversion).
+"""Checks of a ``.tir`` file: key names, units, and physical ranges (values in SI, after the
+``[UNITS]`` conversion).
+
+Key names: an unknown key in a PAC2002 coefficient section (or FIALA ``[PARAMETER]``) is an
+error; elsewhere an unknown key or section warns, unless it is one edit away from a known
+one (a typo that would silently fall back to a default), which is an error.
 
 Every value that would make the tyre model divide by zero, return NaN, or give plausible
 but wrong forces is rejected with an :class:`~flexpipe.errors.InputError` naming the file,
@@ -22,11 +27,14 @@ the line, the key and the valid range:
 
 from __future__ import annotations
 
+import difflib
 import math
+import warnings
 
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.tires import _keys
 
 _POSITIVE = {
     "DIMENSION": ("UNLOADED_RADIUS",),
@@ -173,3 +181,82 @@ def probe_forces(tire, path) -> None:
                 f"{float(Fz[i, 0, 0, 0]):g} N, kappa = {float(kappa[0, j, 0, 0]):g}, alpha = "
                 f"{float(alpha[0, 0, k, 0]):g} rad, gamma = {float(gamma[0, 0, 0, m]):g} rad; "
                 "check the Magic Formula / Fiala coefficients for zeros or overflow", file=path)
+
+
+# ---------------------------------------------------------------- keys and units
+def unit_factors(path, units: dict, lines: dict) -> dict[str, float]:
+    factors = {}
+    for quantity in _keys.UNIT_QUANTITIES:
+        name = units.get(quantity)
+        if name is None:
+            factors[quantity] = 1.0
+            continue
+        table = _keys.UNIT_FACTORS[quantity]
+        key = str(name).strip().lower()
+        if key not in table:
+            raise InputError(
+                f"[UNITS] {quantity} = '{name}' is not a known unit; valid: "
+                f"{', '.join(sorted(table))}", file=path, line=lines.get(("UNITS", quantity)),
+                key=quantity)
+        factors[quantity] = table[key]
+    return factors
+
+
+def scale(exponents, factors) -> float:
+    return math.prod(factors[q] ** e for q, e in zip(_keys.UNIT_QUANTITIES, exponents, strict=True)
+                     if e)
+
+
+def check_keys(path, fmt, sections, lines):
+    strict = {"PAC2002": _keys.PAC2002_STRICT, "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
+    for name, sec in sections.items():
+        allowed = strict.get(name)
+        if allowed is None:
+            allowed = _keys.KNOWN_SECTIONS.get(name)
+            if allowed is None:
+                if name not in _keys.FREE_SECTIONS and name not in _keys.PAC2002_STRICT:
+                    close = difflib.get_close_matches(name, _ALL_SECTIONS, n=1, cutoff=0.85)
+                    if close:   # a misspelt known section would silently drop its data
+                        raise InputError(f"unknown section [{name}] (did you mean "
+                                         f"[{close[0]}]?)", file=path,
+                                         line=lines[(name, "")], key=name)
+                    warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
+                                  " kept but not used", UserWarning, stacklevel=4)
+                continue
+            for key in sec:
+                if key not in allowed:
+                    close = [k for k in sorted(allowed) if _one_edit(key, k)]
+                    if close:   # a misspelt known key would silently fall back to a default
+                        raise InputError(f"unknown key {key} in [{name}] (did you mean "
+                                         f"{close[0]}?)", file=path, line=lines[(name, key)],
+                                         key=key)
+                    warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
+                                  f"known entry of [{name}]; ignored", UserWarning,
+                                  stacklevel=4)
+            continue
+        for key in sec:
+            if key not in allowed:
+                close = difflib.get_close_matches(key, sorted(allowed), n=3, cutoff=0.6)
+                hint = f" (did you mean {' or '.join(close)}?)" if close else ""
+                raise InputError(
+                    f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
+                    f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
+
+
+def _one_edit(a: str, b: str) -> bool:
+    """True if ``a`` becomes ``b`` by one insertion, deletion, substitution or swap of two
+    neighbours -- except a changed digit (``Q_FZ4`` is another coefficient, not a typo)."""
+    if a == b or abs(len(a) - len(b)) > 1:
+        return False
+    if len(a) == len(b):
+        diff = [i for i in range(len(a)) if a[i] != b[i]]
+        if len(diff) == 1:
+            return not (a[diff[0]].isdigit() and b[diff[0]].isdigit())
+        return (len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]]
+                and a[diff[1]] == b[diff[0]])
+    short, long_ = (a, b) if len(a) < len(b) else (b, a)
+    return any(long_[:i] + long_[i + 1:] == short for i in range(len(long_)))
+
+
+_ALL_SECTIONS = sorted(set(_keys.KNOWN_SECTIONS) | set(_keys.FREE_SECTIONS)
+                       | set(_keys.PAC2002_STRICT) | set(_keys.FIALA_STRICT))

@@ -28,7 +28,6 @@ Magic Formula coefficients are non-dimensional (radian-based) and are used as wr
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 import warnings
@@ -41,7 +40,7 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.tires import _keys
-from flexpipe.tires.checks import check_tir
+from flexpipe.tires.checks import check_keys, check_tir, scale, unit_factors
 
 _SECTION_RE = re.compile(r"^\[\s*([A-Za-z0-9_\- ]+?)\s*\]$")
 _KEY_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
@@ -262,84 +261,6 @@ def _parse_value(raw: str):
     return raw
 
 
-def _unit_factors(path, units: dict, lines: dict) -> dict[str, float]:
-    factors = {}
-    for quantity in _keys.UNIT_QUANTITIES:
-        name = units.get(quantity)
-        if name is None:
-            factors[quantity] = 1.0
-            continue
-        table = _keys.UNIT_FACTORS[quantity]
-        key = str(name).strip().lower()
-        if key not in table:
-            raise InputError(
-                f"[UNITS] {quantity} = '{name}' is not a known unit; valid: "
-                f"{', '.join(sorted(table))}", file=path, line=lines.get(("UNITS", quantity)),
-                key=quantity)
-        factors[quantity] = table[key]
-    return factors
-
-
-def _scale(exponents, factors) -> float:
-    return math.prod(factors[q] ** e for q, e in zip(_keys.UNIT_QUANTITIES, exponents, strict=True)
-                     if e)
-
-
-def _check_keys(path, fmt, sections, lines):
-    strict = {"PAC2002": _keys.PAC2002_STRICT, "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
-    for name, sec in sections.items():
-        allowed = strict.get(name)
-        if allowed is None:
-            allowed = _keys.KNOWN_SECTIONS.get(name)
-            if allowed is None:
-                if name not in _keys.FREE_SECTIONS and name not in _keys.PAC2002_STRICT:
-                    close = difflib.get_close_matches(name, _ALL_SECTIONS, n=1, cutoff=0.85)
-                    if close:   # a misspelt known section would silently drop its data
-                        raise InputError(f"unknown section [{name}] (did you mean "
-                                         f"[{close[0]}]?)", file=path,
-                                         line=lines[(name, "")], key=name)
-                    warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
-                                  " kept but not used", UserWarning, stacklevel=4)
-                continue
-            for key in sec:
-                if key not in allowed:
-                    close = [k for k in sorted(allowed) if _one_edit(key, k)]
-                    if close:   # a misspelt known key would silently fall back to a default
-                        raise InputError(f"unknown key {key} in [{name}] (did you mean "
-                                         f"{close[0]}?)", file=path, line=lines[(name, key)],
-                                         key=key)
-                    warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
-                                  f"known entry of [{name}]; ignored", UserWarning,
-                                  stacklevel=4)
-            continue
-        for key in sec:
-            if key not in allowed:
-                close = difflib.get_close_matches(key, sorted(allowed), n=3, cutoff=0.6)
-                hint = f" (did you mean {' or '.join(close)}?)" if close else ""
-                raise InputError(
-                    f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
-                    f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
-
-
-def _one_edit(a: str, b: str) -> bool:
-    """True if ``a`` becomes ``b`` by one insertion, deletion, substitution or swap of two
-    neighbours -- except a changed digit (``Q_FZ4`` is another coefficient, not a typo)."""
-    if a == b or abs(len(a) - len(b)) > 1:
-        return False
-    if len(a) == len(b):
-        diff = [i for i in range(len(a)) if a[i] != b[i]]
-        if len(diff) == 1:
-            return not (a[diff[0]].isdigit() and b[diff[0]].isdigit())
-        return (len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]]
-                and a[diff[1]] == b[diff[0]])
-    short, long_ = (a, b) if len(a) < len(b) else (b, a)
-    return any(long_[:i] + long_[i + 1:] == short for i in range(len(long_)))
-
-
-_ALL_SECTIONS = sorted(set(_keys.KNOWN_SECTIONS) | set(_keys.FREE_SECTIONS)
-                       | set(_keys.PAC2002_STRICT) | set(_keys.FIALA_STRICT))
-
-
 #: Sections a PAC2002 file needs, by USE_MODE % 10.
 def _required_sections(fmt: str, use_mode: int) -> list[str]:
     if fmt == "FIALA":
@@ -466,16 +387,16 @@ def read_tir(path) -> TireProperties:
     if "PROPERTY_FILE_FORMAT" not in sections["MODEL"]:
         raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002' or 'FIALA')",
                          file=path, line=lines[("MODEL", "")], key="PROPERTY_FILE_FORMAT")
-    _check_keys(path, fmt, sections, lines)
+    check_keys(path, fmt, sections, lines)
 
-    factors = _unit_factors(path, sections.get("UNITS", {}), lines)
+    factors = unit_factors(path, sections.get("UNITS", {}), lines)
     if fmt == "PAC2002" and factors["ANGLE"] != 1.0:
         warnings.warn(f"{path}: [UNITS] ANGLE is not radian; Magic Formula coefficients are "
                       "still interpreted as radian-based", UserWarning, stacklevel=2)
     for (sec, key), dims in _keys.UNIT_DIMENSIONS.items():
         value = sections.get(sec, {}).get(key)
         if isinstance(value, float):
-            sections[sec][key] = value * _scale(dims, factors)
+            sections[sec][key] = value * scale(dims, factors)
 
     frozen_tables = {}
     for name, (cols, rows, lineno, row_lines) in tables.items():
@@ -485,7 +406,7 @@ def read_tir(path) -> TireProperties:
         data = np.array(rows, dtype=float)
         dims = _keys.TABLE_DIMENSIONS.get(name)
         if dims is not None and len(dims) == data.shape[1]:
-            data = data * np.array([_scale(d, factors) for d in dims])
+            data = data * np.array([scale(d, factors) for d in dims])
         data.setflags(write=False)
         frozen_tables[name] = TirTable(cols, data, lineno, tuple(row_lines))
     check_tir(path, fmt, int(use_mode), sections, lines, frozen_tables)
