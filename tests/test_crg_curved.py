@@ -184,3 +184,12 @@ def test_run_pair_path_road_needs_a_road(tmp_path):
     car = pathlib.Path(__file__).resolve().parents[1] / "cars" / "sedan.toml"
     with pytest.raises(InputError, match="path 'road'"):
         run_pair(car, road=None, path="road", speed=10.0, t_end=1.0, out=tmp_path, title="t")
+
+
+def test_non_finite_positions_give_nan_heights(tmp_path):
+    """A diverging run passes NaN positions: NaN comes back, the solver reports it."""
+    road = read_crg(_curved_road(tmp_path))
+    h = road.height_xy(np.array([np.nan, 120.0, np.inf]), np.array([0.0, 20.0, 0.0]))
+    assert np.isnan(h[0]) and np.isfinite(h[1]) and np.isnan(h[2])
+    assert np.isnan(road.height(float("nan"), 0.0))
+    assert np.isnan(road.height(np.array([np.nan]), 0.0)[0])

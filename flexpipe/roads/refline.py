@@ -174,13 +174,17 @@ class ReferenceLine:
         Returns
         -------
         u, v : ndarray
-            Same shape as the broadcast inputs (m).
+            Same shape as the broadcast inputs (m); NaN where a position is not finite.
         """
         px, py = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
         shape = px.shape
         px, py = px.ravel(), py.ravel()
-        if not (np.all(np.isfinite(px)) and np.all(np.isfinite(py))):
-            raise InputError("road positions must be finite numbers")
+        ok = np.isfinite(px) & np.isfinite(py)
+        if not ok.all():       # e.g. a diverging simulation: NaN out, the caller decides
+            u, v = np.full(px.size, np.nan), np.full(px.size, np.nan)
+            if ok.any():
+                u[ok], v[ok] = self.xy_to_uv(px[ok], py[ok])
+            return u.reshape(shape), v.reshape(shape)
         if self.straight:
             c, s = math.cos(self.phi_start), math.sin(self.phi_start)
             dx, dy = px - self.x[0], py - self.y[0]

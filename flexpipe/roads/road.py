@@ -208,20 +208,28 @@ class Road:
         Returns
         -------
         float or ndarray
-            Height (m); see the module notes for the interpolation and end rules.
+            Height (m); see the module notes for the interpolation and end rules.  NaN
+            where ``s`` or ``lateral`` is not finite.
         """
         if type(s) in _SCALARS and type(lateral) in _SCALARS:
+            if not (math.isfinite(s) and math.isfinite(lateral)):
+                return math.nan
             return self._height_scalar(float(s), float(lateral))
         if self.z is None:
             w = np.clip(np.asarray(lateral, dtype=float) / self.track_width + 0.5, 0.0, 1.0)
             return (1.0 - w) * self.right_height(s) + w * self.left_height(s)
         s, lateral = np.broadcast_arrays(np.asarray(s, dtype=float),
                                          np.asarray(lateral, dtype=float))
+        bad = ~(np.isfinite(s) & np.isfinite(lateral))
+        if bad.any():          # NaN in, NaN out (e.g. a diverging simulation)
+            s, lateral = np.where(bad, self.x[0], s), np.where(bad, 0.0, lateral)
         i, t = self._along(s)
         j, u = _lateral_weights(self.y, lateral)
         z = self.z
         h = ((1.0 - t) * ((1.0 - u) * z[i, j] + u * z[i, j + 1])
              + t * ((1.0 - u) * z[i + 1, j] + u * z[i + 1, j + 1]))
+        if bad.any():
+            h = np.where(bad, np.nan, h)
         return h[()] if h.ndim == 0 else h
 
     def _height_scalar(self, s: float, lateral: float) -> float:
