@@ -206,31 +206,34 @@ class ReferenceLine:
 
     def _start(self, px, py):
         """Interval to start the walk from: the previous call's result for points that
-        moved less than one sample spacing since (a vehicle's contact points), else the
+        moved a few sample spacings at most since (a vehicle's contact points), else the
         interval before the nearest reference point."""
         prev = self._cache.get("hints", {}).get(px.size)
-        if prev is not None and np.max(np.abs(px - prev[0]) + np.abs(py - prev[1])) < self.du:
+        if prev is not None and np.max(np.abs(px - prev[0]) + np.abs(py - prev[1])) \
+                < max(4.0 * self.du, 0.2):
             return prev[2].copy()
         return np.clip(self._nearest(px, py) - 1, 0, self.n - 2)
 
     def _xy_to_uv_curved(self, px, py):
         last = self.n - 2
         j = self._start(px, py)
-        idx = np.arange(px.size)
+        back, ahead = self._side(j, px, py)
+        idx = None                  # points still walking (None: all of them)
         for _ in range(self.n + 1):
-            back, ahead = self._side(j[idx], px[idx], py[idx])
-            fwd = (ahead > 0.0) & (j[idx] < last)
-            bwd = (back < 0.0) & (j[idx] > 0) & ~fwd
+            jj = j if idx is None else j[idx]
+            b, a = (back, ahead) if idx is None else (back[idx], ahead[idx])
+            fwd = (a > 0.0) & (jj < last)
+            bwd = (b < 0.0) & (jj > 0) & ~fwd
             move = fwd | bwd
             if not move.any():
                 break
-            j[idx[move]] += np.where(fwd[move], 1, -1)
-            idx = idx[move]
+            idx = np.flatnonzero(move) if idx is None else idx[move]
+            j[idx] += np.where(fwd[move], 1, -1)
+            back[idx], ahead[idx] = self._side(j[idx], px[idx], py[idx])
         hints = self._cache.setdefault("hints", {})   # one per point-set size (few sizes)
         if len(hints) > 16:
             hints.clear()
         hints[px.size] = (px.copy(), py.copy(), j.copy())
-        back, ahead = self._side(j, px, py)
         n1, n2 = self._normals()
         x1, y1, x2, y2 = self.x[j], self.y[j], self.x[j + 1], self.y[j + 1]
         cx, cy = x2 - x1, y2 - y1
