@@ -1,4 +1,5 @@
-"""Property-based tests (hypothesis) of the ``.tir`` and OpenCRG readers.
+"""Property-based tests (hypothesis) of the ``.tir`` and OpenCRG readers (and, for damage
+only, the road, path and driver readers).
 
 * Meaning-preserving edits of a valid file (spacing, comments, blank lines, key case,
   number spelling) load to the same model, value for value.
@@ -147,3 +148,32 @@ def test_crg_damaged_file_loads_or_raises_flexpipe_error(tmp_path, data):
         _load_quietly(read_crg, f)
     except FlexpipeError as exc:
         assert "damaged.crg" in str(exc)
+
+
+def _other_readers():
+    from flexpipe.driver import read_driver, read_path
+    from flexpipe.roads import load_road
+
+    return [("road.csv", REPO / "roads" / "bump.csv", load_road),
+            ("road.toml", REPO / "roads" / "iso_c_200m.toml", load_road),
+            ("path.csv", REPO / "paths" / "sample_xy.csv", read_path),
+            ("path.toml", REPO / "paths" / "slalom_18m.toml", read_path),
+            ("driver.toml", REPO / "paths" / "driver.toml", read_driver)]
+
+
+@pytest.mark.parametrize("name, base, loader", _other_readers(), ids=lambda v: str(v)[-12:])
+def test_other_damaged_files_load_or_raise_flexpipe_error(tmp_path, name, base, loader):
+    """Road, path and driver readers under the same damage as the .tir and CRG files."""
+
+    @settings(max_examples=60, deadline=None,
+              suppress_health_check=[HealthCheck.function_scoped_fixture])
+    @given(data=damaging_edits(base.read_bytes()))
+    def check(data):
+        f = tmp_path / f"damaged_{name}"
+        f.write_bytes(data)
+        try:
+            _load_quietly(loader, f)
+        except FlexpipeError as exc:
+            assert f.name in str(exc)
+
+    check()
