@@ -11,10 +11,10 @@ line of ``$$$$``, followed by the data block.  The parts used here:
   ``REFERENCE_LINE_START_Z / START_S / START_B`` (elevation, slope and banking; without a
   data channel the start value holds along the whole road, as in OpenCRG, and a different
   ``END_S`` / ``END_B`` / ``END_PHI`` gives a warning).  Any other key is an error.
-* ``$KD_DEFINITION``: ``#:FMT`` and the channels ``D:long section <i>,m`` (by index, the
+* ``$KD_DEFINITION``: ``#:FMT``, ``U:reference line u,m,<start>,<increment>`` (used
+  when ``$ROAD_CRG`` gives no increment) and the channels ``D:long section <i>,m`` (by index, the
   lateral position is ``v_right + (i-1) v_increment``) or ``D:long section at v = <v>,m``
-  and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.  ``U:`` lines
-  describe the implicit ``u`` channel and hold no data.
+  and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.
 * The data block, one row per ``u`` sample with one value per ``D:`` channel.  ``FMT`` is
   four letters: ``K``ompact (rows run on without alignment) or ``L``ong (every row starts a
   new 80-byte/80-character record); ``R``eal (single) or ``D``ouble precision;
@@ -131,6 +131,29 @@ def _road_params(section, path):
     return params
 
 
+def _u_channel(section, path):
+    """``(start, increment)`` from a ``U:reference line u,m,<start>,<increment>`` line, or None.
+
+    OpenCRG takes the ``$ROAD_CRG`` values first; this fills in a missing increment.
+    """
+    for k, body in section["_items"]:
+        if body[:2].upper() != "U:":
+            continue
+        items = [t.strip() for t in body[2:].split(",")]
+        if items[0].lower() != "reference line u" or len(items) < 4 or not items[3]:
+            continue
+        try:
+            start, inc = float(items[2] or 0.0), float(items[3])
+        except ValueError:
+            raise InputError(f"channel {body!r}: start and increment must be numbers",
+                             file=path, line=k) from None
+        if not (math.isfinite(start) and math.isfinite(inc)):
+            raise InputError(f"channel {body!r}: start and increment must be finite",
+                             file=path, line=k)
+        return start, inc
+    return None
+
+
 def _channels(section, path):
     """Data format and the list of channels ``(kind, position, line)`` in file order."""
     fmt, channels = None, []
@@ -225,8 +248,10 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
                              line=sections["ROAD_CRG"]["_line"])
         return default
 
-    u0, u1, du = get("REFERENCE_LINE_START_U", 0.0), get("REFERENCE_LINE_END_U"), \
-        get("REFERENCE_LINE_INCREMENT")
+    u_channel = _u_channel(sections["KD_DEFINITION"], path)
+    u0 = get("REFERENCE_LINE_START_U", u_channel[0] if u_channel else 0.0)
+    u1 = get("REFERENCE_LINE_END_U")
+    du = get("REFERENCE_LINE_INCREMENT", u_channel[1] if u_channel else None)
     if not (du > 0.0 and u1 > u0):
         raise InputError(f"need REFERENCE_LINE_END_U > START_U and INCREMENT > 0, got "
                          f"{u0:g}, {u1:g}, {du:g}", file=path, line=p.get(

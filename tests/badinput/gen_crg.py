@@ -84,6 +84,12 @@ def cases():
     yield "ok_text_inline_comment", "inline.crg", text.replace(
         "LONG_SECTION_V_RIGHT      = -1.0000000000000000e+00",
         "LONG_SECTION_V_RIGHT      = -1.0 ! right border").encode(), "ok"
+    yield "ok_increment_from_u_channel", "u_channel.crg", "\n".join(
+        t for t in text.split("\n") if not t.startswith("REFERENCE_LINE_INCREMENT")).encode(), \
+        "ok"
+    yield "u_channel_garbage_increment", "u_channel_bad.crg", "\n".join(
+        t for t in text.split("\n") if not t.startswith("REFERENCE_LINE_INCREMENT")).replace(
+        "U:reference line u,m,0.000,0.100", "U:reference line u,m,0.000,zero").encode(), "error"
     sk = _straight_krbi()
     cu = _curved_kdbi()
     yield "ok_krbi", "straight.crg", _build(*sk), "ok"
