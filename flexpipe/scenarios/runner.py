@@ -90,7 +90,12 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         from flexpipe.roads import load_road
 
         road = load_road(road)
-    if isinstance(path, (str, Path)) and path != "straight":
+    if isinstance(path, str) and path == "road":       # follow the road's reference line
+        if road is None or not hasattr(road, "reference_path"):
+            raise InputError("path 'road' follows the road's reference line: give a road "
+                             "file", key="path")
+        path = road.reference_path()
+    elif isinstance(path, (str, Path)) and path != "straight":
         from flexpipe.driver import read_path
 
         path = read_path(path)

@@ -162,7 +162,7 @@ class CarController:
         e = 0.05
         x = np.concatenate([P[:, 0], P[:, 0] + e, P[:, 0] - e, P[:, 0], P[:, 0]])
         y = np.concatenate([P[:, 1], P[:, 1], P[:, 1], P[:, 1] + e, P[:, 1] - e])
-        z = np.asarray(self.road.height(x, y), dtype=float).reshape(5, -1)
+        z = np.asarray(self.road.height_xy(x, y), dtype=float).reshape(5, -1)
         gx = (z[1] - z[2]) / (2 * e)
         gy = (z[3] - z[4]) / (2 * e)
         n = np.column_stack([-gx, -gy, np.ones_like(gx)])
@@ -238,7 +238,7 @@ class CarController:
         Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
         F_applied = self._applied_tire_force(st, s_axis, omega)
         ahead = st.wheel_p + self.h * st.wheel_v
-        road_ahead = np.asarray(self.road.height(ahead[:, 0], ahead[:, 1]), dtype=float)
+        road_ahead = np.asarray(self.road.height_xy(ahead[:, 0], ahead[:, 1]), dtype=float)
         ts = self.tires.predict(kin, self.h, road_ahead)
         if not (np.all(np.isfinite(ts.F0)) and np.all(np.isfinite(ts.Dv))):
             return self._fail(st.t, "tyre forces became non-finite")

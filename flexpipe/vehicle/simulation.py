@@ -164,11 +164,12 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     car : Car or str or Path
         A car (:func:`load_car`) or its TOML file.
     road : Road, str, Path or None
-        Road (file: ``.toml`` spec, ``.crg``, ``.csv``); ``None`` for a flat road.  Road
-        coordinates are global: distance ``s = x`` and ``lateral = y``.
+        Road (file: ``.toml`` spec, ``.crg``, ``.csv``); ``None`` for a flat road.  Heights
+        are taken at global positions (:meth:`Road.height_xy`): OpenCRG roads lie where
+        their reference line puts them (curved, sloped, banked); others along the x axis.
     path : flexpipe.driver.Path, str, Path or None
         Path the driver follows (file ``.csv``/``.toml``); ``None`` or ``"straight"`` for
-        the x axis.
+        the x axis; ``"road"`` for the road's reference line (:meth:`Road.reference_path`).
     speed : float
         Target (and initial) speed, m/s (0 for a car at rest).
     t_end : float
@@ -239,7 +240,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     travel = speed * t_end
     needed = start + travel + 10.0
     road_obj = _road(road, needed)
-    path_obj = _path(path, needed)
+    path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
+        else _path(path, needed)  # path="road": follow the road's reference line
     what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
     road_obj.require_length(needed, what=what, start=road_obj.x[0])
     path_obj.require_length(travel + 10.0, what=what, start=start)
@@ -272,7 +274,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    [0.0, 0.0, 1.0]])
     W = corners.wheel_center
     Pw = np.array([x0, y0, 0.0]) + W @ R0.T
-    z0 = float(np.mean(road_obj.height(Pw[:, 0], Pw[:, 1])))
+    z0 = float(np.mean(road_obj.height_xy(Pw[:, 0], Pw[:, 1])))
     p0 = np.array([x0, y0, z0])
     re = np.array([float(t.effective_rolling_radius(t.unloaded_radius - wz))
                    for t, wz in zip(tires, W[:, 2], strict=True)])
