@@ -75,6 +75,7 @@ class CarLoads:
     steer: np.ndarray  # (4,) steering angle offsets (rad), used on steered corners
     suspension_k: np.ndarray = None  # (4,) tangent stiffness of the suspension connector
     suspension_f0: np.ndarray = None  # (4,) its force at zero travel and rate (linearized)
+    rack_travel: float | None = None  # linkage cars: steering rack travel (m, toward +y)
 
 
 @dataclass
@@ -110,6 +111,7 @@ class CarBuild:
     gravity: float = 9.81
     point_nodes: dict = field(default_factory=dict)  # name -> mesh node index
     point_local: dict = field(default_factory=dict)  # name -> body coordinates
+    suspension: object = None  # linkage cars: Suspension with preloaded springs
 
 
 class CarSystem:

@@ -94,7 +94,7 @@ class CarController:
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
-                 tire_k=None, tire_c=None, preview_time=0.3):
+                 tire_k=None, tire_c=None, preview_time=0.3, linkage=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -103,6 +103,7 @@ class CarController:
         self.car = car
         self.h = float(h)
         self.output_every = int(output_every)
+        self.linkage = linkage  # LinkageModel of a linkage car (None: prismatic corners)
         self.driver_dt = float(driver_dt)
         self._next_driver_t = 0.0
         self.points = list(points)
@@ -253,6 +254,21 @@ class CarController:
         spin_torque = T + Ms
         carrier_moment = ts.moment - Ms[:, None] * s_axis
 
+        from flexpipe.exu.car import CarLoads
+
+        if self.linkage is not None:  # the linkage's force elements linearize themselves
+            rk = self.car.suspension.rack
+            s_rack = None
+            if rk is not None:
+                s_rack = -self.delta * self.ratio * rk.travel_per_rev / (2 * math.pi)
+            loads = CarLoads(suspension=np.zeros(4), damper_c=np.zeros(4), tire=ts,
+                             tire_moment=carrier_moment, spin_torque=spin_torque,
+                             steer=steer, rack_travel=s_rack)
+            self._tire_lin = (ts, st, omega)
+            if self.step_no % self.output_every == 0:
+                self._record(st, np.zeros(4), Fw, v, roll, pitch, yaw, F_applied)
+            self.step_no += 1
+            return loads
         # suspension: spring, damper (rate by the sign of the jounce rate) and the stops are
         # one implicit connector linearized at the start of the step; the anti-roll bars
         # come explicitly
@@ -265,8 +281,6 @@ class CarController:
         Fs_own = self.c.force(st.jounce, st.jounce_rate, anti_roll=False)
         k_t = self.c.stiffness(st.jounce)
         f0 = Fs_own - k_t * st.jounce - c_step * st.jounce_rate
-
-        from flexpipe.exu.car import CarLoads
 
         loads = CarLoads(suspension=F_arb, damper_c=c_step, tire=ts,
                          tire_moment=carrier_moment, spin_torque=spin_torque, steer=steer,
@@ -307,8 +321,11 @@ class CarController:
         else:
             # Newton's law of each wheel carrier under the loads of the step just taken:
             # what the corner applies to the body = tyre force + weight - m a
-            a = self.wheel_acc()
-            hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
+            if self.linkage is not None:
+                hub_g = self.linkage.hub_forces(F_tire)
+            else:
+                a = self.wheel_acc()
+                hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
             hub = np.einsum("nji,nj->ni", st.mount_R, hub_g)
         # lateral acceleration of the body origin from its velocity history
         if self._prev_v is None:

@@ -30,7 +30,7 @@ from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import GRAVITY, corner_arrays
 from flexpipe.vehicle.result import Result
-from flexpipe.vehicle.spec import Car, load_car
+from flexpipe.vehicle.spec import CORNERS, Car, load_car
 
 BODIES = ("flexible", "rigid", "full")
 #: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
@@ -304,7 +304,18 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     if fb is not None:
         if max_mode_hz is not None:
             n_modes = int(np.count_nonzero(fb.frequencies_hz[fb.n_rigid:] <= max_mode_hz))
-        q0 = static_deflection(fb, corners, n_modes)
+        q0 = None if car.suspension is not None else static_deflection(fb, corners, n_modes)
+    susp = None
+    if car.suspension is not None:
+        from flexpipe.vehicle.corners import static_wheel_loads
+        from flexpipe.vehicle.suspension.statics import preloaded, with_wheels
+
+        N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY)
+        links = car.suspension.corners()
+        wheels = {c.name: (c.unsprung_mass - sum(p.mass for p in links[c.name].parts),
+                           c.unsprung_inertia) for c in car.corners}
+        susp = preloaded(with_wheels(car.suspension, wheels),
+                         dict(zip(CORNERS, N, strict=True)), g=GRAVITY)
     build = CarBuild(
         chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass,
         center_of_mass=rb.center_of_mass,
@@ -316,15 +327,22 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         steered=np.array([c.axle == car.steering.axle for c in car.corners]),
         position=p0, rotation=R0, speed=speed, spin_rate=spin0, gravity=GRAVITY,
         body_rates=rates,
-        point_nodes=pn if pn else {n: -1 for n in names}, point_local=local)
-    system = CarSystem(build)
+        point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
+        suspension=susp)
+    if susp is not None:
+        from flexpipe.exu.linkage_car import LinkageCarSystem
+
+        system = LinkageCarSystem(build)
+    else:
+        system = CarSystem(build)
     ctrl = CarController(corners=corners, tires=tires, road=road_obj, steering=steering,
                          speed_pi=speed_pi, target_speed=speed, car=car, h=h, t_end=t_end,
                          output_every=every, points=names,
                          point_acc=system.point_accelerations,
                          joint_forces=system.joint_forces,
                          wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
-                         tire_k=tire_k, tire_c=tire_c)
+                         tire_k=tire_k, tire_c=tire_c,
+                         linkage=getattr(system, "linkage", None))
     bar = None
     if progress:
         from tqdm import tqdm

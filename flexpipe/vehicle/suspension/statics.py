@@ -63,3 +63,49 @@ def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4) -
     lk = Linkage(corner)
     f = [solve_compliance(lk, s).force for s in (travel - h, travel + h)]
     return (f[1] - f[0]) / (2 * h)
+
+
+def preloaded(suspension, wheel_loads: dict, *, g: float = G):
+    """``suspension`` with every spring preloaded for its corner's static wheel load.
+
+    Parameters
+    ----------
+    suspension : Suspension
+    wheel_loads : dict
+        ``{"fl": N, ...}`` vertical tyre loads at rest (N).
+    """
+    axles = {}
+    for name, a in suspension.axles.items():
+        left = with_preload(a.left, spring_preload(a.left, wheel_loads[a.left.corner], g=g))
+        right = with_preload(a.right, spring_preload(a.right, wheel_loads[a.right.corner],
+                                                     g=g))
+        axles[name] = replace(a, left=left, right=right)
+    return replace(suspension, axles=axles)
+
+
+def with_wheels(suspension, wheels: dict):
+    """``suspension`` whose knuckles carry the wheels (rim + tyre) at the wheel centres.
+
+    ``wheels`` is ``{"fl": (mass_kg, inertia 3x3 about the wheel centre), ...}``; the
+    knuckle's mass, centre of mass and inertia become those of knuckle plus wheel, so the
+    spring preload (virtual work) and the multibody model both see the wheel's weight.
+    """
+    axles = {}
+    for name, a in suspension.axles.items():
+        sides = []
+        for c in (a.left, a.right):
+            mw, Jw = wheels[c.corner]
+            parts = []
+            for p in c.parts:
+                if p.name == c.knuckle and mw > 0:
+                    w = np.asarray(c.wheel_center, float)
+                    m = p.mass + mw
+                    cm = (p.mass * p.cm + mw * w) / m
+                    dk, dw = p.cm - cm, w - cm
+                    J = (p.inertia + p.mass * (dk @ dk * np.eye(3) - np.outer(dk, dk))
+                         + np.asarray(Jw, float) + mw * (dw @ dw * np.eye(3) - np.outer(dw, dw)))
+                    p = replace(p, mass=m, cm=cm, inertia=J)
+                parts.append(p)
+            sides.append(replace(c, parts=tuple(parts)))
+        axles[name] = replace(a, left=sides[0], right=sides[1])
+    return replace(suspension, axles=axles)
