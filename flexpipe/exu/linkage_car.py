@@ -80,8 +80,8 @@ class LinkageCarSystem(CarSystem):
                     cache[key] = mbs.AddMarker(item)
                 return cache[key]
         self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
-        self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker, p0=p0, R0=R0, v0=v0,
-                                         gravity=g)
+        self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker,
+                                         p0=p0, R0=R0, v0=v0, gravity=g)
         self.wheel_node = list(lk.knuckle_node)
         self.spin_node, self.load_tire_m, self.load_spin, self.tire_elem = [], [], [], []
         for i in range(4):
