@@ -152,6 +152,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     if "trajectory" in plots and path is not None:
         files.append(P.trajectory(results, path, out / "trajectory.png").name)
     summary["files"] = sorted(files + ["summary.json"])
+    _durability(out, results, summary, car=car, road=road, log=log)
     summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
     write_text_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     log(f"wrote {out}/: {', '.join(summary['files'])}")
@@ -162,6 +163,21 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
             f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
     return summary
+
+
+def _durability(out, results, summary, *, car, road, log):
+    """Durability outputs (feat/durability): body motion, hardpoints, stress and fatigue
+    (``stress/``), ParaView animation (``animation/``); ``summary["file_descriptions"]``
+    says what every file holds."""
+    from flexpipe.durability.pipeline import scenario_outputs
+
+    if road is None:
+        from flexpipe.roads import flat
+
+        road = flat(1000.0, dx=1.0, track_width=1.5)
+    desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log)
+    summary["files"] = sorted(set(summary["files"]) | set(desc))
+    summary["file_descriptions"] = dict(sorted(desc.items()))
 
 
 def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print) -> dict:

@@ -31,7 +31,8 @@ _UNITS = (
     (r"^travel_\w+$", "m"),
     (r"^spin_\w+$", "rad/s"),
     (r"^acc_\w+_[xyz]$", "m/s^2"),
-    (r"^hardpoint_\w+_[xyz]$", "m"),
+    (r"^hardpoint_\w+_u[xyz]$", "m"),
+    (r"^hardpoint_\w+_r[xyz]$", "rad"),
     (r"^(vm|von_mises)_\w+$", "Pa"),
     (r"^(t|time)$", "s"),
 )
