@@ -12,7 +12,7 @@ from flexpipe._io import write_text_atomic
 from flexpipe.durability.rundir import MOTION_FILE, RunData, load_run, road_strip
 
 #: time between animation frames written by a scenario run, s
-ANIMATION_FRAME_STEP = 0.05
+ANIMATION_FRAME_STEP = 0.1
 
 DESCRIPTIONS = {
     "rigid.csv": "channels of the rigid-body run vs time t [s]; unit of every column in "
