@@ -83,8 +83,9 @@ def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=N
         f"({sr.location[i]}) at t = {sr.time_of_max[i]:.3f} s")
     if sr.damage is not None:
         j = int(np.nanargmax(sr.damage))
-        log(f"fatigue: max damage {sr.damage[j]:.3g} ({sr.damage[j] / max(sr.distance_km, 1e-12):.3g}"
-            f" per km) at element {sr.element_id[j]}")
+        per_km = sr.damage[j] / max(sr.distance_km, 1e-12)
+        log(f"fatigue: max damage {sr.damage[j]:.3g} ({per_km:.3g} per km) at element "
+            f"{sr.element_id[j]}")
     return {f"stress/{k}": v for k, v in files.items()}
 
 

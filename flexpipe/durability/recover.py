@@ -20,8 +20,8 @@ import numpy as np
 from flexpipe.durability.fatigue import FatigueMaterial, damage_bound, miner_damage
 from flexpipe.errors import InputError
 
-#: bytes of stress history held at once
-CHUNK_BYTES = 64 * 2**20
+#: bytes of one stress-component history array of a chunk (cache-sized temporaries)
+CHUNK_BYTES = 2**20
 #: damage is counted exactly for every element whose upper bound reaches this fraction of
 #: the largest exact damage (the rest cannot matter for the ranking)
 DAMAGE_RTOL = 1e-6
@@ -76,6 +76,49 @@ def equivalents(kind: str, sig: np.ndarray):
         return np.stack(vms, axis=1), np.stack(sps, axis=1)
     vm, sp = solid_equivalent(sig.transpose(1, 0, 2))
     return vm[:, None], sp[:, None]
+
+
+def _critical(kind, sig, want_signed):
+    """Max von Mises over time and locations of a chunk ``sig`` (ne, 6, n).
+
+    Returns ``(vmax, k, loc, sp, signed)``: max von Mises (ne,), its time index and
+    location index, the signed principal stress there and, if ``want_signed``, the signed
+    von Mises history (ne, n) at that location.  Shells use ``vm^2 = A +- B`` for the top
+    and bottom surfaces (``A = Q(m) + Q(b)``, ``B = 2 Q(m, b)`` with ``Q`` the plane von
+    Mises form), so the larger surface is ``A + |B|``; the principal stress of largest
+    magnitude has the sign of ``sx + sy`` (plane stress) or of the axial stress (beams).
+    """
+    ne, _, n = sig.shape
+    r = np.arange(ne)
+    if kind == "shell":
+        m1, m2, m3, b1, b2, b3 = (sig[:, i] for i in range(6))
+        A = m1 * m1 - m1 * m2 + m2 * m2 + 3.0 * m3 * m3 + b1 * b1 - b1 * b2 + b2 * b2 \
+            + 3.0 * b3 * b3
+        B = 2.0 * (m1 * b1 + m2 * b2) - m1 * b2 - m2 * b1 + 6.0 * m3 * b3
+        k = np.argmax(A + np.abs(B), axis=1)
+        s = np.where(B[r, k] >= 0.0, 1.0, -1.0)
+        c = sig[r, :, k]                                       # (ne, 6) at the max
+        v, sp = plane_equivalent(*(c[:, :3] + s[:, None] * c[:, 3:]).T)
+        loc = (s < 0).astype(np.int64)
+        signed = None
+        if want_signed:
+            signed = np.sqrt(np.maximum(A + s[:, None] * B, 0.0))
+            signed *= np.where(m1 + m2 + s[:, None] * (b1 + b2) >= 0.0, 1.0, -1.0)
+        return v, k, loc, sp, signed
+    if kind == "beam":
+        vm = [np.abs(sig[:, e]) + np.abs(sig[:, e + 1]) + np.abs(sig[:, e + 2]) for e in (0, 3)]
+        both = np.maximum(vm[0], vm[1])
+        k = np.argmax(both, axis=1)
+        loc = (vm[1][r, k] > vm[0][r, k]).astype(np.int64)
+        axial = np.where(loc[:, None] == 1, sig[:, 3], sig[:, 0])
+        sgn = np.where(axial >= 0.0, 1.0, -1.0)
+        v = both[r, k]
+        signed = np.where(loc[:, None] == 1, vm[1], vm[0]) * sgn if want_signed else None
+        return v, k, loc, v * sgn[r, k], signed
+    vm, sp = solid_equivalent(sig.transpose(1, 0, 2))
+    k = np.argmax(vm, axis=1)
+    return vm[r, k], k, np.zeros(ne, np.int64), sp[r, k], \
+        (vm * np.sign(sp) if want_signed else None)
 
 
 # --------------------------------------------------------------------------- result
@@ -180,15 +223,18 @@ def recover_stress(result, body, *, fatigue: FatigueMaterial | None = None,
     if motion.n_modes == 0:
         raise InputError("the run has no elastic modal coordinates (rigid body)", key="result")
     cols = _modal_columns(body, motion)
-    q = motion.q.T  # (m, n)
+    q = np.ascontiguousarray(motion.q.T)  # (m, n)
     n = q.shape[1]
     blocks = body.stress.blocks
     kinds = [b.kind for b in blocks]
+    # the run's modes only, one (ne * 6, m) matrix per block: one GEMM per chunk
+    S = [np.ascontiguousarray(b.modes[:, :, cols]).reshape(-1, len(cols)) for b in blocks]
 
     def sigma(bi, rows):
-        return np.matmul(blocks[bi].modes[rows][:, :, cols], q)
+        idx = (6 * np.asarray(rows)[:, None] + np.arange(6)).ravel()
+        return (S[bi][idx] @ q).reshape(len(rows), 6, n)
 
-    chunk = max(16, int(CHUNK_BYTES // (8 * 6 * 3 * max(n, 1))))
+    chunk = max(4, int(CHUNK_BYTES // (8 * max(n, 1))))
     jobs = [(bi, np.arange(s, min(s + chunk, len(b)))) for bi, b in enumerate(blocks)
             for s in range(0, len(b), chunk)]
     it = jobs
@@ -198,23 +244,17 @@ def recover_stress(result, body, *, fatigue: FatigueMaterial | None = None,
         it = tqdm(jobs, desc="stress recovery", unit="chunk")
     vmax, imax, loc, spmax, smax, smin, nrev = ([] for _ in range(7))
     for bi, rows in it:
-        vm, sp = equivalents(kinds[bi], sigma(bi, rows))
-        peak = vm.max(axis=2)                                 # (ne, nloc)
-        lo = peak.argmax(axis=1)
-        r = np.arange(len(rows))
-        vm_c, sp_c = vm[r, lo], sp[r, lo]                     # critical location (ne, n)
-        k = vm_c.argmax(axis=1)
-        vmax.append(vm_c[r, k])
+        sig = (S[bi][6 * rows[0]:6 * (rows[-1] + 1)] @ q).reshape(len(rows), 6, n)
+        v, k, lo, sp, signed = _critical(kinds[bi], sig, fatigue is not None)
+        vmax.append(v)
         imax.append(k)
         loc.append(lo)
-        spmax.append(sp_c[r, k])
-        if fatigue is not None:
-            signed = vm_c * np.sign(sp_c)
+        spmax.append(sp)
+        if signed is not None:
             smax.append(signed.max(axis=1))
             smin.append(signed.min(axis=1))
-            d = np.diff(signed, axis=1)
-            s = np.sign(d)
-            nrev.append(2 + np.count_nonzero(s[:, 1:] * s[:, :-1] < 0, axis=1))
+            d = np.sign(np.diff(signed, axis=1))
+            nrev.append(2 + np.count_nonzero(d[:, 1:] * d[:, :-1] < 0, axis=1))
     where = [(bi, int(j), int(lc)) for (bi, rows), lcs in zip(jobs, loc, strict=True)
              for j, lc in zip(rows, lcs, strict=True)]
     cat = np.concatenate

@@ -12,8 +12,6 @@ import json
 import re
 from pathlib import Path
 
-import numpy as np
-
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
 
