@@ -19,6 +19,11 @@ DESCRIPTIONS = {
                  "its header (see flexpipe.vehicle.dynamics for the channel list)",
     "flexible.csv": "channels of the flexible-body run vs time t [s]; units in the header",
     "full.csv": "channels of the full-body run vs time t [s]; units in the header",
+    **{f"{b}.h5": f"channels of the {b}-body run (HDF5: t, channels/NAME with a unit "
+                  "attribute, motion/ for a flexible body, info)"
+       for b in ("rigid", "flexible", "full")},
+    **{f"{b}.mat": f"channels of the {b}-body run (MATLAB: t, channels, units, motion, info)"
+       for b in ("rigid", "flexible", "full")},
     "hub_force_fl.png": "vertical force on the front-left hub, rigid vs flexible",
     "trajectory.png": "driven path of each run",
     "summary.json": "this file: settings, run status, CPU times, hub-force differences",

@@ -39,6 +39,24 @@ def read_channels_csv(path) -> tuple[np.ndarray, dict]:
     return data[:, 0], {n: data[:, i] for i, n in enumerate(names) if i > 0}
 
 
+def read_channels(out, body: str = "flexible"):
+    """``(t, channels)`` of a run's channel file: ``BODY.csv``, ``BODY.h5`` or ``BODY.mat``."""
+    out = Path(out)
+    if (out / f"{body}.csv").is_file():
+        return read_channels_csv(out / f"{body}.csv")
+    if (out / f"{body}.h5").is_file():
+        import h5py
+
+        with h5py.File(out / f"{body}.h5", "r") as f:
+            return f["t"][()], {k: v[()] for k, v in f["channels"].items()}
+    if (out / f"{body}.mat").is_file():
+        from scipy.io import loadmat
+
+        d = loadmat(out / f"{body}.mat", simplify_cells=True)
+        return np.ravel(d["t"]), {k: np.ravel(v) for k, v in d["channels"].items()}
+    raise InputError(f"no {body}.csv, {body}.h5 or {body}.mat", file=out)
+
+
 def road_strip(road, x, y, *, width: float = 3.0, ds: float = 0.25):
     """Road surface heights on a strip along the driven track ``(x, y)`` (global).
 
@@ -116,7 +134,7 @@ def load_run(out, *, body: str = "flexible") -> RunData:
         body_file = Path(str(d["body_file"])) if "body_file" in d.files else Path()
         band = float(d["band_hz"]) if "band_hz" in d.files else None
         road = (d["road_x"], d["road_y"], d["road_z"]) if "road_x" in d.files else None
-    t, ch = read_channels_csv(out / f"{body}.csv")
+    t, ch = read_channels(out, body)
     if len(t) != len(motion.t):
         raise InputError(f"{body}.csv has {len(t)} rows but {mpath.name} {len(motion.t)} "
                          "steps: files from different runs", file=out)

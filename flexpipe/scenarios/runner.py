@@ -75,7 +75,8 @@ def _summary_diffs(diff: dict) -> dict:
 
 def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
-             h: float | None = None, notes=None, name: str = "run", log=print) -> dict:
+             h: float | None = None, notes=None, name: str = "run", log=print,
+             format: str = "csv") -> dict:  # noqa: A002
     """Simulate ``car`` with each body kind, write CSVs, plots and ``summary.json``.
 
     Returns the summary dict (``status`` 0 when every run reached its end time).
@@ -113,7 +114,9 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             f"simulated (real-time factor {r.realtime_factor:.2f})")
     files = []
     for body, r in results.items():
-        files.append(r.to_csv(out / f"{body}.csv").name)
+        from flexpipe.vehicle.export import SUFFIX
+
+        files.append(r.save(out / f"{body}{SUFFIX.get(format, '.csv')}", format=format).name)
     summary = {
         "scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
         "status": 0 if all(r.status == 0 for r in results.values()) else -1,
