@@ -137,3 +137,16 @@ def test_equivalent_stresses_against_eigenvalues():
                                                   T2[:, 1, 2], T2[:, 0, 2], T2[:, 0, 1]]))
     np.testing.assert_allclose(vm2, vm2_ref, rtol=1e-9)
     np.testing.assert_allclose(sp2, sp2_ref, rtol=1e-7, atol=1e-3)
+
+
+def test_readme_durability_example_runs(straight, capsys):
+    import re
+
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"## Durability.*?```python\n(.*?)```", text, flags=re.S).group(1)
+    out, _ = straight
+    block = block.replace('"out/straight"', repr(str(out)))
+    exec(compile(block, "README.md", "exec"), {})
+    printed = capsys.readouterr().out.split()
+    hot = (out / "stress" / "hotspots.csv").read_text().splitlines()[1].split(",")
+    assert printed[0] == hot[2]  # the same top element as the hot-spot table
