@@ -150,3 +150,50 @@ def test_readme_durability_example_runs(straight, capsys):
     printed = capsys.readouterr().out.split()
     hot = (out / "stress" / "hotspots.csv").read_text().splitlines()[1].split(",")
     assert printed[0] == hot[2]  # the same top element as the hot-spot table
+
+
+def test_recovery_of_a_single_mode_sine_equals_closed_form():
+    """q = a cos(2 pi f t) in one mode: max von Mises = |a| vm(mode), Miner damage of
+    n cycles of signed von Mises with amplitude |a| vm(mode) (Basquin closed form)."""
+    import flexpipe as fp
+    from flexpipe.durability.fatigue import FatigueMaterial
+    from flexpipe.durability.recover import equivalents, recover_stress
+    from flexpipe.mesh.generate import plate
+    from flexpipe.vehicle.result import BodyMotion
+
+    fe = fp.assemble(plate(0.4, 0.2, 8, 4), fp.Material(210e9, 0.3, 7850.0), thickness=0.002)
+    body = fp.reduce(fe, [fp.Interface((0.0, 0.1, 0.0), radius=0.05, name="a")], n_modes=3,
+                     stress="all")
+    k, a, cycles = 2, 1.5e-3, 20
+    t = np.linspace(0.0, 1.0, 40 * cycles + 1)
+    q = np.zeros((len(t), body.n_elastic))
+    q[:, k] = a * np.cos(2 * np.pi * cycles * t)
+    n = len(t)
+    motion = BodyMotion(t, q, np.column_stack([10 * t, np.zeros(n), np.zeros(n)]),
+                        np.broadcast_to(np.eye(3), (n, 3, 3)), body.n_rigid + np.arange(
+                            body.n_elastic))
+    mat = FatigueMaterial(sigma_f=1e9, b=-0.1)
+    sr = recover_stress(motion, body, fatigue=mat)
+    vm_mode, _ = equivalents("shell", body.stress.blocks[0].modes[:, :, k:k + 1])
+    amp = a * vm_mode[:, :, 0].max(axis=1)
+    np.testing.assert_allclose(sr.max_von_mises, amp, rtol=1e-12)
+    assert set(np.round(sr.time_of_max * cycles, 9)) <= set(np.arange(cycles + 1.0))
+    counted = np.isfinite(sr.damage)  # elements whose damage bound is not negligible
+    assert counted[amp >= 0.3 * amp.max()].all()
+    N = 0.5 * (amp[counted] / mat.sigma_f) ** (1 / mat.b)
+    np.testing.assert_allclose(sr.damage[counted], cycles / N, rtol=1e-9)
+    assert sr.distance_km == pytest.approx(0.01)
+
+
+def test_fast_recovery_agrees_with_generic_equivalents(straight):
+    from flexpipe.durability.recover import recover_stress
+    from flexpipe.durability.rundir import load_run
+
+    run = load_run(straight[0])
+    sr = recover_stress(run.motion, run.body())
+    rng = np.random.default_rng(0)
+    for i in list(sr.top(5)) + list(rng.choice(len(sr.element_id), 20, replace=False)):
+        vm, sp = sr.history(int(i))  # generic path: every location, eigenvalue formulas
+        assert vm.max() == pytest.approx(sr.max_von_mises[i], rel=1e-12)
+        j = int(np.argmin(np.abs(sr.t - sr.time_of_max[i])))
+        assert sp[j] == pytest.approx(sr.principal_at_max[i], rel=1e-9)
