@@ -3,7 +3,8 @@ on the sample sedan over the ``make straight`` run (10 s, 70 km/h, ISO 8608 clas
 
 Acceptance targets (issue 11): stress recovery for the 10 s straight run under 10 s; body
 file with stress modes under 30 MB.  The peer figure is the flexible run's own CPU time,
-measured in the same process: ``recovery_to_simulation`` is the recovery time over it.
+measured in the same process: ``recovery_to_simulation_cpu`` is the recovery CPU time
+over it.  Wall times are also given: the acceptance target is a wall time.
 """
 
 from __future__ import annotations
@@ -49,7 +50,8 @@ def run() -> dict:
             t_rec = time.perf_counter() - t0
             out["recovery_cpu_s"] = round(time.process_time() - c0, 2)
             out.update(recovery_s=round(t_rec, 2), recovery_target_s=10.0,
-                       recovery_to_simulation=round(t_rec / max(r.cpu_time, 1e-9), 3),
+                       recovery_to_simulation_cpu=round(out["recovery_cpu_s"]
+                                                        / max(r.cpu_time, 1e-9), 3),
                        max_von_mises_MPa=round(float(sr.max_von_mises.max()) / 1e6, 2))
             t0 = time.perf_counter()
             sr = recover_stress(r, fb, fatigue=car.body.fatigue)
