@@ -197,3 +197,36 @@ def test_stress_modes_size_switch_and_storage(tmp_path):
     assert back == full
     np.testing.assert_array_equal(back.stress.blocks[0].modes, full.stress.blocks[0].modes)
     assert list(back.stress.mode_index) == list(range(full.n_rigid, full.n_modes))
+
+
+@pytest.mark.parametrize("cell", ["tetra", "tetra10", "hexahedron"])
+def test_solid_nodal_operators_constant_strain(cell):
+    m = box(0.2, 0.1, 0.1, 2, 1, 1, cell=cell)
+    P = m.points.copy()
+    P[:, 0] += 0.1 * P[:, 2]
+    X = P[m.blocks[0].cells]
+    eps = np.array([[1e-4, 2e-5, -3e-5], [2e-5, -5e-5, 4e-5], [-3e-5, 4e-5, 7e-5]])
+    Sn = fs.solid_nodal(cell, X, E=np.full(len(X), E), nu=np.full(len(X), NU))
+    sig = np.einsum("eacd,ed->eac", Sn, _field(X, lambda x: x @ eps.T, 3))
+    lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+    T = lam * np.trace(eps) * np.eye(3) + 2 * mu * eps
+    want = [T[0, 0], T[1, 1], T[2, 2], T[1, 2], T[0, 2], T[0, 1]]
+    np.testing.assert_allclose(sig, np.broadcast_to(want, sig.shape), rtol=1e-9, atol=1e-3)
+
+
+def test_hex8_nodal_stress_in_pure_bending_equals_beam_theory():
+    # one element through the depth: the centroid sees the neutral axis, the nodes the
+    # extreme fibres, sigma_xx = -E kappa z' (3D elasticity solution of pure bending)
+    L, b, h, kap = 1.0, 0.1, 0.1, 2e-3
+    m = box(L, b, h, 10, 1, 1, cell="hexahedron")
+    fe = fp.assemble(m, STEEL)
+    x, y, z = (m.points - [0.0, b / 2, h / 2]).T
+    u = np.column_stack([-kap * x * z, NU * kap * y * z,
+                         0.5 * kap * (x**2 + NU * (z**2 - y**2))]).ravel()
+    sm = stress_modes(fe, u[:, None], [0])
+    blk = sm.blocks[0]
+    np.testing.assert_allclose(blk.modes[:, 0, 0], 0.0, atol=1e-6 * E * kap * h)
+    zn = m.points[blk.nodes, 2] - h / 2
+    np.testing.assert_allclose(blk.nodal[:, 0, 0], -E * kap * zn, rtol=1e-9,
+                               atol=1e-9 * E * kap * h)
+    np.testing.assert_allclose(blk.nodal[:, 1:, 0], 0.0, atol=1e-8 * E * kap * h)

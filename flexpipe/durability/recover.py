@@ -143,6 +143,9 @@ class StressResult:
         ``top``/``bottom`` (shells), ``end 1``/``end 2`` (beams), ``centroid`` (solids).
     principal_at_max : ndarray
         Signed principal stress of largest magnitude at that time and location, Pa.
+    nodal_max_von_mises : ndarray (n_nodes,) or None
+        Solids: max von Mises over time of the nodal (averaged) stresses, Pa; NaN at nodes
+        of no solid; None when the body has no solids with stresses.
     damage : ndarray or None
         Miner damage of the run (NaN where the upper bound is negligible, see
         :data:`DAMAGE_RTOL`); None without fatigue material.
@@ -160,6 +163,7 @@ class StressResult:
     principal_at_max: np.ndarray
     damage: np.ndarray | None = None
     distance_km: float = 0.0
+    nodal_max_von_mises: np.ndarray | None = None
     material: FatigueMaterial | None = None
     _ref: dict = field(default_factory=dict, repr=False)
 
@@ -268,8 +272,28 @@ def recover_stress(result, body, *, fatigue: FatigueMaterial | None = None,
         time_of_max=motion.t[cat(imax)], location=loc_names, principal_at_max=cat(spmax),
         distance_km=dist, material=fatigue,
         _ref={"where": where, "sigma": sigma, "kinds": kinds})
+    out.nodal_max_von_mises = _nodal_max(blocks, cols, q, len(body.nodes))
     if fatigue is not None:
         out.damage = _damage(out, fatigue, cat(smax), cat(smin), cat(nrev))
+    return out
+
+
+def _nodal_max(blocks, cols, q, n_nodes):
+    """Max von Mises over time of the solids' nodal stress modes (None without solids)."""
+    out = None
+    n = q.shape[1]
+    chunk = max(4, int(CHUNK_BYTES // (8 * max(n, 1))))
+    for b in blocks:
+        if not len(b.nodes):
+            continue
+        if out is None:
+            out = np.full(n_nodes, np.nan)
+        Sn = np.ascontiguousarray(b.nodal[:, :, cols]).reshape(-1, len(cols))
+        for s in range(0, len(b.nodes), chunk):
+            e = min(s + chunk, len(b.nodes))
+            vm, _ = solid_equivalent((Sn[6 * s:6 * e] @ q).reshape(e - s, 6, n)
+                                     .transpose(1, 0, 2))
+            out[b.nodes[s:e]] = np.fmax(out[b.nodes[s:e]], vm.max(axis=1))
     return out
 
 

@@ -8,7 +8,8 @@
   channel whose history correlates best with the element's signed principal stress;
 * ``stress_histories.csv`` - von Mises and signed principal stress of those elements;
 * ``stress_max.vtu`` - the body mesh with the max von Mises, time of max and damage per
-  element (cell data) and nodal averages of max von Mises (point data);
+  element (cell data) and nodal max von Mises (point data: solids from their nodal
+  stress modes, shells and beams the average of their elements' maxima);
 * ``stress_max.png`` - the body coloured by max von Mises (headless matplotlib).
 """
 
@@ -112,6 +113,9 @@ def write_vtu(path, body, sr):
         cdata["damage [-]"] = np.nan_to_num(sr.damage, nan=0.0)
     cell_data = {k: np.split(np.asarray(v, dtype=float), split) for k, v in cdata.items()}
     nodal = body.stress.nodal_average(np.split(sr.max_von_mises, split), body.n_nodes)
+    if sr.nodal_max_von_mises is not None:  # solids: from their nodal stress modes
+        have = np.isfinite(sr.nodal_max_von_mises)
+        nodal[have] = sr.nodal_max_von_mises[have]
     mesh = meshio.Mesh(np.asarray(body.nodes), cells, cell_data=cell_data,
                        point_data={"max_von_mises_nodal [Pa]": np.nan_to_num(nodal)})
     with atomic_path(path, suffix=".vtu") as tmp:

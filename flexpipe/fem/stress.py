@@ -12,7 +12,9 @@ accurate and where durability codes report it:
   ``m - b``.  Quad: Allman membrane field and bilinear plate curvature at the centre;
   triangle: Allman (LST) membrane and DKT curvature at the centroid.
 * solids (tet4, tet10, hex8) - the six stresses ``xx, yy, zz, yz, xz, xy`` (global axes)
-  at the element centroid (hex8: its incompatible modes have zero gradient there).
+  at the element centroid (hex8: its incompatible modes have zero gradient there), and at
+  the element's nodes (:func:`solid_nodal`; hex8 extrapolates from its Gauss points with
+  the incompatible modes recovered).
 * beams - at both ends, axial stress ``E du/dx`` and the extreme-fibre bending stresses
   ``E c_y v''`` (bending in the local x-y plane) and ``E c_z w''`` (x-z plane), with
   ``c = sqrt(3 I / A)`` (exact for a solid rectangle; a section carries no fibre
@@ -115,6 +117,51 @@ def solid(cell_type, X, *, E, nu, **_):
     else:
         dN = hex8.shape(np.zeros(3))[1][0]
     return _solid_centroid(X, dN, np.asarray(E, float), np.asarray(nu, float))
+
+
+def _hex8_nodal(X, E, nu):
+    """Hex8 corner stresses (ne, 8, 6, 24): Gauss-point stresses with the incompatible
+    modes recovered by the same static condensation as the stiffness, extrapolated
+    trilinearly from the 2x2x2 points to the corners."""
+    det, inv = hex8._jacobian(hex8._DNK, X)
+    G = np.einsum("eqji,qai->eqaj", inv, hex8._DNK)            # (ne, 8, 8, 3)
+    det0, inv0 = hex8._jacobian(hex8._DN0, X)
+    Gi = np.einsum("eji,qki->eqkj", inv0[:, 0], hex8._DP)
+    Gi = Gi * (det0[:, 0][:, None] / det)[:, :, None, None]
+    Gall = np.concatenate([G, Gi], axis=2)                      # (ne, 8, 11, 3)
+    lam, mu = _solid.lame(E, nu)
+    K = _solid.isotropic_stiffness(Gall, det * hex8._WK, lam, mu)
+    amp = -np.linalg.solve(K[:, 24:, 24:], K[:, 24:, :24])      # (ne, 9, 24)
+    ne = len(X)
+    B = tet4.strain_displacement(Gall.reshape(ne * 8, 11, 3)).reshape(ne, 8, 6, 33)
+    Bu = B[..., :24] + np.matmul(B[..., 24:], amp[:, None])     # (ne, 8, 6, 24)
+    from flexpipe.fem._element import isotropic_D
+
+    Sg = np.matmul(isotropic_D(E, nu)[:, None], Bu)
+    # Gauss point g sits at sign(P_g) / sqrt(3): trilinear extrapolation to the corners
+    node_of_g = [int(np.flatnonzero((hex8.XI == np.sign(p)).all(axis=1))[0])
+                 for p in hex8._PK]
+    ext = hex8.shape(np.sqrt(3.0) * hex8.XI)[0][:, node_of_g]   # (corner, gauss point)
+    return np.einsum("ag,egcd->eacd", ext, Sg)
+
+
+def solid_nodal(cell_type, X, *, E, nu, **_):
+    """Stress operators at the element's nodes (ne, nn, 6, 3 nn), global axes.
+
+    tet4: the constant stress; tet10: the stress field at its ten nodes; hex8: Gauss-point
+    stresses (incompatible modes included) extrapolated to the corners.
+    """
+    X = np.asarray(X, dtype=float)
+    E, nu = np.asarray(E, float), np.asarray(nu, float)
+    if cell_type == "tetra":
+        S = _solid_centroid(X, tet4._DN, E, nu)
+        return np.repeat(S[:, None], 4, axis=1)
+    if cell_type == "hexahedron":
+        return _hex8_nodal(X, E, nu)
+    verts = tet10._VERTS
+    P = np.vstack([verts, 0.5 * (verts[tet10.EDGES[:, 0]] + verts[tet10.EDGES[:, 1]])])
+    dNs = tet10.shape(P)[1]
+    return np.stack([_solid_centroid(X, dN, E, nu) for dN in dNs], axis=1)
 
 
 def beam(X, *, E, A, Iy, Iz, orientation=None, **_):

@@ -8,13 +8,14 @@ stress recovery is then ``sigma(t) = S q(t)`` (:mod:`flexpipe.durability.recover
 Size switch (``reduce(..., stress=...)``): ``"all"`` elements, the name of a cell set of
 the mesh (only its elements), or ``None`` / ``"none"`` (no stress modes).  Stored as
 float64: ``n_elements x 6 x n_elastic`` numbers (8.6 MB for 5,244 shells and 34 modes).
-Nodal averages for plots are derived on demand (:meth:`StressModes.nodal_average`)
-rather than stored, which keeps the file small.
+Solids also store nodal stress modes (averaged over the elements sharing a node); for
+shells and beams, nodal averages for plots are derived on demand
+(:meth:`StressModes.nodal_average`) rather than stored, which keeps the file small.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -23,6 +24,8 @@ from flexpipe.errors import InputError
 
 #: element kinds and their component names
 from flexpipe.fem.stress import COMPONENTS, KIND
+
+_KEYS = ("ids", "cells", "centroids", "modes", "frames", "nodes", "nodal")
 
 
 def _ro(a, dtype=float):
@@ -50,6 +53,11 @@ class StressBlock:
         Stress per unit modal coordinate, Pa (components: :attr:`components`).
     frames : ndarray (ne, 3, 3) or empty
         Shells: rows ``e1, e2, n`` of the element frame the components refer to.
+    nodes : ndarray of int (k,)
+        Solids: the nodes of the block's cells (empty for shells and beams).
+    nodal : ndarray (k, 6, m)
+        Solids: stress per unit modal coordinate at those nodes, averaged over the block's
+        elements that share the node (global axes), Pa.
     """
 
     cell_type: str
@@ -58,11 +66,14 @@ class StressBlock:
     centroids: np.ndarray
     modes: np.ndarray
     frames: np.ndarray
+    nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    nodal: np.ndarray = field(default_factory=lambda: np.zeros((0, 6, 0)))
 
     def __post_init__(self):
         object.__setattr__(self, "ids", _ro(self.ids, np.int64))
         object.__setattr__(self, "cells", _ro(self.cells, np.int64))
-        for k in ("centroids", "modes", "frames"):
+        object.__setattr__(self, "nodes", _ro(self.nodes, np.int64))
+        for k in ("centroids", "modes", "frames", "nodal"):
             object.__setattr__(self, k, _ro(getattr(self, k)))
 
     @property
@@ -104,7 +115,7 @@ class StressModes:
     def nbytes(self) -> int:
         """Bytes of the stored arrays."""
         return sum(b.modes.nbytes + b.centroids.nbytes + b.cells.nbytes + b.frames.nbytes
-                   for b in self.blocks)
+                   + b.nodal.nbytes + b.nodes.nbytes for b in self.blocks)
 
     def nodal_average(self, values, n_nodes: int) -> np.ndarray:
         """Average per-element values onto the nodes of their cells.
@@ -145,15 +156,14 @@ class StressModes:
                   "blocks": [b.cell_type for b in self.blocks]}
         arrays = {"stress.mode_index": self.mode_index}
         for j, b in enumerate(self.blocks):
-            for k in ("ids", "cells", "centroids", "modes", "frames"):
+            for k in _KEYS:
                 arrays[f"stress.{j}.{k}"] = getattr(b, k)
         return header, arrays
 
     @classmethod
     def from_arrays(cls, header: dict, get) -> StressModes:
         """Inverse of :meth:`to_arrays`; ``get(key)`` returns a stored array."""
-        blocks = [StressBlock(t, *(get(f"stress.{j}.{k}") for k in
-                                   ("ids", "cells", "centroids", "modes", "frames")))
+        blocks = [StressBlock(t, *(get(f"stress.{j}.{k}") for k in _KEYS))
                   for j, t in enumerate(header["blocks"])]
         return cls(tuple(blocks), get("stress.mode_index"), header.get("selection", "all"))
 
@@ -210,6 +220,14 @@ def stress_modes(fe, U_all: np.ndarray, mode_index, *, selection="all",
         else:
             props = {}
         de = 6 if block.type in SHELL_TYPES + BEAM_TYPES else 3
+        solid = block.type not in SHELL_TYPES + BEAM_TYPES
+        m = U_all.shape[1]
+        if solid:  # nodal stresses: sums and counts over the block's own nodes
+            nodes = np.unique(block.cells[cells_idx])
+            local = np.full(mesh.n_nodes, -1, dtype=np.int64)
+            local[nodes] = np.arange(len(nodes))
+            nsum = np.zeros((len(nodes), 6, m))
+            ncount = np.zeros(len(nodes))
         parts, frames = [], []
         for s in range(0, len(cells_idx), batch):
             sel = cells_idx[s:s + batch]
@@ -217,11 +235,22 @@ def stress_modes(fe, U_all: np.ndarray, mode_index, *, selection="all",
             S, R = fs.operators(block.type, mesh.points[conn], E=E[sel], nu=nu[sel],
                                 **{k: v[sel] for k, v in props.items()})
             dofs = (conn[:, :, None] * dpn + np.arange(de)).reshape(len(sel), -1)
-            parts.append(np.einsum("ecd,edm->ecm", S, U_all[dofs], optimize=True))
+            Ue = U_all[dofs]
+            parts.append(np.einsum("ecd,edm->ecm", S, Ue, optimize=True))
             if R is not None:
                 frames.append(R)
+            if solid:
+                Sn = fs.solid_nodal(block.type, mesh.points[conn], E=E[sel], nu=nu[sel])
+                vals = np.einsum("eacd,edm->eacm", Sn, Ue, optimize=True)
+                li = local[conn].ravel()
+                np.add.at(nsum, li, vals.reshape(-1, 6, m))
+                np.add.at(ncount, li, 1.0)
         conn = block.cells[cells_idx]
+        extra = {}
+        if solid:
+            extra = {"nodes": nodes, "nodal": nsum / ncount[:, None, None]}
         blocks.append(StressBlock(
             block.type, block.ids[cells_idx], conn, mesh.points[conn].mean(axis=1),
-            np.concatenate(parts), np.concatenate(frames) if frames else np.zeros((0, 3, 3))))
+            np.concatenate(parts), np.concatenate(frames) if frames else np.zeros((0, 3, 3)),
+            **extra))
     return StressModes(tuple(blocks), np.asarray(mode_index), str(selection))
