@@ -178,7 +178,9 @@ def _durability(out, results, summary, *, car, road, log):
         from flexpipe.roads import flat
 
         road = flat(1000.0, dx=1.0, track_width=1.5)
+    t0 = time.perf_counter()
     desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log)
+    summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
     summary["files"] = sorted(set(summary["files"]) | set(desc))
     summary["file_descriptions"] = dict(sorted(desc.items()))
 
