@@ -58,3 +58,29 @@ def test_endurance_limit_and_bound():
 def test_bad_material_is_named():
     with pytest.raises(InputError, match="b"):
         FatigueMaterial(sigma_f=1e9, b=0.1)
+
+
+@pytest.mark.parametrize("value", ["0.2", "0.0"])
+def test_car_file_fatigue_table_errors_name_file_and_key(tmp_path, value):
+    from pathlib import Path
+
+    from flexpipe.vehicle.spec import load_car
+
+    root = Path(__file__).resolve().parents[1]
+    text = (root / "cars" / "sedan.toml").read_text()
+    text = text.replace("b = -0.138", f"b = {value}").replace('"../', f'"{root}/')
+    path = tmp_path / "car.toml"
+    path.write_text(text)
+    with pytest.raises(InputError) as exc:
+        load_car(path)
+    msg = str(exc.value)
+    assert str(path) in msg and "body.fatigue.b" in msg
+
+
+def test_sample_car_fatigue_material():
+    from pathlib import Path
+
+    from flexpipe.vehicle.spec import load_car
+
+    car = load_car(Path(__file__).resolve().parents[1] / "cars" / "sedan.toml")
+    assert car.body.fatigue == FatigueMaterial(1020e6, -0.138, 0.0, "SAE 1015")
