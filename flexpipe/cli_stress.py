@@ -19,6 +19,7 @@ def run(args) -> int:
 
     if args.top < 1:
         raise InputError(f"--top must be >= 1, got {args.top}", key="--top")
-    files = stress_outputs(args.out_dir, top=args.top, fatigue=not args.no_fatigue)
+    files = stress_outputs(args.out_dir, top=args.top, fatigue=not args.no_fatigue,
+                           progress=True)
     print(f"wrote {args.out_dir}/: {', '.join(sorted(files))}")
     return 0

@@ -64,7 +64,7 @@ def write_hardpoints(path, body, motion):
 
 
 def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=None,
-                   body=None) -> dict:
+                   body=None, progress: bool = False) -> dict:
     """``flexpipe stress OUT_DIR``: modal stress recovery and fatigue into ``OUT_DIR/stress``."""
     import time
 
@@ -76,7 +76,7 @@ def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=N
     car = run.car()
     mat = car.body.fatigue if fatigue else None
     t0 = time.perf_counter()
-    sr = recover_stress(run.motion, body, fatigue=mat)
+    sr = recover_stress(run.motion, body, fatigue=mat, progress=progress)
     seconds = time.perf_counter() - t0
     title = (f"{car.name}: max von Mises over {run.motion.t[-1]:.1f} s "
              f"({run.summary.get('title', '')})")
