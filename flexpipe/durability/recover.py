@@ -274,7 +274,7 @@ def recover_stress(result, body, *, fatigue: FatigueMaterial | None = None,
         _ref={"where": where, "sigma": sigma, "kinds": kinds})
     out.nodal_max_von_mises = _nodal_max(blocks, cols, q, len(body.nodes))
     if fatigue is not None:
-        out.damage = _damage(out, fatigue, cat(smax), cat(smin), cat(nrev))
+        out.damage = _damage(out, fatigue, cat(smax), cat(smin), cat(nrev), progress=progress)
     return out
 
 
@@ -297,15 +297,24 @@ def _nodal_max(blocks, cols, q, n_nodes):
     return out
 
 
-def _damage(out: StressResult, material, smax, smin, nrev) -> np.ndarray:
+def _damage(out: StressResult, material, smax, smin, nrev, *, progress=False) -> np.ndarray:
     """Exact Miner damage in decreasing order of its upper bound, until negligible."""
     bound = damage_bound(smax, smin, nrev, material)
     damage = np.full(len(bound), np.nan)
     best = 0.0
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(desc="rainflow", unit="element")
     for i in np.argsort(-bound, kind="stable"):
         if bound[i] <= 0 or (best > 0 and bound[i] < DAMAGE_RTOL * best):
             break
         vm, sp = out.history(int(i))
         damage[i] = miner_damage(vm * np.sign(sp), material)
         best = max(best, damage[i])
+        if bar is not None:
+            bar.update(1)
+    if bar is not None:
+        bar.close()
     return damage
