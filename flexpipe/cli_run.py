@@ -34,6 +34,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--out", default=None,
                         help="output directory (default: out/<car>-<road>-<speed>kmh)")
     parser.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
+    parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
+                        help="channel files: csv (units in the header), hdf5 (h5py) or mat "
+                             "(MATLAB); default csv")
 
 
 def run(args) -> int:
@@ -58,5 +61,5 @@ def run(args) -> int:
     summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed / 3.6,
                        t_end=args.t_end, out=out, title=title,
                        plots=("hub_force_fl", "trajectory"), bodies=bodies,
-                       cache=not args.no_cache, h=args.h, name="run")
+                       cache=not args.no_cache, h=args.h, name="run", format=args.format)
     return 0 if summary["status"] == 0 else 1

@@ -285,6 +285,16 @@ class CarSystem:
             jounce=jounce, jounce_rate=rate, joint_force=None, mount_R=mR,
             wheel_q=wq, wheel_qt=wqt)
 
+    # --- durability (feat/durability): pose and elastic modal coordinates for BodyMotion
+    def body_motion_sample(self):
+        """``(q, p, R)``: elastic modal coordinates (empty for a rigid body), global position
+        of the body-frame origin and body-to-global rotation matrix, now."""
+        g = self.mbs.GetNodeOutput
+        q = np.zeros(0) if self.modal_node is None else \
+            np.asarray(g(self.modal_node, OV.Coordinates), dtype=float)
+        return (q, np.asarray(g(self.body_node, OV.Position), dtype=float),
+                np.asarray(g(self.body_node, OV.RotationMatrix), dtype=float).reshape(3, 3))
+
     def joint_forces(self) -> np.ndarray:
         """Constraint force of every suspension joint in its hardpoint frame (4, 3)."""
         return np.array([self.mbs.GetObjectOutput(j, OV.ForceLocal) for j in self.joint])

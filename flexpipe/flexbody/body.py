@@ -24,6 +24,7 @@ import numpy as np
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
 from flexpipe.flexbody.invariants import FFRFInvariants
+from flexpipe.flexbody.stress import StressModes
 
 FORMAT = "flexpipe-modal-neutral-file"
 VERSION = 1
@@ -109,6 +110,9 @@ class FlexBody:
     checks : mapping of str to ndarray
         Optional verification data written by ``reduce(..., check=True)``: full-model
         frequencies, MAC matrix, mesh mass properties.
+    stress : StressModes or None
+        Element stresses per elastic mode (``reduce(..., stress=...)``), for modal stress
+        recovery (:mod:`flexpipe.flexbody.stress`).
     """
 
     nodes: np.ndarray
@@ -130,6 +134,7 @@ class FlexBody:
     source_hash: str = ""
     meta: Mapping[str, object] = field(default_factory=dict)
     checks: Mapping[str, np.ndarray] = field(default_factory=dict)
+    stress: StressModes | None = None
 
     def __post_init__(self):
         for name in _ARRAYS:
@@ -225,6 +230,9 @@ def _to_arrays(body: FlexBody) -> dict:
         "interfaces": [{"name": i.name, "kind": i.kind} for i in body.interfaces],
         "checks": sorted(body.checks),
     }
+    stress_arrays = {}
+    if body.stress is not None:  # optional entries: files without them load as before
+        header["stress"], stress_arrays = body.stress.to_arrays()
     out = {"header": np.array(json.dumps(header, sort_keys=True))}
     for name in _ARRAYS:
         out[name] = getattr(body, name)
@@ -236,6 +244,7 @@ def _to_arrays(body: FlexBody) -> dict:
         out[f"interface.{j}.shapes"] = itf.shapes
     for k, v in body.checks.items():
         out[f"checks.{k}"] = v
+    out.update(stress_arrays)
     return out
 
 
@@ -281,6 +290,9 @@ def load_body(path) -> FlexBody:
                           shapes=get(f"interface.{j}.shapes"))
             for j, h in enumerate(header["interfaces"]))
         checks = {k: get(f"checks.{k}") for k in header["checks"]}
+        stress = StressModes.from_arrays(header["stress"], get) if header.get("stress") \
+            else None
     return FlexBody(**arrays, n_rigid=header["n_rigid"], mass=header["mass"], invariants=inv,
                     interfaces=interfaces, method=header["method"],
-                    source_hash=header["source_hash"], meta=header["meta"], checks=checks)
+                    source_hash=header["source_hash"], meta=header["meta"], checks=checks,
+                    stress=stress)

@@ -75,7 +75,8 @@ def _summary_diffs(diff: dict) -> dict:
 
 def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
-             h: float | None = None, notes=None, name: str = "run", log=print) -> dict:
+             h: float | None = None, notes=None, name: str = "run", log=print,
+             format: str = "csv") -> dict:  # noqa: A002
     """Simulate ``car`` with each body kind, write CSVs, plots and ``summary.json``.
 
     Returns the summary dict (``status`` 0 when every run reached its end time).
@@ -118,7 +119,9 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             f"simulated (real-time factor {r.realtime_factor:.2f})")
     files = []
     for body, r in results.items():
-        files.append(r.to_csv(out / f"{body}.csv").name)
+        from flexpipe.vehicle.export import SUFFIX
+
+        files.append(r.save(out / f"{body}{SUFFIX.get(format, '.csv')}", format=format).name)
     summary = {
         "scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
         "status": 0 if all(r.status == 0 for r in results.values()) else -1,
@@ -157,6 +160,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     if "trajectory" in plots and path is not None:
         files.append(P.trajectory(results, path, out / "trajectory.png").name)
     summary["files"] = sorted(files + ["summary.json"])
+    _durability(out, results, summary, car=car, road=road, log=log)
     summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
     write_text_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")
     log(f"wrote {out}/: {', '.join(summary['files'])}")
@@ -167,6 +171,23 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
             f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
     return summary
+
+
+def _durability(out, results, summary, *, car, road, log):
+    """Durability outputs (feat/durability): body motion, hardpoints, stress and fatigue
+    (``stress/``), ParaView animation (``animation/``); ``summary["file_descriptions"]``
+    says what every file holds."""
+    from flexpipe.durability.pipeline import scenario_outputs
+
+    if road is None:
+        from flexpipe.roads import flat
+
+        road = flat(1000.0, dx=1.0, track_width=1.5)
+    t0 = time.perf_counter()
+    desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log)
+    summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
+    summary["files"] = sorted(set(summary["files"]) | set(desc))
+    summary["file_descriptions"] = dict(sorted(desc.items()))
 
 
 def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print) -> dict:

@@ -86,6 +86,8 @@ class CarController:
         Named body points whose accelerations are recorded.
     point_acc : callable
         ``point_acc() -> {name: global acceleration}`` (read from the multibody model).
+    body_motion : callable, optional
+        ``body_motion() -> (q, p, R)`` recorded at every output row (``Result.motion``).
     driver_dt : float
         Driver (steering and speed controller) sampling period, s, independent of ``h``;
         the driver acts at the first step at or after each sampling instant.
@@ -94,7 +96,8 @@ class CarController:
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
-                 tire_k=None, tire_c=None, preview_time=0.3, linkage=None):
+                 tire_k=None, tire_c=None, preview_time=0.3, linkage=None,
+                 body_motion=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -110,6 +113,8 @@ class CarController:
         self.point_acc = point_acc
         self.joint_forces = joint_forces
         self.wheel_acc = wheel_acc
+        self.body_motion = body_motion  # durability: () -> (q, p, R), one per output row
+        self.motion = []
         self.gvec = np.array([0.0, 0.0, -float(gravity)])
         self.tire_k = np.zeros(4) if tire_k is None else np.asarray(tire_k, dtype=float)
         self.tire_c = np.zeros(4) if tire_c is None else np.asarray(tire_c, dtype=float)
@@ -348,3 +353,5 @@ class CarController:
             for p in self.points:
                 row += list(R.T @ acc[p])
         self.rec.add(st.t, np.array(row, dtype=float))
+        if self.body_motion is not None and len(self.motion) < self.rec.rows:
+            self.motion.append(self.body_motion())

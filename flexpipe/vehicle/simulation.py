@@ -342,7 +342,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                          joint_forces=system.joint_forces,
                          wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
                          tire_k=tire_k, tire_c=tire_c,
-                         linkage=getattr(system, "linkage", None))
+                         linkage=getattr(system, "linkage", None),
+                         body_motion=system.body_motion_sample)
     bar = None
     if progress:
         from tqdm import tqdm
@@ -379,6 +380,21 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                     highest_mode_hz=float(fb.frequencies_hz[fb.n_rigid + used - 1]),
                     reduction_cached=prep["reduction"]["cached"],
                     reduction_s=prep["reduction"]["seconds"])
-    return Result(t=ctrl.rec.t[: ctrl.rec.rows].copy(), channels=ch, status=status,
+    t_out = ctrl.rec.t[: ctrl.rec.rows].copy()
+    return Result(t=t_out, channels=ch, status=status,
                   message=message, body=body, cpu_time=cpu, wall_time=wall,
-                  simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info)
+                  simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info,
+                  motion=_motion(t_out, ctrl.motion, fb))
+
+
+def _motion(t, rows, fb):
+    """BodyMotion from the recorded ``(q, p, R)`` rows (durability, feat/durability)."""
+    from flexpipe.vehicle.result import BodyMotion
+
+    if not rows or len(rows) != len(t):
+        return None
+    q = np.array([r[0] for r in rows], dtype=float).reshape(len(t), -1)
+    first = fb.n_rigid if fb is not None else 0
+    return BodyMotion(t=t, q=q, position=np.array([r[1] for r in rows]),
+                      rotation=np.array([r[2] for r in rows]),
+                      mode_index=np.arange(first, first + q.shape[1]))

@@ -19,6 +19,8 @@ File layout (see ``cars/sedan.toml`` for a complete example; defaults in bracket
     [[body.mass]]    name, mass_kg, position_m, spread_radius_m [0.3]
                      (non-structural masses: powertrain, trim, occupants)
     [body.points]    name = [x, y, z]  (named output points for accelerations)
+    [body.fatigue]   sigma_f_Pa, b, endurance_limit_Pa [0], name: Basquin S-N curve of the
+                     body for fatigue damage (flexpipe.durability.fatigue)
     [corners.fl|fr|rl|rr]
                      hardpoint_m, wheel_center_m, spring_rate_N_per_m, spring_preload_N
                      [computed: holds the design position], damper_N_s_per_m (linear) or
@@ -94,6 +96,7 @@ class BodySpec:
     rigid: RigidProps | None
     added_masses: tuple[AddedMass, ...]
     points: dict
+    fatigue: object = None  # FatigueMaterial of [body.fatigue] (feat/durability)
 
 
 @dataclass(frozen=True)
@@ -263,8 +266,14 @@ def _body(doc: Table, base: Path) -> BodySpec:
         for k in list(p.data):
             points[k] = p.vector(k)
         p.finish()
+    fatigue = None
+    if t.has("fatigue"):  # feat/durability: Basquin S-N data, flexpipe.durability.fatigue
+        from flexpipe.durability.fatigue import read_fatigue_table
+
+        fatigue = read_fatigue_table(t.sub("fatigue"))
     t.finish()
-    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points)
+    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
+                    fatigue)
 
 
 def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
