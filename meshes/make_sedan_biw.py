@@ -54,6 +54,37 @@ HARDPOINTS = {
     "damper_rr": (-2.75, -0.55, 0.65),
 }
 
+#: body-side suspension mounts, left side (body coordinates, m); the right side is the
+#: mirror image y -> -y.  Front: double wishbone; rear: multi-link.  Names in the body:
+#: ``<axle>_<point>_<side>``, e.g. ``front_lower_arm_front_l``.
+MOUNTS_LEFT = {
+    "front": {
+        "lower_arm_front": (0.200, 0.420, 0.148), "lower_arm_rear": (-0.200, 0.470, 0.153),
+        "upper_arm_front": (-0.100, 0.470, 0.523), "upper_arm_rear": (-0.250, 0.510, 0.528),
+        "spring_upper": (-0.040, 0.520, 0.648), "rack_mount": (-0.200, 0.300, 0.298),
+        "arb_bushing": (-0.150, 0.350, 0.220),
+    },
+    "rear": {
+        "upper_arm_front": (-2.690, 0.397, 0.383), "upper_arm_rear": (-2.907, 0.358, 0.363),
+        "lateral_link_inner": (-2.714, 0.188, 0.168),
+        "trailing_link_front": (-2.027, 0.449, 0.229),
+        "tie_rod_inner": (-3.007, 0.170, 0.185), "spring_upper": (-2.569, 0.491, 0.411),
+        "damper_upper": (-2.579, 0.478, 0.616), "arb_bushing": (-2.950, 0.350, 0.250),
+    },
+}
+#: a mount's SET1 holds the body nodes within this distance of the mount point, m
+MOUNT_SET_RADIUS = 0.01
+
+
+def mounts() -> dict:
+    """Every body-side suspension mount, ``{name: (x, y, z)}`` (30 mounts)."""
+    out = {}
+    for axle, pts in MOUNTS_LEFT.items():
+        for point, (x, y, z) in pts.items():
+            out[f"{axle}_{point}_l"] = (x, y, z)
+            out[f"{axle}_{point}_r"] = (x, -y, z)
+    return out
+
 #: shell properties: name -> (sheet gauge in m, bending factor beta).  Beaded and crowned
 #: sheet is modelled as an equivalent flat shell of thickness beta * gauge with E and rho
 #: divided by beta: same mass and membrane stiffness as the sheet, bending stiffness
@@ -76,6 +107,8 @@ BEAMS = {
     "rear_rail": (0.07, 0.09, 0.0015), "cross_member": (0.07, 0.08, 0.0013),
     "bumper": (0.06, 0.10, 0.0018), "cowl": (0.08, 0.10, 0.0015),
     "quarter": (0.06, 0.08, 0.0015),
+    "cradle_rail": (0.08, 0.08, 0.0020), "cradle_post": (0.06, 0.06, 0.0020),
+    "rear_cradle": (0.07, 0.07, 0.0020), "bracket": (0.05, 0.05, 0.0020),
 }
 #: non-structural masses (kg) smeared evenly over the nodes of these beam groups: outer
 #: body-side skins and reinforcements on the side frame; crash boxes, tower
@@ -222,7 +255,94 @@ def build():
     B.beam("cross_member", (-3.30, -0.55, 0.35), (-3.30, 0.55, 0.35))
     B.beam("bumper", (-3.75, -0.55, 0.35), (-3.75, 0.55, 0.35))
     B.beam("cross_member", (-3.75, -0.55, 0.75), (-3.75, 0.55, 0.75))
+    suspension_mounts(B)
     return B
+
+
+def _tripod(B, apex, *feet):
+    """A bracket: one short beam from the mount point ``apex`` to each body node in ``feet``."""
+    for f in feet:
+        B.beam("bracket", apex, f)
+
+
+def suspension_mounts(B):
+    """Front engine cradle, rear subframe and brackets carrying every mount of :func:`mounts`.
+
+    Every mount point is a node of the structure (beam end points are exact); brackets end
+    on existing panel or rail nodes (50 mm grid).
+    """
+    F, R = MOUNTS_LEFT["front"], MOUNTS_LEFT["rear"]
+
+    def m(p, s):  # mirror a left-side point to side s (+1 left, -1 right)
+        return (p[0], s * p[1], p[2])
+
+    # ---- front cradle: perimeter frame of closed sections, bolted to the front rails
+    laf, lar = F["lower_arm_front"], F["lower_arm_rear"]
+    rack, arb = F["rack_mount"], F["arb_bushing"]
+    B.beam("cradle_rail", (0.35, -laf[1], laf[2]), (0.35, laf[1], laf[2]))
+    B.beam("cradle_rail", m(laf, -1), m(laf, 1))
+    B.beam("cradle_rail", m(lar, -1), (lar[0], -0.35, lar[2]), (lar[0], -rack[1], lar[2]),
+           (lar[0], rack[1], lar[2]), (lar[0], 0.35, lar[2]), m(lar, 1))
+    for s in (-1, 1):
+        front_end, rear_end = (0.35, s * laf[1], laf[2]), (-0.45, s * lar[1], lar[2])
+        B.beam("cradle_rail", front_end, m(laf, s), m(lar, s), rear_end)
+        mid = 0.5 * (np.asarray(m(laf, s)) + np.asarray(m(lar, s)))  # a node of the side member
+        for foot, top in ((front_end, (0.35, 0.55 * s, 0.40)), (tuple(mid), (0.0, 0.55 * s, 0.40)),
+                          (rear_end, (-0.45, 0.55 * s, 0.40))):
+            B.beam("cradle_post", foot, top)
+        # steering rack post (to the engine-cradle plate) and anti-roll-bar bracket
+        B.beam("cradle_post", (lar[0], s * rack[1], lar[2]), m(rack, s),
+               (rack[0], s * rack[1], 0.40))
+        B.beam("bracket", (lar[0], 0.35 * s, lar[2]), m(arb, s), (-0.10, 0.35 * s, 0.40))
+        # upper-arm and spring brackets on the strut-tower wall (y = 0.55)
+        w = 0.55 * s
+        _tripod(B, m(F["upper_arm_front"], s), (-0.15, w, 0.50), (-0.05, w, 0.50),
+                (-0.10, w, 0.55))
+        _tripod(B, m(F["upper_arm_rear"], s), (-0.25, w, 0.50), (-0.25, w, 0.55),
+                (-0.20, w, 0.55))
+        _tripod(B, m(F["spring_upper"], s), (-0.10, w, 0.65), (0.0, w, 0.60), (0.0, w, 0.70))
+    # ---- rear: floor cross member over the subframe, subframe on the rails and the floor
+    B.beam("cross_member", (-2.70, -0.55, 0.35), (-2.70, 0.55, 0.35))
+    lat, tie, rarb = R["lateral_link_inner"], R["tie_rod_inner"], R["arb_bushing"]
+    B.beam("rear_cradle", m(lat, -1), m(lat, 1))
+    B.beam("rear_cradle", m(tie, -1), m(tie, 1))
+    for s in (-1, 1):
+        corner_f = (-2.70, 0.45 * s, 0.25)
+        corner_r = (-2.95, 0.45 * s, 0.30)
+        B.beam("rear_cradle", m(lat, s), corner_f, (-2.70, 0.55 * s, 0.35))
+        B.beam("rear_cradle", m(tie, s), m(rarb, s), corner_r, (-2.95, 0.55 * s, 0.35))
+        B.beam("rear_cradle", m(lat, s), m(tie, s))
+        B.beam("rear_cradle", corner_f, corner_r)
+        B.beam("cradle_post", m(lat, s), (-2.70, 0.20 * s, 0.35))
+        B.beam("cradle_post", m(tie, s), (-3.00, 0.15 * s, 0.35))
+        _tripod(B, m(R["upper_arm_front"], s), (-2.65, 0.40 * s, 0.35),
+                (-2.70, 0.35 * s, 0.35), (-2.70, 0.45 * s, 0.35))
+        _tripod(B, m(R["upper_arm_rear"], s), (-2.90, 0.30 * s, 0.35),
+                (-2.90, 0.40 * s, 0.35), (-2.95, 0.35 * s, 0.35))
+        _tripod(B, m(R["trailing_link_front"], s), (-2.00, 0.40 * s, 0.20),
+                (-2.00, 0.50 * s, 0.20), (-2.10, 0.45 * s, 0.20))
+        _tripod(B, m(R["spring_upper"], s), (-2.60, 0.50 * s, 0.40), (-2.60, 0.45 * s, 0.45),
+                (-2.55, 0.55 * s, 0.40), (-2.55, 0.50 * s, 0.35))
+        _tripod(B, m(R["damper_upper"], s), (-2.60, 0.45 * s, 0.60), (-2.55, 0.55 * s, 0.60),
+                (-2.60, 0.55 * s, 0.65))
+
+
+def check_connected(B):
+    """Raise when a mount is not a node or a beam end hangs free (a bracket foot that
+    missed the panel grid)."""
+    X = np.array(B.points)
+    for name, p in mounts().items():
+        if np.linalg.norm(X - np.asarray(p), axis=1).min() > 1e-6:
+            raise RuntimeError(f"mount {name} at {p} is not a node of the body")
+    deg = np.zeros(len(X), dtype=int)
+    for q in B.quads:
+        deg[list(q)] += 2
+    for a, b in B.bars:
+        deg[a] += 1
+        deg[b] += 1
+    free = np.flatnonzero(deg == 1)
+    if free.size:
+        raise RuntimeError(f"{free.size} beam ends hang free, e.g. at {X[free[:3]].tolist()}")
 
 
 def structural_mass(B) -> float:
@@ -313,7 +433,7 @@ def write_bdf(B, path: Path) -> dict:
         "$ sedan body-in-white concept model, written by meshes/make_sedan_biw.py",
         "$ units: m, kg, s, N, Pa.  Axes ISO 8855 (x forward, y left, z up), z = 0 ground",
     ]
-    for name, p in HARDPOINTS.items():
+    for name, p in {**HARDPOINTS, **mounts()}.items():
         lines.append(f"$ HARDPOINT {name} {p[0]:.4f} {p[1]:.4f} {p[2]:.4f}")
     lines.append("BEGIN BULK")
     lines.append(_card("MAT1", 1, STEEL["E"], "", STEEL["nu"], STEEL["rho"]))
@@ -352,6 +472,11 @@ def write_bdf(B, path: Path) -> dict:
         near = np.flatnonzero(np.linalg.norm(X - np.asarray(p), axis=1) <= 0.10 + 1e-9)
         lines.append(f"$ SET {name}")
         lines.append(_card("SET1", k + 1, *(int(n) + 1 for n in near)))
+    for k, (name, p) in enumerate(mounts().items(), start=len(HARDPOINTS) + 1):
+        near = np.flatnonzero(np.linalg.norm(X - np.asarray(p), axis=1)
+                              <= MOUNT_SET_RADIUS + 1e-9)
+        lines.append(f"$ SET {name}")
+        lines.append(_card("SET1", k, *(int(n) + 1 for n in near)))
     lines.append("ENDDATA")
     text = "\n".join(lines) + "\n"
     tmp = path.with_suffix(".tmp")
@@ -369,6 +494,7 @@ def main(argv=None):
     ap.add_argument("--car", default=None, help="car file whose added masses trim the body")
     args = ap.parse_args(argv)
     B = build()
+    check_connected(B)
     info = write_bdf(B, Path(args.out))
     print(f"wrote {args.out}: {info['nodes']} nodes ({info['dof']} DOF), {info['quads']} "
           f"CQUAD4, {info['bars']} CBAR, {info['bytes'] / 1e6:.2f} MB; BIW mass "
