@@ -52,7 +52,12 @@ class BodyInterface:
         Hardpoint motion per mode: translations ux, uy, uz (m) and small rotations
         rx, ry, rz (rad) per unit modal coordinate.
     kind : {"rbe2", "node"}
-        A rigid spider to a new hardpoint, or a 6-DOF mesh node used directly.
+        A rigid spider to a new hardpoint, or a mesh node used directly.
+    dofs : {6, 3}
+        Boundary DOF of the reduction at this interface: 6 (forces and moments) or 3
+        (translations only: ball joints, bushings, spring seats).  For a 3-DOF interface
+        the rotation rows of ``shapes`` are the spider's rotation where the model has one
+        (zero for a solid node); moments applied there are not reproduced exactly.
     """
 
     name: str
@@ -60,8 +65,12 @@ class BodyInterface:
     nodes: np.ndarray
     shapes: np.ndarray
     kind: str = "rbe2"
+    dofs: int = 6
 
     def __post_init__(self):
+        if int(self.dofs) not in (3, 6):
+            raise ValueError(f"interface {self.name!r}: dofs must be 3 or 6, got {self.dofs!r}")
+        object.__setattr__(self, "dofs", int(self.dofs))
         object.__setattr__(self, "point", _ro(self.point).reshape(3))
         object.__setattr__(self, "nodes", _ro(self.nodes, np.int64).reshape(-1))
         object.__setattr__(self, "shapes", _ro(self.shapes).reshape(6, -1))
@@ -222,7 +231,8 @@ def _to_arrays(body: FlexBody) -> dict:
     header = {
         "format": FORMAT, "version": VERSION, "n_rigid": body.n_rigid, "mass": body.mass,
         "method": body.method, "source_hash": body.source_hash, "meta": dict(body.meta),
-        "interfaces": [{"name": i.name, "kind": i.kind} for i in body.interfaces],
+        "interfaces": [{"name": i.name, "kind": i.kind, "dofs": i.dofs}
+                       for i in body.interfaces],
         "checks": sorted(body.checks),
     }
     out = {"header": np.array(json.dumps(header, sort_keys=True))}
@@ -276,7 +286,8 @@ def load_body(path) -> FlexBody:
         inv = FFRFInvariants(**{f.name: get(f"invariants.{f.name}")
                                 for f in fields(FFRFInvariants)})
         interfaces = tuple(
-            BodyInterface(name=h["name"], kind=h["kind"], point=get(f"interface.{j}.point"),
+            BodyInterface(name=h["name"], kind=h["kind"], dofs=h.get("dofs", 6),
+                          point=get(f"interface.{j}.point"),
                           nodes=get(f"interface.{j}.nodes"),
                           shapes=get(f"interface.{j}.shapes"))
             for j, h in enumerate(header["interfaces"]))

@@ -17,6 +17,13 @@ frequencies below ``f_max`` of a stubby test bar were still 2% and 0.7% high, wi
 0.25%, see tests/test_reduction.py).  With neither given,
 ``f_max = DEFAULT_F_MAX_HZ`` = 2 x 25 Hz: twice the top of the 0-25 Hz ride band
 (Gillespie; the paper's section 3).
+
+Many interfaces
+---------------
+Interfaces with ``dofs=3`` add 3 boundary DOF instead of 6.  Craig-Bampton with
+``interface_f_max`` (Hz) replaces the static constraint modes by the characteristic
+constraint modes up to that frequency (:mod:`flexpipe.reduction.ccmodes`), which keeps
+the number of body modes in check when the body has tens of interfaces.
 """
 
 from __future__ import annotations
@@ -81,7 +88,7 @@ def _damping_ratios(damping, f_hz, n_rigid):
 def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int | None = None,
            f_max: float | None = None, *, damping=None, check: bool = False,
            backend: str | None = None, tol: float | None = None,
-           cb_factor: float = CB_FACTOR) -> FlexBody:
+           cb_factor: float = CB_FACTOR, interface_f_max: float | None = None) -> FlexBody:
     """Reduce an FE model to a :class:`FlexBody` by component mode synthesis.
 
     Parameters
@@ -108,6 +115,9 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     cb_factor : float
         Craig-Bampton with ``f_max``: keep fixed-interface modes up to
         ``cb_factor * f_max`` (default :data:`CB_FACTOR`).
+    interface_f_max : float, optional
+        Craig-Bampton only: interface reduction, keeping the characteristic constraint
+        modes up to this frequency (Hz) instead of every static constraint mode.
 
     Returns
     -------
@@ -115,11 +125,12 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     """
     with dense_single_threaded():
         return _reduce(fe, interfaces, method, n_modes, f_max, damping=damping, check=check,
-                       backend=backend, tol=tol, cb_factor=cb_factor)
+                       backend=backend, tol=tol, cb_factor=cb_factor,
+                       interface_f_max=interface_f_max)
 
 
 def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, tol,
-            cb_factor):
+            cb_factor, interface_f_max=None):
     t0 = time.perf_counter()
     timings = {}
     if not isinstance(fe, FEModel):
@@ -129,6 +140,9 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         raise InputError(f"unknown method {method!r}; valid: craig-bampton, "
                          "residual-flexibility, modal-truncation", key="method")
     method = METHODS[key]
+    if interface_f_max is not None and method != "craig-bampton":
+        raise InputError("interface_f_max (interface reduction) applies to Craig-Bampton "
+                         f"only, not {method}", key="interface_f_max")
     if n_modes is not None and f_max is not None:
         raise InputError("give n_modes or f_max, not both", key="n_modes")
     if n_modes is None and f_max is None:
@@ -137,13 +151,21 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         raise InputError(f"n_modes must be an integer >= 0, got {n_modes!r}", key="n_modes")
     resolved = resolve_interfaces(fe, interfaces)
     system = interface_system(fe, resolved)
-    b = np.concatenate(system.boundary)
+    b = np.concatenate(system.active)
     timings["interfaces_s"] = time.perf_counter() - t0
 
     t = time.perf_counter()
     try:
         Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
                                    timings=timings, cb_factor=cb_factor)
+        n_constraint = b.size
+        if interface_f_max is not None and b.size:
+            from flexpipe.reduction.ccmodes import characteristic_constraint_modes
+
+            Psi_cc, _ = characteristic_constraint_modes(system.M, system.K, Psi[:, :b.size],
+                                                        f_max=float(interface_f_max))
+            n_constraint = Psi_cc.shape[1]
+            Psi = np.hstack([Psi_cc, Psi[:, b.size:]])
     except ModelError as exc:
         raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
     timings["basis_s"] = time.perf_counter() - t
@@ -157,7 +179,11 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     trans = (np.arange(n)[:, None] * dpn + np.arange(3)).ravel()
     Et = sp.csr_matrix(system.E[trans])
     U = np.asarray(Et @ Psi)  # (3 n, m) nodal translations
-    shapes = [Psi[bj] for bj in system.boundary]  # (6, m) hardpoint motion per interface
+    shapes = []  # (6, m) hardpoint motion per interface (no rotation rows: zero)
+    for bj in system.boundary:
+        S = np.zeros((6, Psi.shape[1]))
+        S[:len(bj)] = Psi[bj]
+        shapes.append(S)
 
     mass, com, J_com, J_origin = mass_properties(fe.M, fe.nodes, dpn)
     Mt = translational_block(fe.M, dpn)
@@ -182,7 +208,9 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         "flexpipe_version": __version__, "n_dof": int(fe.n_dof), "n_nodes": int(n),
         "dofs_per_node": int(dpn), "n_modes_requested": None if n_modes is None else int(n_modes),
         "f_max_hz": None if f_max is None else float(f_max), "source": mesh.source if mesh else "",
-        "n_boundary_dof": int(b.size), **{k: round(v, 4) for k, v in timings.items()},
+        "n_boundary_dof": int(b.size), "n_constraint_modes": int(n_constraint),
+        "interface_f_max_hz": None if interface_f_max is None else float(interface_f_max),
+        **{k: round(v, 4) for k, v in timings.items()},
         "total_s": round(time.perf_counter() - t0, 4),
     }
     return FlexBody(
@@ -191,7 +219,8 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         damping_ratio=zeta, mass=mass, center_of_mass=com, inertia=J_com,
         inertia_origin=J_origin, invariants=inv,
         interfaces=tuple(BodyInterface(name=r.name, point=r.point, nodes=r.nodes, shapes=s,
-                                       kind=r.kind) for r, s in zip(resolved, shapes, strict=True)),
+                                       kind=r.kind, dofs=r.dofs)
+                         for r, s in zip(resolved, shapes, strict=True)),
         method=method, source_hash=mesh_hash(mesh) if mesh is not None else "",
         meta=meta, checks=checks,
     )
