@@ -109,13 +109,14 @@ BEAMS = {
     "quarter": (0.06, 0.08, 0.0015),
     "cradle_rail": (0.08, 0.08, 0.0020), "cradle_post": (0.06, 0.06, 0.0020),
     "rear_cradle": (0.07, 0.07, 0.0020), "bracket": (0.05, 0.05, 0.0020),
+    "tower_post": (0.06, 0.06, 0.0020),
 }
 #: non-structural masses (kg) smeared evenly over the nodes of these beam groups: outer
-#: body-side skins and reinforcements on the side frame; crash boxes, tower
-#: reinforcements and brackets on the front structure
+#: body-side skins and reinforcements on the side frame; crash boxes and small brackets
+#: on the front structure (the tower posts and suspension brackets are beams)
 NONSTRUCTURAL = (
     ("side frame", 60.0, ("sill", "hinge_pillar", "b_pillar", "roof_rail")),
-    ("front structure", 25.0, ("front_rail", "upper_rail", "bumper")),
+    ("front structure", 15.0, ("front_rail", "upper_rail", "bumper")),
 )
 NONSTRUCTURAL_KG = sum(m for _, m, _ in NONSTRUCTURAL)
 
@@ -294,8 +295,11 @@ def suspension_mounts(B):
         B.beam("cradle_post", (lar[0], s * rack[1], lar[2]), m(rack, s),
                (rack[0], s * rack[1], 0.40))
         B.beam("bracket", (lar[0], 0.35 * s, lar[2]), m(arb, s), (-0.10, 0.35 * s, 0.40))
-        # upper-arm and spring brackets on the strut-tower wall (y = 0.55)
+        # upper-arm and spring brackets on the strut-tower wall (y = 0.55), stiffened by
+        # vertical posts from the front rail to the tower top
         w = 0.55 * s
+        for x in (-0.25, -0.10, 0.0):
+            B.beam("tower_post", (x, w, 0.40), (x, w, 0.85))
         _tripod(B, m(F["upper_arm_front"], s), (-0.15, w, 0.50), (-0.05, w, 0.50),
                 (-0.10, w, 0.55))
         _tripod(B, m(F["upper_arm_rear"], s), (-0.25, w, 0.50), (-0.25, w, 0.55),
@@ -323,8 +327,10 @@ def suspension_mounts(B):
                 (-2.00, 0.50 * s, 0.20), (-2.10, 0.45 * s, 0.20))
         _tripod(B, m(R["spring_upper"], s), (-2.60, 0.50 * s, 0.40), (-2.60, 0.45 * s, 0.45),
                 (-2.55, 0.55 * s, 0.40), (-2.55, 0.50 * s, 0.35))
+        # damper-top reinforcement along the wheelhouse inner wall
+        B.beam("tower_post", (-2.40, 0.55 * s, 0.60), (-3.10, 0.55 * s, 0.60))
         _tripod(B, m(R["damper_upper"], s), (-2.60, 0.45 * s, 0.60), (-2.55, 0.55 * s, 0.60),
-                (-2.60, 0.55 * s, 0.65))
+                (-2.60, 0.55 * s, 0.65), (-2.50, 0.55 * s, 0.60), (-2.65, 0.55 * s, 0.60))
 
 
 def check_connected(B):
