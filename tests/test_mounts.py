@@ -291,3 +291,16 @@ def test_exudyn_markers_for_every_mount_and_static_deflection(block):
     for n in ("d", "e", "h"):
         np.testing.assert_allclose(u_exu[n], u[_node_dofs(block, POINTS[n])], rtol=0,
                                    atol=1e-3 * scale)  # measured 4.2e-4
+
+
+def test_residual_compliance_restores_the_driving_point_flexibility(block, reference):
+    G_ref, f_ref = reference
+    for cut in (2000.0, 5000.0):
+        body = flexpipe.reduce(block, _mounts(3), f_max=1.05 * f_ref[10], interface_f_max=cut)
+        G = supported_flexibility_reduced(body, SUPPORT)
+        C = np.zeros_like(G)
+        for i, itf in enumerate(body.interfaces):  # in series at each mount
+            C[3 * i:3 * i + 3, 3 * i:3 * i + 3] = itf.residual_compliance
+        plain = block_errors(G, G_ref, skip=(0,))
+        series = block_errors(G + C, G_ref, skip=(0,))
+        assert series.max() < plain.max()

@@ -58,6 +58,10 @@ class BodyInterface:
         (translations only: ball joints, bushings, spring seats).  For a 3-DOF interface
         the rotation rows of ``shapes`` are the spider's rotation where the model has one
         (zero for a solid node); moments applied there are not reproduced exactly.
+    residual_compliance : ndarray (dofs, dofs)
+        Static flexibility at this interface that an interface reduction dropped (m/N,
+        rad/(N m)): put it in series with the bushing there.  Zero without interface
+        reduction.
     """
 
     name: str
@@ -66,11 +70,15 @@ class BodyInterface:
     shapes: np.ndarray
     kind: str = "rbe2"
     dofs: int = 6
+    residual_compliance: np.ndarray | None = None
 
     def __post_init__(self):
         if int(self.dofs) not in (3, 6):
             raise ValueError(f"interface {self.name!r}: dofs must be 3 or 6, got {self.dofs!r}")
         object.__setattr__(self, "dofs", int(self.dofs))
+        C = np.zeros((self.dofs, self.dofs)) if self.residual_compliance is None \
+            else self.residual_compliance
+        object.__setattr__(self, "residual_compliance", _ro(C).reshape(self.dofs, self.dofs))
         object.__setattr__(self, "point", _ro(self.point).reshape(3))
         object.__setattr__(self, "nodes", _ro(self.nodes, np.int64).reshape(-1))
         object.__setattr__(self, "shapes", _ro(self.shapes).reshape(6, -1))
@@ -244,6 +252,7 @@ def _to_arrays(body: FlexBody) -> dict:
         out[f"interface.{j}.point"] = itf.point
         out[f"interface.{j}.nodes"] = itf.nodes
         out[f"interface.{j}.shapes"] = itf.shapes
+        out[f"interface.{j}.residual_compliance"] = itf.residual_compliance
     for k, v in body.checks.items():
         out[f"checks.{k}"] = v
     return out
@@ -289,7 +298,10 @@ def load_body(path) -> FlexBody:
             BodyInterface(name=h["name"], kind=h["kind"], dofs=h.get("dofs", 6),
                           point=get(f"interface.{j}.point"),
                           nodes=get(f"interface.{j}.nodes"),
-                          shapes=get(f"interface.{j}.shapes"))
+                          shapes=get(f"interface.{j}.shapes"),
+                          residual_compliance=(data[f"interface.{j}.residual_compliance"]
+                                               if f"interface.{j}.residual_compliance"
+                                               in data.files else None))
             for j, h in enumerate(header["interfaces"]))
         checks = {k: get(f"checks.{k}") for k in header["checks"]}
     return FlexBody(**arrays, n_rigid=header["n_rigid"], mass=header["mass"], invariants=inv,

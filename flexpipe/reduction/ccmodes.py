@@ -16,7 +16,11 @@ component mode synthesis", AIAA Journal 39(6), 2001, 1182-1187.
 
 What is lost: the truncated CC modes carry the static flexibility of the high-frequency
 interface deformation, so static deflections at the mounts are no longer exact (see
-tests/test_mounts.py for the measured error against the unreduced model).
+tests/test_mounts.py for the measured error against the unreduced model).  That lost
+flexibility, ``C_res = sum over deleted CC modes of v v^T / lambda`` (boundary DOF,
+m/N and rad/(N m)), is returned so that its diagonal block at each mount can be put in
+series with the bushing there (the residual-flexibility idea of MacNeal 1971 applied to
+the interface).
 """
 
 from __future__ import annotations
@@ -45,6 +49,8 @@ def characteristic_constraint_modes(M, K, Psi_c, *, f_max: float):
         ``Psi_c @ V_keep``, mass-normalized on ``M``, ascending frequency.
     f_hz : ndarray, shape (n_cc,)
         Their Guyan frequencies (rigid-body ones ~0).
+    C_res : ndarray, shape (n_b, n_b)
+        Residual flexibility of the deleted CC modes on the boundary DOF.
     """
     if not (np.isfinite(f_max) and f_max > 0):
         raise InputError(f"the interface-reduction cut-off must be a positive frequency in "
@@ -59,7 +65,9 @@ def characteristic_constraint_modes(M, K, Psi_c, *, f_max: float):
     f = np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
     keep = f <= f_max
     keep[:min(6, keep.size)] = True  # the rigid-body motions of a free body
-    return Psi_c @ (V[:, keep] * s[:, None]), f[keep]
+    Vd = V[:, ~keep] * s[:, None]
+    C_res = (Vd / lam[~keep]) @ Vd.T
+    return Psi_c @ (V[:, keep] * s[:, None]), f[keep], 0.5 * (C_res + C_res.T)
 
 
 __all__ = ["characteristic_constraint_modes"]

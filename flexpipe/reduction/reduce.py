@@ -159,11 +159,12 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
                                    timings=timings, cb_factor=cb_factor)
         n_constraint = b.size
+        C_res = np.zeros((b.size, b.size))
         if interface_f_max is not None and b.size:
             from flexpipe.reduction.ccmodes import characteristic_constraint_modes
 
-            Psi_cc, _ = characteristic_constraint_modes(system.M, system.K, Psi[:, :b.size],
-                                                        f_max=float(interface_f_max))
+            Psi_cc, _, C_res = characteristic_constraint_modes(
+                system.M, system.K, Psi[:, :b.size], f_max=float(interface_f_max))
             n_constraint = Psi_cc.shape[1]
             Psi = np.hstack([Psi_cc, Psi[:, b.size:]])
     except ModelError as exc:
@@ -200,6 +201,8 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
 
     zeta = _damping_ratios(damping, f_hz, n_rigid)
     m = len(f_hz)
+    ends = np.cumsum([len(a) for a in system.active])
+    offsets = [np.arange(e - len(a), e) for a, e in zip(system.active, ends, strict=True)]
     mesh = fe.mesh
     triangles = surface_triangles(mesh) if mesh is not None else np.zeros((0, 3), np.int64)
     from flexpipe import __version__
@@ -219,8 +222,9 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         damping_ratio=zeta, mass=mass, center_of_mass=com, inertia=J_com,
         inertia_origin=J_origin, invariants=inv,
         interfaces=tuple(BodyInterface(name=r.name, point=r.point, nodes=r.nodes, shapes=s,
-                                       kind=r.kind, dofs=r.dofs)
-                         for r, s in zip(resolved, shapes, strict=True)),
+                                       kind=r.kind, dofs=r.dofs,
+                                       residual_compliance=C_res[np.ix_(o, o)])
+                         for r, s, o in zip(resolved, shapes, offsets, strict=True)),
         method=method, source_hash=mesh_hash(mesh) if mesh is not None else "",
         meta=meta, checks=checks,
     )
