@@ -304,3 +304,16 @@ def test_residual_compliance_restores_the_driving_point_flexibility(block, refer
         plain = block_errors(G, G_ref, skip=(0,))
         series = block_errors(G + C, G_ref, skip=(0,))
         assert series.max() < plain.max()
+
+
+def test_interface_spec_file_takes_dofs(tmp_path):
+    from flexpipe.reduction.spec import read_interfaces
+
+    spec = tmp_path / "i.toml"
+    spec.write_text('[[interface]]\nname = "ball"\npoint = [0.1, 0.0, 0.0]\ndofs = 3\n'
+                    '[[interface]]\nname = "strut"\npoint = [0.9, 0.0, 0.0]\nradius = 0.06\n')
+    a, b = read_interfaces(spec)
+    assert (a.dofs, b.dofs) == (3, 6)
+    spec.write_text('[[interface]]\nname = "ball"\npoint = [0.1, 0.0, 0.0]\ndofs = 5\n')
+    with pytest.raises(InputError, match=r"line 1.*interface\[0\]\.dofs"):
+        read_interfaces(spec)
