@@ -14,8 +14,7 @@ sections) sharing nodes with the panels:
 * dash panel (bulkhead), rear seat-back panel, parcel shelf, rear wheelhouse inner walls
   carrying the rear damper mounts;
 * front strut towers (wall + top plate) between the front rails and the upper (apron)
-  rails, carrying the front strut mounts; the bolted engine cradle (subframe) as a plate
-  between the front rails; the rear (back) panel;
+  rails, carrying the front strut mounts; the rear (back) panel;
 * sills, hinge pillars, A-, B-, C-pillars, roof rails, headers, roof bow, roof panel;
 * front rails with kick-down floor longitudinals, rear rails, bumper beams, radiator
   support, floor cross members, cowl beam.
@@ -39,10 +38,11 @@ bar bushings; tripod brackets on the strut-tower walls (stiffened by vertical po
 the upper-arm pivots and spring seats; a rear subframe on the rear rails and the rear
 floor carries the lateral links, tie rods and anti-roll bar; brackets on the rear floor,
 seat-back panel and wheelhouse walls (with a damper-top reinforcement) carry the upper
-arms, trailing links, spring and damper tops.  Measured (``--check``): BIW 424.9 kg
-(358.1 kg before the mounts: +76.8 kg cradle, subframe, posts, brackets, -10 kg smeared
-front brackets), first torsion 44.8 Hz (43.5), bending 46.0 Hz (46.5); trimmed with
-``cars/sedan.toml`` 1390.9 kg, torsion 26.6 Hz (23.6), bending 24.3 Hz (23.6).
+arms, trailing links, spring and damper tops.  The engine cradle, formerly a 2.5 mm plate
+between the front rails, is now this beam frame.  Measured (``--check``): BIW 396.6 kg
+(358.1 kg before the mounts), first torsion 42.3 Hz (43.5), bending 46.1 Hz (46.5);
+trimmed with ``cars/sedan.toml`` 1362.6 kg (1324.1), torsion 22.8 Hz (23.6), bending
+23.8 Hz (23.6).
 
 Every mount and the four legacy corner hardpoints are written as comments
 ``$ HARDPOINT name x y z`` and as ``SET1`` node lists with a ``$ SET name`` comment (the
@@ -108,7 +108,7 @@ SHELLS = {
     "floor": (0.0007, 8.0), "tunnel": (0.0008, 4.0), "heel_kick": (0.0010, 4.0),
     "rear_floor": (0.0008, 10.0), "dash": (0.0008, 8.0), "seat_back": (0.0007, 8.0),
     "parcel_shelf": (0.0008, 8.0), "wheelhouse": (0.0010, 6.0), "tower": (0.0020, 3.0),
-    "roof": (0.0006, 10.0), "subframe": (0.0025, 5.0), "rear_panel": (0.0010, 6.0),
+    "roof": (0.0006, 10.0), "rear_panel": (0.0010, 6.0),
 }
 
 #: beam properties: name -> thin-walled box (width, height, wall) in m
@@ -121,9 +121,9 @@ BEAMS = {
     "rear_rail": (0.07, 0.09, 0.0015), "cross_member": (0.07, 0.08, 0.0013),
     "bumper": (0.06, 0.10, 0.0018), "cowl": (0.08, 0.10, 0.0015),
     "quarter": (0.06, 0.08, 0.0015),
-    "cradle_rail": (0.08, 0.08, 0.0020), "cradle_post": (0.06, 0.06, 0.0020),
-    "rear_cradle": (0.07, 0.07, 0.0020), "bracket": (0.05, 0.05, 0.0020),
-    "tower_post": (0.06, 0.06, 0.0020),
+    "cradle_rail": (0.08, 0.08, 0.0020), "cradle_post": (0.06, 0.06, 0.0015),
+    "rear_cradle": (0.07, 0.07, 0.0018), "bracket": (0.05, 0.05, 0.0015),
+    "tower_post": (0.06, 0.06, 0.0015),
 }
 #: non-structural masses (kg) smeared evenly over the nodes of these beam groups: outer
 #: body-side skins and reinforcements on the side frame; crash boxes and small brackets
@@ -227,8 +227,7 @@ def build():
         P("tower", (-0.25, 0.55 * s, 0.40), (0.50, 0, 0), (0, 0, 0.45))
         P("tower", (-0.25, 0.55 * s, 0.85), (0.50, 0, 0), (0, 0.20 * s, 0))
     P("roof", (-2.55, -0.65, 1.40), (1.30, 0, 0), (0, 1.30, 0))
-    # engine cradle (bolted subframe) as a plate between the front rails; rear panel
-    P("subframe", (-0.50, -0.55, 0.40), (0.85, 0, 0), (0, 1.10, 0))
+    # rear panel (the engine cradle is a beam frame: suspension_mounts)
     P("rear_panel", (-3.75, -0.55, 0.35), (0, 1.10, 0), (0, 0, 0.40))
     # ---- beams
     for s in (-1, 1):
@@ -307,8 +306,9 @@ def suspension_mounts(B):
             B.beam("cradle_post", foot, top)
         # steering rack post (to the engine-cradle plate) and anti-roll-bar bracket
         B.beam("cradle_post", (lar[0], s * rack[1], lar[2]), m(rack, s),
-               (rack[0], s * rack[1], 0.40))
-        B.beam("bracket", (lar[0], 0.35 * s, lar[2]), m(arb, s), (-0.10, 0.35 * s, 0.40))
+               (rack[0], 0.55 * s, 0.40))
+        side = np.asarray(m(laf, s)) + 0.75 * (np.asarray(m(lar, s)) - np.asarray(m(laf, s)))
+        B.beam("bracket", (lar[0], 0.35 * s, lar[2]), m(arb, s), tuple(side))
         # upper-arm and spring brackets on the strut-tower wall (y = 0.55), stiffened by
         # vertical posts from the front rail to the tower top
         w = 0.55 * s
