@@ -107,34 +107,36 @@ def test_free_free_frequencies_below_band(block, reference):
     assert np.max(f[6:6 + below.sum()] / f_ref[6:][below] - 1) < 5e-3
 
 
-def test_interface_reduction_fewer_modes_converges_to_full_craig_bampton(block, reference):
+def test_interface_reduction_converges_to_full_craig_bampton(block, reference):
     G_ref, f_ref = reference
     f_max = 1.05 * f_ref[10]
     full = flexpipe.reduce(block, _mounts(3), f_max=f_max)
     errors, counts = [], []
     for cut in (2000.0, 5000.0, 20000.0, 1e9):
         body = flexpipe.reduce(block, _mounts(3), f_max=f_max, interface_f_max=cut)
-        counts.append(body.n_modes)
+        counts.append(body.meta["n_constraint_modes"])
         G = supported_flexibility_reduced(body, SUPPORT)
         errors.append(block_errors(G, G_ref, skip=(0,)).max())
         f = body.frequencies_hz
         below = f_ref[6:] <= f_max
         assert np.all(f[6:6 + below.sum()] >= f_ref[6:][below] * (1 - 1e-9))  # Ritz bound
-    assert counts[0] < counts[1] < counts[2] <= counts[3] == full.n_modes
+    assert counts[0] < counts[1] < counts[2] == counts[3] == 3 * len(POINTS)
     assert errors[0] > errors[1] > errors[2] and errors[3] < 1e-8
-    # keeping every characteristic constraint mode spans the full Craig-Bampton space
-    np.testing.assert_allclose(body.frequencies_hz[6:], full.frequencies_hz[6:], rtol=1e-8)
-    assert body.meta["n_constraint_modes"] == 3 * len(POINTS)
+    # every CC mode kept: the full Craig-Bampton space plus the inertia vectors, so no
+    # frequency is higher than full Craig-Bampton's (Rayleigh-Ritz)
+    k = full.n_modes
+    assert np.all(body.frequencies_hz[6:k] <= full.frequencies_hz[6:k] * (1 + 1e-9))
 
 
 def test_interface_reduction_keeps_the_band(block, reference):
     _, f_ref = reference
     f_max = 1.05 * f_ref[10]
-    body = flexpipe.reduce(block, _mounts(3), f_max=f_max, interface_f_max=3 * f_max)
+    body = flexpipe.reduce(block, _mounts(3), f_max=f_max, interface_f_max=2 * f_max)
     below = f_ref[6:] <= f_max
     f = body.frequencies_hz[6:6 + below.sum()]
+    assert body.meta["n_inertia_vectors"] == body.meta["n_constraint_modes"]
     assert body.n_modes < flexpipe.reduce(block, _mounts(3), f_max=f_max).n_modes
-    assert np.max(f / f_ref[6:][below] - 1) < 5e-3
+    assert np.max(f / f_ref[6:][below] - 1) < 5e-3  # measured 1.9e-3
 
 
 def test_mixed_three_and_six_dof_mounts_round_trip(block, tmp_path):

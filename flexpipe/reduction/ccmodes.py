@@ -11,8 +11,20 @@ Guyan-reduced boundary problem
 ``Psi_c V_keep`` span the low-frequency interface motion, including the six rigid-body
 motions of a free body (zero eigenvalues, always kept).
 
-Reference: M. P. Castanier, Y.-C. Tan, C. Pierre, "Characteristic constraint modes for
-component mode synthesis", AIAA Journal 39(6), 2001, 1182-1187.
+The fixed-interface modes then have to carry the inertia of the body between the mounts;
+with the car's cut-off (1.5 x the band) the free-free modes below the band came out 2 %
+high on the sample sedan with 30 mounts.  :func:`inertia_vectors` adds, for the low CC
+modes, the interior static response to their inertia loads with the boundary held
+(``K_ii^-1 (M psi)_i``): the modal-truncation-augmentation idea of Dickens, Nakagawa &
+Wittbrodt (1997), applied to the fixed-interface problem, also Nastran's residual vectors
+(RESVEC) of the boundary inertia loads.  These vectors vanish on the boundary, so the
+static flexibility at the mounts is unchanged.
+
+References: M. P. Castanier, Y.-C. Tan, C. Pierre, "Characteristic constraint modes for
+component mode synthesis", AIAA Journal 39(6), 2001, 1182-1187.  J. M. Dickens,
+J. M. Nakagawa, M. J. Wittbrodt, "A critique of mode acceleration and modal truncation
+augmentation methods for modal response analysis", Computers & Structures 62(6), 1997,
+985-998.
 
 What is lost: the truncated CC modes carry the static flexibility of the high-frequency
 interface deformation, so static deflections at the mounts are no longer exact (see
@@ -70,4 +82,27 @@ def characteristic_constraint_modes(M, K, Psi_c, *, f_max: float):
     return Psi_c @ (V[:, keep] * s[:, None]), f[keep], 0.5 * (C_res + C_res.T)
 
 
-__all__ = ["characteristic_constraint_modes"]
+def inertia_vectors(M, Psi, interior, factor):
+    """Interior static response to the inertia loads ``M Psi`` with the boundary held.
+
+    Parameters
+    ----------
+    M : sparse matrix (n, n)
+    Psi : ndarray (n, k)
+        Boundary-driven shapes (e.g. the low CC modes).
+    interior : ndarray of int
+        Interior DOF indices.
+    factor
+        Factorization of ``K_ii`` (``.solve``).
+
+    Returns
+    -------
+    ndarray (n, k), zero on the boundary DOF.
+    """
+    X = np.zeros((Psi.shape[0], Psi.shape[1]))
+    if Psi.shape[1]:
+        X[interior] = factor.solve(np.asarray((M @ Psi)[interior]))
+    return X
+
+
+__all__ = ["characteristic_constraint_modes", "inertia_vectors"]

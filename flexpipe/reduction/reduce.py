@@ -23,7 +23,9 @@ Many interfaces
 Interfaces with ``dofs=3`` add 3 boundary DOF instead of 6.  Craig-Bampton with
 ``interface_f_max`` (Hz) replaces the static constraint modes by the characteristic
 constraint modes up to that frequency (:mod:`flexpipe.reduction.ccmodes`), which keeps
-the number of body modes in check when the body has tens of interfaces.
+the number of body modes in check when the body has tens of interfaces; with ``f_max``
+given, the interior static responses to the inertia loads of the CC modes up to
+``INERTIA_FACTOR * f_max`` are added (they restore the band's accuracy, see ccmodes).
 """
 
 from __future__ import annotations
@@ -51,6 +53,8 @@ from flexpipe.reduction.interface import interface_system, resolve_interfaces
 DEFAULT_F_MAX_HZ = 50.0
 #: Craig-Bampton keeps fixed-interface modes up to this multiple of f_max
 CB_FACTOR = 3.0
+#: with interface reduction: inertia vectors for the CC modes up to this multiple of f_max
+INERTIA_FACTOR = 3.0
 METHODS = {
     "craig-bampton": "craig-bampton", "cb": "craig-bampton",
     "hurty-craig-bampton": "craig-bampton",
@@ -155,18 +159,26 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     timings["interfaces_s"] = time.perf_counter() - t0
 
     t = time.perf_counter()
+    factor_out = []
     try:
         Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
-                                   timings=timings, cb_factor=cb_factor)
+                                   timings=timings, cb_factor=cb_factor, factor_out=factor_out)
         n_constraint = b.size
         C_res = np.zeros((b.size, b.size))
+        n_inertia = 0
         if interface_f_max is not None and b.size:
-            from flexpipe.reduction.ccmodes import characteristic_constraint_modes
+            from flexpipe.reduction import ccmodes
 
-            Psi_cc, _, C_res = characteristic_constraint_modes(
+            Psi_cc, f_cc, C_res = ccmodes.characteristic_constraint_modes(
                 system.M, system.K, Psi[:, :b.size], f_max=float(interface_f_max))
             n_constraint = Psi_cc.shape[1]
-            Psi = np.hstack([Psi_cc, Psi[:, b.size:]])
+            parts = [Psi_cc, Psi[:, b.size:]]
+            if f_max is not None and factor_out:
+                low = Psi_cc[:, f_cc <= INERTIA_FACTOR * f_max]
+                interior = np.setdiff1d(np.arange(system.K.shape[0]), b)
+                parts.append(ccmodes.inertia_vectors(system.M, low, interior, factor_out[0]))
+                n_inertia = low.shape[1]
+            Psi = np.hstack(parts)
     except ModelError as exc:
         raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
     timings["basis_s"] = time.perf_counter() - t
@@ -212,6 +224,7 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         "dofs_per_node": int(dpn), "n_modes_requested": None if n_modes is None else int(n_modes),
         "f_max_hz": None if f_max is None else float(f_max), "source": mesh.source if mesh else "",
         "n_boundary_dof": int(b.size), "n_constraint_modes": int(n_constraint),
+        "n_inertia_vectors": int(n_inertia),
         "interface_f_max_hz": None if interface_f_max is None else float(interface_f_max),
         **{k: round(v, 4) for k, v in timings.items()},
         "total_s": round(time.perf_counter() - t0, 4),
@@ -230,12 +243,14 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     )
 
 
-def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_factor):
+def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_factor,
+           factor_out=None):
     """Ritz basis of ``method`` on the interface system, and the rigid count if known."""
     if method == "craig-bampton":
         f_cb = None if f_max is None else cb_factor * f_max
         Psi, _ = cms._craig_bampton(system.M, system.K, b, n_modes, f_max=f_cb,
-                                    backend=backend, tol=tol, timings=timings)
+                                    backend=backend, tol=tol, timings=timings,
+                                    factor_out=factor_out)
         return Psi, None
     if method == "residual-flexibility":
         Psi, _, n_rigid = cms._residual_flexibility(system.M, system.K, b, n_modes, f_max=f_max,
