@@ -319,3 +319,23 @@ def test_interface_spec_file_takes_dofs(tmp_path):
     spec.write_text('[[interface]]\nname = "ball"\npoint = [0.1, 0.0, 0.0]\ndofs = 5\n')
     with pytest.raises(InputError, match=r"line 1.*interface\[0\]\.dofs"):
         read_interfaces(spec)
+
+
+def test_cli_reduce_with_translational_mounts_and_interface_reduction(tmp_path, capsys):
+    from flexpipe.cli import main
+    from flexpipe.mesh.write import write_mesh
+
+    write_mesh(box(1.0, 0.4, 0.1, 10, 4, 2, cell="hexahedron"), tmp_path / "b.msh")
+    lines = []
+    for n, p in POINTS.items():
+        lines += ["[[interface]]", f'name = "{n}"', f"point = {list(p)}", "dofs = 3"]
+    (tmp_path / "s.toml").write_text("\n".join(lines) + "\n")
+    out = tmp_path / "b.npz"
+    args = ["reduce", str(tmp_path / "b.msh"), "--interfaces", str(tmp_path / "s.toml"),
+            "-o", str(out), "--material", "steel", "--f-max", "3000", "--no-check", "-q"]
+    assert main(args) == 0
+    full = load_body(out)
+    assert main(args + ["--interface-f-max", "3000"]) == 0
+    red = load_body(out)
+    assert "3 DOF" in capsys.readouterr().out
+    assert full.meta["n_constraint_modes"] == 24 > red.meta["n_constraint_modes"]

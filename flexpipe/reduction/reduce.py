@@ -121,7 +121,9 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
         ``cb_factor * f_max`` (default :data:`CB_FACTOR`).
     interface_f_max : float, optional
         Craig-Bampton only: interface reduction, keeping the characteristic constraint
-        modes up to this frequency (Hz) instead of every static constraint mode.
+        modes up to this frequency (Hz) instead of every static constraint mode, plus
+        (with ``f_max``) the inertia vectors of those up to ``INERTIA_FACTOR * f_max``;
+        each interface's ``residual_compliance`` holds the static flexibility dropped.
 
     Returns
     -------
