@@ -53,7 +53,16 @@ class BodyInterface:
         Hardpoint motion per mode: translations ux, uy, uz (m) and small rotations
         rx, ry, rz (rad) per unit modal coordinate.
     kind : {"rbe2", "node"}
-        A rigid spider to a new hardpoint, or a 6-DOF mesh node used directly.
+        A rigid spider to a new hardpoint, or a mesh node used directly.
+    dofs : {6, 3}
+        Boundary DOF of the reduction at this interface: 6 (forces and moments) or 3
+        (translations only: ball joints, bushings, spring seats).  For a 3-DOF interface
+        the rotation rows of ``shapes`` are the spider's rotation where the model has one
+        (zero for a solid node); moments applied there are not reproduced exactly.
+    residual_compliance : ndarray (dofs, dofs)
+        Static flexibility at this interface that an interface reduction dropped (m/N,
+        rad/(N m)): put it in series with the bushing there.  Zero without interface
+        reduction.
     """
 
     name: str
@@ -61,8 +70,16 @@ class BodyInterface:
     nodes: np.ndarray
     shapes: np.ndarray
     kind: str = "rbe2"
+    dofs: int = 6
+    residual_compliance: np.ndarray | None = None
 
     def __post_init__(self):
+        if int(self.dofs) not in (3, 6):
+            raise ValueError(f"interface {self.name!r}: dofs must be 3 or 6, got {self.dofs!r}")
+        object.__setattr__(self, "dofs", int(self.dofs))
+        C = np.zeros((self.dofs, self.dofs)) if self.residual_compliance is None \
+            else self.residual_compliance
+        object.__setattr__(self, "residual_compliance", _ro(C).reshape(self.dofs, self.dofs))
         object.__setattr__(self, "point", _ro(self.point).reshape(3))
         object.__setattr__(self, "nodes", _ro(self.nodes, np.int64).reshape(-1))
         object.__setattr__(self, "shapes", _ro(self.shapes).reshape(6, -1))
@@ -227,7 +244,8 @@ def _to_arrays(body: FlexBody) -> dict:
     header = {
         "format": FORMAT, "version": VERSION, "n_rigid": body.n_rigid, "mass": body.mass,
         "method": body.method, "source_hash": body.source_hash, "meta": dict(body.meta),
-        "interfaces": [{"name": i.name, "kind": i.kind} for i in body.interfaces],
+        "interfaces": [{"name": i.name, "kind": i.kind, "dofs": i.dofs}
+                       for i in body.interfaces],
         "checks": sorted(body.checks),
     }
     stress_arrays = {}
@@ -242,6 +260,7 @@ def _to_arrays(body: FlexBody) -> dict:
         out[f"interface.{j}.point"] = itf.point
         out[f"interface.{j}.nodes"] = itf.nodes
         out[f"interface.{j}.shapes"] = itf.shapes
+        out[f"interface.{j}.residual_compliance"] = itf.residual_compliance
     for k, v in body.checks.items():
         out[f"checks.{k}"] = v
     out.update(stress_arrays)
@@ -285,9 +304,13 @@ def load_body(path) -> FlexBody:
         inv = FFRFInvariants(**{f.name: get(f"invariants.{f.name}")
                                 for f in fields(FFRFInvariants)})
         interfaces = tuple(
-            BodyInterface(name=h["name"], kind=h["kind"], point=get(f"interface.{j}.point"),
+            BodyInterface(name=h["name"], kind=h["kind"], dofs=h.get("dofs", 6),
+                          point=get(f"interface.{j}.point"),
                           nodes=get(f"interface.{j}.nodes"),
-                          shapes=get(f"interface.{j}.shapes"))
+                          shapes=get(f"interface.{j}.shapes"),
+                          residual_compliance=(data[f"interface.{j}.residual_compliance"]
+                                               if f"interface.{j}.residual_compliance"
+                                               in data.files else None))
             for j, h in enumerate(header["interfaces"]))
         checks = {k: get(f"checks.{k}") for k in header["checks"]}
         stress = StressModes.from_arrays(header["stress"], get) if header.get("stress") \

@@ -19,6 +19,7 @@ Example::
     name = "tow"
     point = [1.1, 0.0, 0.3]
     nodes = [101, 102, 103]       # or node ids of the mesh file
+    dofs = 3                      # translations only (ball joint, bushing); default 6
 
 An entry with neither ``radius``, ``node_set`` nor ``nodes`` (and no top-level radius)
 uses the 6-DOF shell/beam node at the point.
@@ -34,7 +35,7 @@ import numpy as np
 from flexpipe.errors import InputError
 from flexpipe.reduction.interface import Interface
 
-_KEYS = {"name", "point", "radius", "node_set", "nodes"}
+_KEYS = {"name", "point", "radius", "node_set", "nodes", "dofs"}
 
 
 def _line_of(lines, k):
@@ -94,6 +95,11 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
             raise InputError(f"point must be [x, y, z] in m, got {p!r}",
                              key=f"interface[{k}].point", **where)
         kw = {"name": name}
+        if "dofs" in e:
+            if e["dofs"] not in (3, 6) or isinstance(e["dofs"], bool):
+                raise InputError(f"dofs must be 3 (forces only) or 6 (forces and moments), "
+                                 f"got {e['dofs']!r}", key=f"interface[{k}].dofs", **where)
+            kw["dofs"] = int(e["dofs"])
         if "node_set" in e:
             kw["node_set"] = str(e["node_set"])
         elif "nodes" in e:
