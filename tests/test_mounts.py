@@ -339,3 +339,13 @@ def test_cli_reduce_with_translational_mounts_and_interface_reduction(tmp_path, 
     red = load_body(out)
     assert "3 DOF" in capsys.readouterr().out
     assert full.meta["n_constraint_modes"] == 24 > red.meta["n_constraint_modes"]
+
+
+def test_step_cost_runs_and_names_bad_supports(block):
+    pytest.importorskip("exudyn")
+    from flexpipe.exu.timing import step_cost
+
+    body = flexpipe.reduce(block, _mounts(3), n_modes=2)
+    assert np.isfinite(step_cost(body, ["a", "b", "c", "d"], t_end=0.01))
+    with pytest.raises(InputError, match="no interfaces"):
+        step_cost(body, ["a", "zz"], t_end=0.01)
