@@ -149,6 +149,14 @@ def test_mixed_three_and_six_dof_mounts_round_trip(block, tmp_path):
     assert not np.any(body.interface("a").shapes[3:])
     back = load_body(body.save(tmp_path / "b.npz"))
     assert back == body and back.interface("a").dofs == 3
+    # with interface reduction: a residual compliance per mount, symmetric and >= 0
+    red = flexpipe.reduce(block, itfs, f_max=2000.0, interface_f_max=3000.0)
+    C6, C3 = red.interface("end").residual_compliance, red.interface("a").residual_compliance
+    assert C6.shape == (6, 6) and C3.shape == (3, 3)
+    for C in (C6, C3):
+        np.testing.assert_allclose(C, C.T, atol=1e-12 * np.abs(C).max())
+        assert np.linalg.eigvalsh(C).min() >= -1e-12 * np.abs(C).max() and C.max() > 0
+    assert load_body(red.save(tmp_path / "r.npz")) == red
 
 
 # --------------------------------------------------------------------------- mounts API
