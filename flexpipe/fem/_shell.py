@@ -221,17 +221,30 @@ def to_global(K: np.ndarray, R: np.ndarray, h: np.ndarray, *,
     return out
 
 
-def in_sub_batches(fn, geometry, E, nu, rho, t, *, size: int = SUB_BATCH):
-    """Run ``fn(R, xy, h, E, nu, rho, t) -> (K, M)`` over cache-sized sub-batches.
+def in_sub_batches(fn, geometry, E, nu, rho, t, *, bending=1.0, size: int = SUB_BATCH):
+    """Run ``fn(R, xy, h, E, nu, rho, t, bending) -> (K, M)`` over cache-sized sub-batches.
 
-    Element matrices are written into preallocated outputs, so the temporaries stay
-    small (a few MB) whatever the batch size handed over by the assembler.
+    ``bending`` scales the plate bending rigidity (Nastran PSHELL ``12I/T^3`` times
+    ``E(MID2) / E(MID1)``; 0 = membrane only).  Element matrices are written into
+    preallocated outputs, so the temporaries stay small (a few MB) whatever the batch
+    size handed over by the assembler.
     """
     ne, nn = geometry[1].shape[:2]
-    E, nu, rho, t = (np.broadcast_to(np.asarray(v, dtype=float), (ne,)) for v in (E, nu, rho, t))
+    E, nu, rho, t, bending = (np.broadcast_to(np.asarray(v, dtype=float), (ne,))
+                              for v in (E, nu, rho, t, bending))
     K = np.empty((ne, 6 * nn, 6 * nn))
     M = np.empty((ne, 6 * nn, 6 * nn))
     for s in range(0, ne, size):
         sl = slice(s, s + size)
-        K[sl], M[sl] = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl])
+        K[sl], M[sl] = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl],
+                          bending[sl])
     return K, M
+
+
+def offset_heights(h: np.ndarray, zoffset) -> np.ndarray:
+    """Heights of the nodes above the element's mid-surface: warping ``h`` minus the
+    shell offset ``zoffset`` (Nastran ZOFFS: mid-surface at ``node + zoffs n``)."""
+    if zoffset is None:
+        return h
+    z = np.asarray(zoffset, dtype=float).reshape(-1)
+    return h - z[:, None] if np.any(z) else h

@@ -100,7 +100,7 @@ def _allman_map(xy):
     return A
 
 
-def _batch(R, xy, h, E, nu, rho, t):
+def _batch(R, xy, h, E, nu, rho, t, bend):
     """Global (K, M) of elements whose geometry has been checked."""
     x, y = xy[..., 0], xy[..., 1]
     # b_i = y_j - y_k, c_i = x_k - x_j (i, j, k cyclic); grad L_i = (b_i, c_i) / (2 area)
@@ -118,7 +118,7 @@ def _batch(R, xy, h, E, nu, rho, t):
     Bq[..., 2, 0::2] = dN6[..., 1]
     Bq[..., 2, 1::2] = dN6[..., 0]
     Bb = np.einsum("egik,ekj->egij", Bq, _dkt_map(xy))
-    Db = _shell.bending_rigidity(E, nu, t)
+    Db = _shell.bending_rigidity(E, nu, t) * bend[:, None, None]
     Kb = _shell.btdb(Bb, Db, np.repeat(area[:, None] / 3, 3, 1))
     # membrane (Allman): LST field from corner u, v, theta_z, exact 3-point rule
     Amap = _allman_map(xy)
@@ -138,7 +138,8 @@ def _batch(R, xy, h, E, nu, rho, t):
     return _shell.to_global(K, R, h), _shell.to_global(M, R, h, isotropic=True)
 
 
-def matrices(X, *, E, nu, rho, thickness, **_):
+def matrices(X, *, E, nu, rho, thickness, bending=1.0, zoffset=None, **_):
     """Stiffness and lumped-consistent mass of tri3 shells (see :mod:`flexpipe.fem._element`)."""
     R, xy, h = _shell.local_frame(np.asarray(X, dtype=float))
-    return _shell.in_sub_batches(_batch, (R, xy, h), E, nu, rho, thickness)
+    return _shell.in_sub_batches(_batch, (R, xy, _shell.offset_heights(h, zoffset)), E, nu,
+                                 rho, thickness, bending=bending)
