@@ -163,3 +163,32 @@ def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
         while c.fields and not c.fields[-1]:
             c.fields.pop()
     return cards
+
+
+_CASE = re.compile(r"^\s*(SPC|METHOD|SOL)\s*=?\s*(\d+)\s*$", re.IGNORECASE)
+
+
+def case_control(path: Path) -> dict:
+    """``SOL``, ``SPC`` and ``METHOD`` set ids of the executive/case control section.
+
+    The first occurrence wins (global case control, else the first subcase); each value
+    is ``(set id, line number)``.  Empty when the file has no ``BEGIN BULK`` line.
+    """
+    out: dict = {}
+    try:
+        text = Path(path).read_text(encoding="latin-1")
+    except OSError:
+        return out
+    lines = text.splitlines()
+    if not any(ln.lstrip().upper().startswith("BEGIN BULK") for ln in lines):
+        return out
+    for i, ln in enumerate(lines):
+        s = ln.split("$", 1)[0]
+        if s.lstrip().upper().startswith("BEGIN BULK"):
+            break
+        m = _CASE.match(s.replace("=", " = ", 1) if "=" in s else s)
+        if m is None and s.strip().upper().startswith("SOL "):
+            m = re.match(r"^\s*(SOL)\s+(\d+)", s, re.IGNORECASE)
+        if m:
+            out.setdefault(m.group(1).upper(), (int(m.group(2)), i + 1))
+    return out

@@ -93,7 +93,8 @@ class PointMass:
 
     ``inertia`` is the 3x3 rotary inertia tensor about the mass centre (kg m^2; the
     assembler adds the parallel-axis term for the offset); ``offset`` the position of
-    the mass centre relative to the node (m).
+    the mass centre relative to the node (m).  ``matrix`` (6 x 6, Nastran CONM1), when
+    given, is the complete nodal mass matrix and replaces the other three.
     """
 
     node: int
@@ -101,6 +102,7 @@ class PointMass:
     inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
     id: int = 0
+    matrix: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,8 @@ decks (Nastran, Abaqus) also carry materials, masses and inertias:
     area (``scale**2``) and second moments / torsion constant (``scale**4``).  It does
     **not** touch Young's modulus, density, concentrated masses or rotary inertias: a
     millimetre deck whose MAT1 holds E in MPa and rho in t/mm^3 needs ``units``.
+Springs and dampers (``spring`` cells) convert with ``units`` only (force per length,
+per radian ...), like the materials.
 ``units`` (``"SI"``, ``"mm-t-s"``, ``"mm-kg-s"``, ``"mm-kg-ms"``, ``"mm-g-ms"``,
 ``"cm-g-s"``, ... any ``LENGTH-MASS-TIME`` from the tables below)
     converts everything consistently: lengths as above, E and G by
@@ -115,12 +117,23 @@ def convert(mesh, system: UnitSystem, *, materials: bool):
     for b in mesh.blocks:
         data = {k: (np.asarray(v, dtype=float) * L if k.endswith("offset") else v)
                 for k, v in b.data.items()}
+        if b.type in ("spring", "spring1") and materials:
+            # spring matrices: N/m, N/rad, N m/rad blocks; dampers times one time unit
+            nn = 2 if b.type == "spring" else 1
+            pat = np.kron(np.ones((nn, nn)), np.kron([[1.0, L], [L, L * L]], np.ones((3, 3))))
+            f = system.mass / system.time**2
+            for key, extra_t in (("K", 1.0), ("B", system.time)):
+                if key in data:
+                    data[key] = np.asarray(data[key], dtype=float) * pat * f * extra_t
         blocks.append(CellBlock(b.type, b.cells, b.ids, b.tags, data))
     mass_f = system.mass if materials else 1.0
     inertia_f = system.factor((2, 1, 0)) if materials else 1.0
     masses = tuple(
         PointMass(pm.node, pm.mass * mass_f, np.asarray(pm.inertia, dtype=float) * inertia_f,
-                  np.asarray(pm.offset, dtype=float) * L, pm.id)
+                  np.asarray(pm.offset, dtype=float) * L, pm.id,
+                  None if pm.matrix is None else np.asarray(pm.matrix, dtype=float)
+                  * np.kron([[1.0, L], [L, L * L]], np.ones((3, 3)))
+                  * (mass_f if materials else 1.0))
         for pm in mesh.point_masses
     )
     return replace(mesh, points=mesh.points * L, blocks=tuple(blocks), sections=sections,

@@ -1,0 +1,198 @@
+"""Nastran materials and properties -> flexpipe section dictionaries.
+
+``MAT1`` (``E, G, NU, RHO``; two of E, G, NU suffice), ``PSHELL`` (``T``, ``MID1``,
+``MID2`` with ``12I/T^3``: bending rigidity scale ``12I/T^3 * E(MID2) / E(MID1)``,
+blank MID2 = membrane only, ``NSM`` added as ``NSM / T`` to the density), ``PSOLID``,
+``PBAR`` (``A, I1, I2, J, NSM``, ``K1, K2`` shear area factors - blank = no shear
+flexibility - and ``I12``), ``PBEAM`` (end A; ``K1, K2`` default 1.0 as in Nastran),
+``PBARL``/``PBEAML`` (standard shapes of :mod:`flexpipe.fem.sections`, end A),
+``PROD`` / ``CONROD`` (``A, J``: axial + torsion only), ``PELAS``, ``PBUSH`` (``K``,
+``B``; ``GE`` ignored).  A section with ``I12 != 0`` is turned to its principal axes
+(``theta``).  ``PARAM, WTMASS`` multiplies every density, NSM and mass.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flexpipe.fem.sections import N_DIMS, principal, standard_section
+from flexpipe.mesh._bulk import Card
+
+#: property card -> cell types it may be used by
+KIND = {"PSHELL": ("triangle", "quad"), "PCOMP": ("triangle", "quad"),
+        "PCOMPG": ("triangle", "quad"),
+        "PSOLID": ("tetra", "tetra10", "hexahedron", "wedge", "pyramid"),
+        "PBAR": ("line",), "PBEAM": ("line",), "PBARL": ("line",), "PBEAML": ("line",),
+        "PROD": ("line",), "PELAS": ("spring", "spring1"), "PBUSH": ("spring", "spring1")}
+PROPERTIES = tuple(KIND)
+OTHER_MATERIALS = {"MAT2", "MAT8", "MAT9", "MAT3", "MATS1"}
+#: largest accepted modulus / density magnitude in any unit system
+_HUGE = 1e20
+
+
+def material(card: Card, wtmass: float = 1.0) -> dict:
+    """``E, nu, rho`` of a MAT1 card, range-checked (errors name file, line and MID)."""
+    E = card.real(1, "E", None)
+    G = card.real(2, "G", None)
+    nu = card.real(3, "NU", None)
+    rho = card.real(4, "RHO", None)
+    if E is None and G is not None and nu is not None:
+        E = 2.0 * (1.0 + nu) * G
+    if nu is None and E is not None and G is not None and G != 0:
+        nu = E / (2.0 * G) - 1.0
+    if E is None or nu is None:
+        raise card.error("needs E and NU (or two of E, G, NU)")
+    if not (np.isfinite(E) and 0 < E < _HUGE):
+        raise card.error(f"Young's modulus E = {E:g}; valid: 0 < E < {_HUGE:g} (file units)")
+    if not (np.isfinite(nu) and -1.0 < nu < 0.5):
+        raise card.error(f"Poisson's ratio NU = {nu:g}; valid: -1 < NU < 0.5")
+    if rho is None:
+        import warnings
+
+        from flexpipe.mesh.validate import MeshWarning
+        warnings.warn(MeshWarning(f"{card.file} line {card.line}: MAT1 {card.label()} has no "
+                                  "RHO: its elements are massless"), stacklevel=5)
+        rho = 0.0
+    if not (np.isfinite(rho) and 0 <= rho < _HUGE):
+        raise card.error(f"density RHO = {rho:g}; valid: 0 <= RHO < {_HUGE:g}")
+    return {"E": E, "nu": nu, "rho": rho * wtmass}
+
+
+def _positive(card: Card, values: dict, *, allow_zero=()):
+    for name, v in values.items():
+        ok = np.isfinite(v) and (v >= 0 if name in allow_zero else v > 0)
+        if not ok:
+            raise card.error(f"{name} = {v:g}; valid: a finite value "
+                             f"{'>= 0' if name in allow_zero else '> 0'}")
+
+
+def _beam(out: dict, A, I1, I2, I12, J, K1, K2, nsm, rho_mat):
+    Ip1, Ip2, theta = principal(I1, I2, I12)
+    out.update(A=A, Iz=Ip1, Iy=Ip2, J=J, k1=K1, k2=K2, theta=theta)
+    if nsm and "rho" in out:
+        out["rho"] = out["rho"] + nsm / A
+    return out
+
+
+def _dims(card: Card, start: int, n: int) -> list[float]:
+    return [card.real(start + k, f"DIM{k + 1}") for k in range(n)]
+
+
+def section(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
+    """Section dictionary of property ``card`` (materials from ``mats``: MID -> Card)."""
+    out: dict = {}
+    name = card.name
+    if name in ("PELAS", "PBUSH"):
+        return out
+    mid_field = {"PSHELL": 1, "PSOLID": 1, "PBAR": 1, "PBEAM": 1, "PBARL": 1, "PBEAML": 1,
+                 "PROD": 1}[name]
+    mid = card.int(mid_field, "MID", None)
+    mid2 = card.int(3, "MID2", None) if name == "PSHELL" else None
+    if name == "PSHELL" and mid is None:
+        mid = mid2
+    if mid is None:     # geometry only: the material comes from assemble(material=...)
+        if name == "PSHELL" and card.raw(2):
+            out["thickness"] = card.real(2, "T")
+            _positive(card, {"T": out["thickness"]})
+        return out
+    mcard = mats.get(mid)
+    if mcard is None:
+        raise card.error(f"refers to material MID {mid}, which has no MAT1 card")
+    if mcard.name != "MAT1":
+        raise card.error(f"material {mid} is {mcard.name} (line {mcard.line}); only isotropic "
+                         "MAT1 is supported")
+    out.update(material(mcard, wtmass))
+    if name == "PSHELL":
+        t = card.real(2, "T", None)
+        if t is not None:
+            _positive(card, {"T": t})
+            out["thickness"] = t
+        ratio = card.real(4, "12I/T**3", 1.0)
+        if mid2 is None:
+            out["bending"] = 0.0
+        else:
+            if mid2 not in mats or mats[mid2].name != "MAT1":
+                raise card.error(f"MID2 = {mid2} has no MAT1 card")
+            out["bending"] = ratio * material(mats[mid2])["E"] / out["E"]
+        _positive(card, {"12I/T**3": ratio}, allow_zero=("12I/T**3",))
+        nsm = card.real(7, "NSM", 0.0) * wtmass
+        if nsm and t:
+            out["rho"] += nsm / t
+    elif name == "PBAR":
+        A, I1, I2, J = (card.real(k, n, 0.0) for k, n in ((2, "A"), (3, "I1"), (4, "I2"),
+                                                          (5, "J")))
+        _positive(card, {"A": A, "I1": I1, "I2": I2, "J": J}, allow_zero=("I1", "I2", "J"))
+        K1, K2 = card.real(16, "K1", 0.0), card.real(17, "K2", 0.0)
+        I12 = card.real(18, "I12", 0.0)
+        if I1 * I2 < I12**2:
+            raise card.error(f"I1 I2 = {I1 * I2:g} < I12^2 = {I12**2:g}; valid: I1 I2 > I12^2")
+        _positive(card, {"K1": K1, "K2": K2}, allow_zero=("K1", "K2"))
+        _beam(out, A, I1, I2, I12, J, K1, K2, card.real(6, "NSM", 0.0) * wtmass, out["rho"])
+    elif name == "PBEAM":
+        A, I1, I2, I12, J = (card.real(k, n, 0.0) for k, n in
+                             ((2, "A"), (3, "I1"), (4, "I2"), (5, "I12"), (6, "J")))
+        _positive(card, {"A": A, "I1": I1, "I2": I2, "J": J}, allow_zero=("J",))
+        k = 16
+        while card.raw(k).upper() in ("YES", "YESA", "NO"):
+            k += 16
+        K1, K2 = card.real(k, "K1", 1.0), card.real(k + 1, "K2", 1.0)
+        _positive(card, {"K1": K1, "K2": K2}, allow_zero=("K1", "K2"))
+        _beam(out, A, I1, I2, I12, J, K1, K2, card.real(7, "NSM", 0.0) * wtmass, out["rho"])
+    elif name in ("PBARL", "PBEAML"):
+        shape = card.raw(3).upper()
+        if shape not in N_DIMS:
+            raise card.error(f"section TYPE '{card.raw(3)}' is not supported; valid: "
+                             f"{', '.join(N_DIMS)}")
+        n = N_DIMS[shape]
+        try:
+            s = standard_section(shape, _dims(card, 8, n), out["nu"])
+        except ValueError as exc:
+            raise card.error(str(exc)) from None
+        _beam(out, s["A"], s["I1"], s["I2"], s["I12"], s["J"], s["K1"], s["K2"],
+              card.real(8 + n, "NSM", 0.0) * wtmass, out["rho"])
+    elif name == "PROD":
+        A, J = card.real(2, "A"), card.real(3, "J", 0.0)
+        _positive(card, {"A": A, "J": J}, allow_zero=("J",))
+        _beam(out, A, 0.0, 0.0, 0.0, J, 0.0, 0.0, card.real(5, "NSM", 0.0) * wtmass, out["rho"])
+    return out
+
+
+def conrod_section(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
+    """Section of a CONROD (EID G1 G2 MID A J C NSM): the PROD fields inline."""
+    mid = card.int(3, "MID")
+    mcard = mats.get(mid)
+    if mcard is None or mcard.name != "MAT1":
+        raise card.error(f"refers to material MID {mid}, which has no MAT1 card")
+    out = material(mcard, wtmass)
+    A, J = card.real(4, "A"), card.real(5, "J", 0.0)
+    _positive(card, {"A": A, "J": J}, allow_zero=("J",))
+    return _beam(out, A, 0.0, 0.0, 0.0, J, 0.0, 0.0, card.real(7, "NSM", 0.0) * wtmass, None)
+
+
+def pelas(card: Card) -> dict:
+    """PID -> stiffness of a PELAS card (two properties per card allowed)."""
+    out = {}
+    for base in (0, 4):
+        if card.raw(base):
+            k = card.real(base + 1, "K")
+            if not np.isfinite(k):
+                raise card.error(f"K = {k}; valid: a finite stiffness")
+            out[card.int(base, "PID")] = k
+    return out
+
+
+def pbush(card: Card) -> dict:
+    """``{"K": (6,), "B": (6,)}`` of a PBUSH card (flag lines K, B, GE, RCV, M)."""
+    out = {"K": np.zeros(6), "B": np.zeros(6)}
+    k = 1
+    while k < len(card.fields):
+        flag = card.raw(k).upper()
+        if flag in ("K", "B"):
+            vals = [card.real(k + 1 + j, f"{flag}{j + 1}", 0.0) for j in range(6)]
+            if not all(np.isfinite(v) and v >= 0 for v in vals):
+                raise card.error(f"{flag} values {vals}; valid: finite and >= 0")
+            out[flag] = np.array(vals)
+        elif flag not in ("GE", "RCV", "M", ""):
+            raise card.error(f"unknown flag '{card.raw(k)}'; valid: K, B, GE, RCV, M")
+        k += 8
+    return out
