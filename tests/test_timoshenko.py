@@ -30,7 +30,7 @@ def _exact(L, E, G, rho, A, I, k, bc, n):
 
     grid = np.linspace(1.0, 6000.0, 1200)
     vals = [det(f) for f in grid]
-    roots = [brentq(det, a, b) for a, b, fa, fb in zip(grid, grid[1:], vals, vals[1:])
+    roots = [brentq(det, a, b) for a, b, fa, fb in zip(grid, grid[1:], vals, vals[1:], strict=False)
              if np.sign(fa) != np.sign(fb)]
     return np.array(roots[:n])
 

@@ -429,16 +429,16 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
         del Ke, Me, pos
     Mp = _point_mass_matrix(mesh, dpn, n_dof)
     pattern.add_sparse(Mdata, (Mp + Mp.T) * 0.5)
+    C = None
+    if damped:   # before K takes over (and compresses) the shared index arrays
+        C = pattern.matrix(Cdata, copy_structure=True)
+        C.eliminate_zeros()
     K = pattern.matrix(Kdata, copy_structure=False)
     M = pattern.matrix(Mdata, copy_structure=True)
     # drop exact zeros (unused rotation entries of solid nodes in a 6-DOF model, couplings
     # that vanish on regular grids): less work for the factorization
     K.eliminate_zeros()
     M.eliminate_zeros()
-    C = None
-    if damped:
-        C = pattern.matrix(Cdata, copy_structure=True)
-        C.eliminate_zeros()
     T = _constraint_map(mesh, dpn, n_dof, K, M)
     return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh,
                    C=C)

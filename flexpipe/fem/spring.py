@@ -20,6 +20,8 @@ TYPE = "spring"
 DOFS_PER_NODE = 6
 #: properties come from ``block.data``, not from materials
 FROM_DATA = True
+#: the reader's matrices are symmetric bit for bit
+SYMMETRIC = True
 
 
 def matrices(X, *, K, **_):
@@ -80,7 +82,8 @@ def bush(XA, XB, R, k, s=0.5):
     T[:, :3, :3] = R
     T[:, 3:, 3:] = R
     Dl = np.matmul(T, D)
-    return np.einsum("eki,ek,ekj->eij", Dl, np.asarray(k, float), Dl)
+    out = np.einsum("eki,ek,ekj->eij", Dl, np.asarray(k, float), Dl)
+    return 0.5 * (out + out.transpose(0, 2, 1))        # symmetric bit for bit
 
 
 def grounded_bush(R, k):
@@ -89,4 +92,5 @@ def grounded_bush(R, k):
     T = np.zeros((n, 6, 6))
     T[:, :3, :3] = R
     T[:, 3:, 3:] = R
-    return np.einsum("eki,ek,ekj->eij", T, np.asarray(k, float), T)
+    out = np.einsum("eki,ek,ekj->eij", T, np.asarray(k, float), T)
+    return 0.5 * (out + out.transpose(0, 2, 1))

@@ -197,8 +197,9 @@ def _element(card: Card, els: dict) -> None:
         if card.name in ("CHEXA", "CPENTA", "CPYRAM") and n > min(types):
             raise card.error(f"{card.name} with {n} nodes (second order) is not supported; "
                              f"use the {min(types)}-node form or 10-node CTETRA")
-        raise card.error(f"{card.name} with {n} node(s) ({'blank/zero grid field' if 0 in g else 'wrong count'}) "
-                         f"is not supported; valid: {sorted(types)} node(s)")
+        why = "a blank or zero grid field" if 0 in g else "wrong count"
+        raise card.error(f"{card.name} with {n} node(s) ({why}) is not supported; valid: "
+                         f"{sorted(types)} node(s)")
     els[types[n]].append((card, eid, pid, g))
 
 
@@ -328,7 +329,7 @@ def read_nastran(path) -> Mesh:
         items = els[cell_type]
         conn = _index_of(gid, sorter, [it[3] for it in items], [it[0] for it in items],
                          "a node")
-        els[cell_type] = [(it[0], it[1], it[2], list(row)) for it, row in zip(items, conn)]
+        els[cell_type] = [(it[0], it[1], it[2], list(row)) for it, row in zip(items, conn, strict=True)]
     pts = list(X)
     new_pts, info["converted"] = _split_second_order(els, pts, gid.tolist())
     if new_pts:
@@ -428,7 +429,8 @@ def read_nastran(path) -> Mesh:
                             None if m.matrix is None else m.matrix * wtmass) for m in masses]
     links = [_rbe2(c, gid, sorter) for c in deck.elements.get("RBE2", [])]
     links += [extra.rbar(c, index) for c in deck.elements.get("RBAR", [])]
-    for lk, c in zip(links, deck.elements.get("RBE2", []) + deck.elements.get("RBAR", [])):
+    for lk, c in zip(links, deck.elements.get("RBE2", []) + deck.elements.get("RBAR", []),
+                     strict=True):
         if not extra.invariant(lk.dofs) and cd[np.asarray(lk.slaves)].any():
             raise c.error(f"components {lk.dofs} at a grid with a CD system: only 123, 456 or "
                           "123456 are supported there")
