@@ -329,7 +329,8 @@ def read_nastran(path) -> Mesh:
         items = els[cell_type]
         conn = _index_of(gid, sorter, [it[3] for it in items], [it[0] for it in items],
                          "a node")
-        els[cell_type] = [(it[0], it[1], it[2], list(row)) for it, row in zip(items, conn, strict=True)]
+        els[cell_type] = [(it[0], it[1], it[2], list(row))
+                          for it, row in zip(items, conn, strict=True)]
     pts = list(X)
     new_pts, info["converted"] = _split_second_order(els, pts, gid.tolist())
     if new_pts:
