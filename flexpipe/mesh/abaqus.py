@@ -40,12 +40,20 @@ _TYPES = {"tetra": ("C3D4", "C3D4H"),
           "triangle": ("S3", "S3R", "S3RS", "STRI3"),
           "quad": ("S4", "S4R", "S4RS", "S4R5", "S4RSW"),
           "line": ("B31", "B31H", "B33", "B33H"),
+          "wedge": ("C3D6", "C3D6H"),
+          "pyramid": ("C3D5", "C3D5H"),
+          "spring1": ("SPRING1",),
+          "spring": ("SPRING2",),
           "mass": ("MASS", "ROTARYI")}
 TYPE_OF = {a: t for t, names in _TYPES.items() for a in names}
 NODES = {"tetra": 4, "tetra10": 10, "hexahedron": 8, "triangle": 3, "quad": 4, "line": 2,
-         "mass": 1}
-UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "COUPLING", "DISTRIBUTING COUPLING",
-                        "RIGID BODY", "MEMBRANE SECTION", "CONNECTOR SECTION")
+         "wedge": 6, "pyramid": 5, "spring1": 1, "spring": 2, "mass": 1}
+UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "DISTRIBUTING COUPLING", "RIGID BODY",
+                        "MEMBRANE SECTION", "CONNECTOR SECTION", "ORIENTATION")
+#: keywords that do not change M or K (listed in ``Mesh.info["dropped"]``)
+IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY",
+                    "END INSTANCE", "BOUNDARY", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
+                    "NODE OUTPUT", "ELEMENT OUTPUT", "RESTART", "SURFACE INTERACTION")
 
 
 class _Lines:
@@ -130,6 +138,11 @@ class _Deck:
         self.couplings = []     # (ref node id, [(node or set, first, last)], file, line)
         self.instances = 0
         self.n1_node: dict[int, int] = {}   # beam element id -> orientation node id
+        self.surfaces: dict[str, list] = {}
+        self.pending = None     # (ref node, surface, file, line) of an open *COUPLING
+        self.couplings2 = []    # (KINEMATIC|DISTRIBUTING, ref, surface, file, line, dofs)
+        self.springs = []       # (elset, rows, file, line)
+        self.dropped: dict[str, int] = {}
 
     def set_key(self, table: dict, name: str):
         """Key of set ``name`` in ``table`` (case-insensitive; ``Instance.name`` allowed)."""
@@ -151,7 +164,11 @@ def _members(deck, table, params, lines, what):
             except ValueError:
                 raise MeshError(f"{what} GENERATE: expected 'first, last[, step]' integers, "
                                 f"got '{text}'", file=f, line=ln) from None
-            out.extend(range(a, b + 1, step[0] if step else 1))
+            st = step[0] if step else 1
+            if st < 1 or b < a or (b - a) // st > 10_000_000:
+                raise MeshError(f"{what} GENERATE {a}, {b}, {st}: need step >= 1, last >= first "
+                                "and at most 10 million members", file=f, line=ln)
+            out.extend(range(a, b + 1, st))
             continue
         for tok in toks:
             if tok.lstrip("-").isdigit():
@@ -171,6 +188,10 @@ def _beam_section(params, lines, f, ln):
         raise MeshError("beam section without data lines", file=f, line=ln)
     sec = params.get("SECTION", "GENERAL").upper()
     v = _values(*rows[0], "beam section dimensions")
+    if sec != "GENERAL" and (not v or not all(np.isfinite(x) and x > 0 for x in v[
+            1 if sec == "I" else 0:])):
+        raise MeshError(f"*BEAM SECTION SECTION={sec}: dimensions {v} must be finite and > 0",
+                        file=rows[0][0], line=rows[0][1])
     props, mat = {}, None
     if sec == "GENERAL":
         A, I11, I12, I22, J = (v + [0.0] * 5)[:5]
@@ -190,15 +211,54 @@ def _beam_section(params, lines, f, ln):
     elif sec in ("CIRC", "PIPE"):
         r = v[0]
         ri = r - v[1] if sec == "PIPE" else 0.0
+        if not 0 <= ri < r:
+            raise MeshError(f"*BEAM SECTION PIPE: wall {v[1]} must be smaller than the radius "
+                            f"{r}", file=rows[0][0], line=rows[0][1])
         I = np.pi * (r**4 - ri**4) / 4
         props = {"A": np.pi * (r**2 - ri**2), "Iy": I, "Iz": I, "J": 2 * I}
+    elif sec in ("I", "L", "BOX"):
+        props = _shape_section(sec, v, rows[0])
     else:
-        raise MeshError(f"beam SECTION={sec} is not supported; use GENERAL, RECT, CIRC or PIPE",
-                        file=f, line=ln)
+        raise MeshError(f"beam SECTION={sec} is not supported; use GENERAL, RECT, CIRC, PIPE, "
+                        "BOX, I or L", file=f, line=ln)
     if sec != "GENERAL":
         mat = params.get("MATERIAL")
     n1 = _values(*rows[1], "beam n1 direction")[:3] if len(rows) > 1 else None
     return props, mat, n1
+
+
+def _shape_section(sec, v, where) -> dict:
+    """Abaqus BOX / I / L dimensions -> section (local 1 = flexpipe y, 2 = z)."""
+    from flexpipe.fem.sections import principal, standard_section
+
+    try:
+        if sec == "BOX":       # a (along 1), b (along 2), t1..t4 (uniform walls only)
+            a, b, *t = (v + [0.0] * 6)[:6]
+            if max(t) != min(t):
+                raise ValueError("only equal wall thicknesses t1 = t2 = t3 = t4 are supported")
+            s = standard_section("BOX", [b, a, t[0], t[0]])      # Nastran height = 1-axis
+            Iz, Iy, k1, k2, I12 = s["I1"], s["I2"], s["K1"], s["K2"], 0.0
+        elif sec == "I":       # l, h (along 2), b1, b2, t1, t2, t3
+            _, h, b1, b2, t1, t2, t3 = (v + [0.0] * 7)[:7]
+            s = standard_section("I", [h, b1, b2, t3, t1, t2])   # Nastran height = 2-axis
+            Iz, Iy, k1, k2, I12 = s["I2"], s["I1"], s["K2"], s["K1"], 0.0
+        else:                  # L: a (along 1), b (along 2), t1, t2
+            a, b, t1, t2 = (v + [0.0] * 4)[:4]
+            s = standard_section("L", [a, b, t1, t2])
+            Iz, Iy, k1, k2, I12 = s["I2"], s["I1"], s["K2"], s["K1"], s["I12"]
+    except ValueError as exc:
+        raise MeshError(f"*BEAM SECTION SECTION={sec}: {exc}", file=where[0],
+                        line=where[1]) from None
+    Ip1, Ip2, theta = principal(Iz, Iy, I12)
+    return {"A": s["A"], "Iz": Ip1, "Iy": Ip2, "J": s["J"], "theta": theta}
+
+
+def _rows(lines, f, ln, what, n=1):
+    """The data lines of a keyword block; an error naming the keyword when too few."""
+    rows = list(lines.data())
+    if len(rows) < n:
+        raise MeshError(f"{what} needs a data line", file=f, line=ln)
+    return rows
 
 
 def _parse(path: Path) -> _Deck:
@@ -239,14 +299,20 @@ def _parse(path: Path) -> _Deck:
                     raise MeshError(f"element line '{dt[:60]}' must hold integer ids",
                                     file=lf, line=lln) from None
                 first = first or (lf, lln)
+                if dt.rstrip().endswith(",") and len(buf) < NODES[t] + 1 + (t == "line"):
+                    continue            # a trailing comma continues the element
                 if t == "line" and len(buf) == 4:  # optional third node: the n1 direction
                     deck.n1_node[buf[0]] = buf.pop()
-                if len(buf) >= NODES[t] + 1:
-                    deck.eids[t].append(buf[0])
-                    deck.conn[t].append(buf[1:NODES[t] + 1])
-                    deck.ewhere[t].append(first)
-                    new.append(buf[0])
-                    buf, first = [], None
+                if len(buf) != NODES[t] + 1:
+                    raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has "
+                                    f"{len(buf) - 1} nodes, expected {NODES[t]} (end a line "
+                                    "with a comma to continue an element)", file=first[0],
+                                    line=first[1])
+                deck.eids[t].append(buf[0])
+                deck.conn[t].append(buf[1:])
+                deck.ewhere[t].append(first)
+                new.append(buf[0])
+                buf, first = [], None
             if buf:
                 raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has {len(buf) - 1} "
                                 f"nodes, expected {NODES[t]}", file=first[0], line=first[1])
@@ -266,10 +332,16 @@ def _parse(path: Path) -> _Deck:
             rows = list(lines.data())
             props = {}
             if kw == "SHELL SECTION":
+                if "COMPOSITE" in p:
+                    raise MeshError("*SHELL SECTION, COMPOSITE is not supported; give an "
+                                    "equivalent homogeneous section", file=f, line=ln)
                 if not rows:
                     raise MeshError("*SHELL SECTION needs a data line with the thickness",
                                     file=f, line=ln)
                 props["thickness"] = _values(*rows[0], "shell thickness", count=1)[0]
+                if not (np.isfinite(props["thickness"]) and props["thickness"] > 0):
+                    raise MeshError(f"*SHELL SECTION thickness {props['thickness']}; valid: "
+                                    "> 0", file=rows[0][0], line=rows[0][1])
             deck.sections.append((p.get("ELSET"), props, p.get("MATERIAL"), None, f, ln))
         elif kw in ("BEAM GENERAL SECTION", "BEAM SECTION"):
             props, mat, n1 = _beam_section(p, lines, f, ln)
@@ -281,18 +353,31 @@ def _parse(path: Path) -> _Deck:
             if p.get("TYPE", "ISOTROPIC").upper() != "ISOTROPIC":
                 raise MeshError(f"*ELASTIC TYPE={p['TYPE']} is not supported (isotropic only)",
                                 file=f, line=ln)
-            rows = list(lines.data())
+            rows = _rows(lines, f, ln, "*ELASTIC")
             E, nu = _values(*rows[0], "*ELASTIC E, nu", count=2)[:2]
+            mname = f"material '{material}'"
+            if not (np.isfinite(E) and 0 < E < 1e20):
+                raise MeshError(f"*ELASTIC of {mname}: E = {E:g}; valid: 0 < E < 1e20 (file "
+                                "units)", file=rows[0][0], line=rows[0][1])
+            if not (np.isfinite(nu) and -1 < nu < 0.5):
+                raise MeshError(f"*ELASTIC of {mname}: nu = {nu:g}; valid: -1 < nu < 0.5",
+                                file=rows[0][0], line=rows[0][1])
             deck.materials.setdefault((material or "").upper(), {}).update(E=E, nu=nu)
         elif kw == "DENSITY":
-            rows = list(lines.data())
+            rows = _rows(lines, f, ln, "*DENSITY")
             rho = _values(*rows[0], "*DENSITY", count=1)[0]
+            if not (np.isfinite(rho) and 0 <= rho < 1e20):
+                raise MeshError(f"*DENSITY of material '{material}': {rho:g}; valid: >= 0",
+                                file=rows[0][0], line=rows[0][1])
             deck.materials.setdefault((material or "").upper(), {}).update(rho=rho)
         elif kw == "MASS":
-            rows = list(lines.data())
-            deck.masses.append((p.get("ELSET"), _values(*rows[0], "*MASS", count=1)[0], f, ln))
+            rows = _rows(lines, f, ln, "*MASS")
+            m = _values(*rows[0], "*MASS", count=1)[0]
+            if not (np.isfinite(m) and m >= 0):
+                raise MeshError(f"*MASS {m:g}; valid: >= 0", file=rows[0][0], line=rows[0][1])
+            deck.masses.append((p.get("ELSET"), m, f, ln))
         elif kw == "ROTARY INERTIA":
-            rows = list(lines.data())
+            rows = _rows(lines, f, ln, "*ROTARY INERTIA")
             v = (_values(*rows[0], "*ROTARY INERTIA", count=3) + [0.0] * 3)[:6]
             I = np.array([[v[0], v[3], v[4]], [v[3], v[1], v[5]], [v[4], v[5], v[2]]])
             deck.inertias.append((p.get("ELSET"), I, f, ln))
@@ -308,16 +393,49 @@ def _parse(path: Path) -> _Deck:
                                                                     and tok[1] else 6)
                 rows.append((tok[0], first, last, lf, lln))
             deck.couplings.append((int(ref), rows, f, ln))
+        elif kw == "SURFACE":
+            name = p.get("NAME", "")
+            if p.get("TYPE", "ELEMENT").upper() != "NODE":
+                raise MeshError(f"*SURFACE {name}: only TYPE=NODE surfaces are supported "
+                                "(for *COUPLING)", file=f, line=ln)
+            deck.surfaces[name.upper()] = [(lf, lln, t) for lf, lln, t in lines.data()]
+        elif kw == "COUPLING":
+            ref, surf = p.get("REF NODE", ""), p.get("SURFACE", "")
+            if not ref.isdigit() or not surf:
+                raise MeshError("*COUPLING needs REF NODE=<node id> and SURFACE=<name>",
+                                file=f, line=ln)
+            deck.pending = (int(ref), surf, f, ln)
+        elif kw in ("DISTRIBUTING", "KINEMATIC") and deck.pending is not None:
+            if p.get("WEIGHTING METHOD", "UNIFORM").upper() != "UNIFORM":
+                raise MeshError("*DISTRIBUTING: only WEIGHTING METHOD=UNIFORM is supported",
+                                file=f, line=ln)
+            dofs = ""
+            for lf, lln, t in lines.data():
+                v = [int(x) for x in _values(lf, lln, t, f"*{kw} DOF range")]
+                if not 1 <= v[0] <= 6:
+                    raise MeshError(f"*{kw} DOF {v[0]}; valid: 1..6", file=lf, line=lln)
+                last = v[1] if len(v) > 1 and v[1] else v[0]
+                if not v[0] <= last <= 6:
+                    raise MeshError(f"*{kw} DOF range {v[0]}..{last}; valid: within 1..6",
+                                    file=lf, line=lln)
+                dofs += "".join(str(d) for d in range(v[0], last + 1))
+            deck.couplings2.append((kw, *deck.pending, "".join(sorted(set(dofs or "123456")))))
+            deck.pending = None
+        elif kw == "SPRING":
+            rows = _rows(lines, f, ln, "*SPRING", 2 if p.get("ELSET") else 1)
+            deck.springs.append((p.get("ELSET"), rows, f, ln))
         elif kw == "INSTANCE":
             deck.instances += 1
             if deck.instances > 1 or list(lines.data()):
                 raise MeshError("several or positioned *INSTANCEs are not supported; write the "
                                 "deck flat (Abaqus: input file without parts and assemblies)",
                                 file=f, line=ln)
-        elif kw in UNSUPPORTED_KEYWORDS:
-            raise MeshError(f"*{kw} is not supported (only *KINEMATIC COUPLING rigid spiders "
-                            "are); remove or convert it", file=f, line=ln)
+        elif kw in UNSUPPORTED_KEYWORDS or kw in ("DISTRIBUTING", "KINEMATIC"):
+            raise MeshError(f"*{kw} is not supported (rigid spiders: *KINEMATIC COUPLING or "
+                            "*COUPLING + *KINEMATIC; RBE3-type: *COUPLING + *DISTRIBUTING); "
+                            "remove or convert it", file=f, line=ln)
         else:
+            deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
             for _ in lines.data():
                 pass
     return deck
@@ -407,9 +525,13 @@ def read_abaqus(path) -> Mesh:
             orient.update({c: n1 for c in members["line"]})
     masses = _masses(deck, cells_of, index, where_e)
     links = _couplings(deck, index)
+    more_links, interp = _couplings2(deck, index)
+    spring_k = _springs(deck, cells_of, blocks)
     out_blocks, n1_nodes = [], np.zeros(0, dtype=np.int64)
     for t, conn, eids in blocks:
         data = {}
+        if t in ("spring", "spring1"):
+            data["K"] = spring_k[t]
         if t == "line":
             ori = np.full((len(eids), 3), np.nan)
             for c, v in orient.items():
@@ -425,8 +547,99 @@ def read_abaqus(path) -> Mesh:
         out_blocks.append(CellBlock(t, conn, eids, np.zeros(len(eids), np.int64), data))
     mesh = Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
                 node_ids=gid, node_sets=node_sets, cell_sets=cell_sets, point_masses=masses,
-                rigid_links=links, sections=sections, source=str(path))
+                rigid_links=links + more_links, sections=sections, source=str(path),
+                interpolations=interp,
+                info={"read": {t: len(e) for t, _, e in blocks}, "converted": {},
+                      "dropped": dict(deck.dropped)})
+    if deck.dropped:
+        warnings.warn(MeshWarning(f"{path}: keywords not used for M and K: "
+                                  + ", ".join(f"*{k} x{n}" for k, n in deck.dropped.items())),
+                      stacklevel=3)
     return drop_orientation_nodes(mesh, n1_nodes)
+
+
+def _surface_nodes(deck, name, f, ln, index):
+    rows = deck.surfaces.get(name.upper())
+    if rows is None:
+        raise MeshError(f"*COUPLING refers to SURFACE '{name}', which is not defined (as "
+                        "*SURFACE, TYPE=NODE before it)", file=f, line=ln)
+    ids, weights = [], []
+    for lf, lln, t in rows:
+        tok = [x.strip() for x in t.split(",")]
+        w = parse_real(tok[1]) if len(tok) > 1 and tok[1] else 1.0
+        if w is None or not (np.isfinite(w) and w > 0):
+            raise MeshError(f"*SURFACE {name}: weight '{tok[1]}'; valid: > 0", file=lf,
+                            line=lln)
+        if tok[0].isdigit():
+            nodes = [int(tok[0])]
+        else:
+            key = deck.set_key(deck.nsets, tok[0])
+            if key is None:
+                raise MeshError(f"*SURFACE {name} refers to NSET '{tok[0]}', which is not "
+                                "defined", file=lf, line=lln)
+            nodes = deck.nsets[key]
+        ids += list(nodes)
+        weights += [w] * len(nodes)
+    idx = index(ids, lambda _, f=f, ln=ln: (f, ln), f"*SURFACE {name}")
+    return idx, np.array(weights)
+
+
+def _couplings2(deck, index):
+    """*COUPLING + *KINEMATIC (rigid links) and + *DISTRIBUTING (RBE3-type constraints)."""
+    from flexpipe.mesh.mesh import Interpolation
+
+    links, interp = [], []
+    for kind, ref, surf, f, ln, dofs in deck.couplings2:
+        r = int(index([ref], lambda _, f=f, ln=ln: (f, ln), "*COUPLING REF NODE")[0])
+        nodes, w = _surface_nodes(deck, surf, f, ln, index)
+        nodes, first = np.unique(nodes, return_index=True)
+        w = w[first]
+        if r in set(nodes.tolist()):
+            raise MeshError("*COUPLING: the reference node is also a surface node", file=f,
+                            line=ln)
+        if kind == "KINEMATIC":
+            links.append(RigidLink(r, nodes, dofs, 0))
+        else:
+            interp.append(Interpolation(r, dofs, nodes, w, ("123",) * len(nodes), 0))
+    return tuple(links), tuple(interp)
+
+
+def _springs(deck, cells_of, blocks):
+    """Stiffness matrices of SPRING1/SPRING2 elements from their *SPRING sections."""
+    from flexpipe.fem import spring
+
+    out = {}
+    for t, conn, eids in blocks:
+        if t in ("spring", "spring1"):
+            out[t] = np.full((len(eids),) + ((12, 12) if t == "spring" else (6, 6)), np.nan)
+    for elset, rows, f, ln in deck.springs:
+        key, members = cells_of(elset, f, ln, "*SPRING")
+        if len(rows) < 2:
+            raise MeshError("*SPRING needs a DOF line and a stiffness line", file=f, line=ln)
+        d = [int(x) for x in _values(*rows[0], "*SPRING DOF")]
+        k = _values(*rows[1], "*SPRING stiffness", count=1)[0]
+        if not np.isfinite(k):
+            raise MeshError(f"*SPRING stiffness {k}; valid: finite", file=rows[1][0],
+                            line=rows[1][1])
+        for t in ("spring", "spring1"):
+            cells = members.get(t, [])
+            if not cells:
+                continue
+            need = 2 if t == "spring" else 1
+            if len(d) < need or not all(1 <= x <= 6 for x in d[:need]):
+                raise MeshError(f"*SPRING ELSET={key}: DOF line {d}; valid: {need} DOF in 1..6",
+                                file=rows[0][0], line=rows[0][1])
+            eye = np.broadcast_to(np.eye(3), (1, 3, 3))
+            ea = spring.unit_dof(eye, np.array([d[0] - 1]))
+            eb = spring.unit_dof(eye, np.array([d[1] - 1])) if need == 2 else None
+            out[t][cells] = spring.scalar(np.array([k]), ea, eb)[0]
+    for t, K in out.items():
+        bad = np.flatnonzero(np.isnan(K).any(axis=(1, 2)))
+        if bad.size:
+            eids = dict((bt, e) for bt, _, e in blocks)[t]
+            raise MeshError(f"{len(bad)} {t.upper()} element(s) have no *SPRING section, e.g. "
+                            f"{eids[bad[:10]].tolist()}", file=str(deck.path))
+    return out
 
 
 def _masses(deck, cells_of, index, where_e):
