@@ -237,15 +237,15 @@ def _shape_section(sec, v, where) -> dict:
             if max(t) != min(t):
                 raise ValueError("only equal wall thicknesses t1 = t2 = t3 = t4 are supported")
             s = standard_section("BOX", [b, a, t[0], t[0]])      # Nastran height = 1-axis
-            Iz, Iy, k1, k2, I12 = s["I1"], s["I2"], s["K1"], s["K2"], 0.0
+            Iz, Iy, I12 = s["I1"], s["I2"], 0.0
         elif sec == "I":       # l, h (along 2), b1, b2, t1, t2, t3
             _, h, b1, b2, t1, t2, t3 = (v + [0.0] * 7)[:7]
             s = standard_section("I", [h, b1, b2, t3, t1, t2])   # Nastran height = 2-axis
-            Iz, Iy, k1, k2, I12 = s["I2"], s["I1"], s["K2"], s["K1"], 0.0
+            Iz, Iy, I12 = s["I2"], s["I1"], 0.0
         else:                  # L: a (along 1), b (along 2), t1, t2
             a, b, t1, t2 = (v + [0.0] * 4)[:4]
             s = standard_section("L", [a, b, t1, t2])
-            Iz, Iy, k1, k2, I12 = s["I2"], s["I1"], s["K2"], s["K1"], s["I12"]
+            Iz, Iy, I12 = s["I2"], s["I1"], s["I12"]
     except ValueError as exc:
         raise MeshError(f"*BEAM SECTION SECTION={sec}: {exc}", file=where[0],
                         line=where[1]) from None
@@ -609,7 +609,7 @@ def _springs(deck, cells_of, blocks):
     from flexpipe.fem import spring
 
     out = {}
-    for t, conn, eids in blocks:
+    for t, _conn, eids in blocks:
         if t in ("spring", "spring1"):
             out[t] = np.full((len(eids),) + ((12, 12) if t == "spring" else (6, 6)), np.nan)
     for elset, rows, f, ln in deck.springs:
