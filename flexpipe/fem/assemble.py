@@ -439,6 +439,11 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
     # that vanish on regular grids): less work for the factorization
     K.eliminate_zeros()
     M.eliminate_zeros()
-    T = _constraint_map(mesh, dpn, n_dof, K, M)
+    try:
+        T = _constraint_map(mesh, dpn, n_dof, K, M)
+    except ModelError as exc:
+        if mesh.source and mesh.source not in str(exc):
+            raise ModelError(f"{mesh.source}: {exc}") from None
+        raise
     return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh,
                    C=C)

@@ -72,9 +72,10 @@ UNSUPPORTED_ELEMENTS = {
     "CQUADR", "CTRIAR", "CQUAD", "CTRIAX", "CTRIAX6", "CQUADX", "CTUBE", "CELAS3", "CELAS4",
     "CBUSH1D", "CBUSH2D", "CBEND", "CSHEAR", "CGAP", "CWELD", "CFAST", "CSEAM", "CDAMP1",
     "CDAMP2", "CVISC", "CMASS1", "CMASS2", "RBE1", "RBAR1", "RROD", "RTRPLT", "RSPLINE",
-    "MPC", "GENEL", "DMIG", "CBEAM3", "CSPOT",
+    "MPC", "GENEL", "DMIG", "CBEAM3", "CSPOT", "GRDSET", "CONM3",
 }
-UNSUPPORTED_PROPERTIES = {"PCOMP", "PCOMPG", "PSHEAR", "PGAP", "PWELD", "PFAST"}
+UNSUPPORTED_PROPERTIES = {"PCOMP", "PCOMPG", "PSHEAR", "PGAP", "PWELD", "PFAST", "PBEAM3",
+                          "PBUSH1D", "PCOMPLS", "PLPLANE"}
 #: cards that do not change M or K (loads, output, other solutions): listed as ignored
 NOT_STRUCTURAL = {
     "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD", "PLOAD1", "PLOAD2",
@@ -83,6 +84,7 @@ NOT_STRUCTURAL = {
     "TABLED1", "TABLED2", "TABLEM1", "PLOTEL", "ASET", "ASET1", "QSET1", "BSET1", "CSET1",
     "SUPORT", "SUPORT1", "SET1", "SPOINT", "NLPARM", "DESVAR", "DRESP1", "DCONSTR", "MAT4",
     "PARAM", "SPC", "SPC1", "SPCADD", "SPCD", "MPCADD", "ENDDATA", "DTI", "MDLPRM",
+    "PBUSHT", "PELAST",
 }
 _KNOWN = set(ELEMENTS) | set(SUPPORTED) | UNSUPPORTED_ELEMENTS | UNSUPPORTED_PROPERTIES | \
     set(nprops.PROPERTIES) | {"MAT1", "GRID"} | nprops.OTHER_MATERIALS | set(CORD_CARDS)
@@ -140,7 +142,7 @@ class _Deck:
                           f"{', '.join(SUPPORTED)}. Remove or convert it")
         else:
             if n not in NOT_STRUCTURAL and n not in _KNOWN:
-                close = difflib.get_close_matches(n, _SPELLED, n=1, cutoff=0.8)
+                close = difflib.get_close_matches(n, _SPELLED, n=1, cutoff=0.7)
                 if close:
                     raise c.error(f"unknown card '{n}': a misspelt {close[0]}? (an element "
                                   "or property card that is not read would change the "
@@ -543,19 +545,7 @@ def _rbe2(c: Card, gid, sorter) -> RigidLink:
     cm = c.raw(2)
     if not cm or not cm.isdigit() or set(cm) - set("123456"):
         raise c.error(f"component field CM = '{cm}' must be digits 1-6, e.g. 123456")
-    slaves, k = [], 3
-    while k < len(c.fields):
-        s = c.raw(k)
-        if s.upper() == "THRU" and slaves:
-            hi = c.int(k + 1, "GMi THRU")
-            slaves.extend(range(slaves[-1] + 1, hi + 1))
-            k += 2
-            continue
-        if s and not c.is_int(k):
-            break  # ALPHA (thermal expansion) ends the node list
-        if s:
-            slaves.append(int(s))
-        k += 1
+    slaves, _ = extra.grid_list(c, 3)     # a real (ALPHA) ends the node list
     if not slaves:
         raise c.error("has no dependent grid points GMi")
     idx = _index_of(gid, sorter, [gn] + slaves, [c] * (len(slaves) + 1), "a grid point")
