@@ -91,8 +91,8 @@ def _split(line: str) -> tuple[str, list[str]]:
         first = parts[0]
         width = 4 if (first.endswith("*") or first.startswith("*")) else 8
         data = parts[1:]
-        if len(data) == width + 1:          # trailing continuation marker
-            data = data[:width]
+        if len(data) == width + 1 or (len(data) > width and data[-1][:1] in ("+", "*")):
+            data = data[:-1]                # trailing continuation marker
         elif len(data) < width:
             data = data + [""] * (width - len(data))
         return first, data

@@ -49,7 +49,15 @@ TYPE_OF = {a: t for t, names in _TYPES.items() for a in names}
 NODES = {"tetra": 4, "tetra10": 10, "hexahedron": 8, "triangle": 3, "quad": 4, "line": 2,
          "wedge": 6, "pyramid": 5, "spring1": 1, "spring": 2, "mass": 1}
 UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "DISTRIBUTING COUPLING", "RIGID BODY",
-                        "MEMBRANE SECTION", "CONNECTOR SECTION", "ORIENTATION")
+                        "MEMBRANE SECTION", "CONNECTOR SECTION", "TRANSFORM", "SYSTEM",
+                        "NGEN", "NFILL", "NCOPY", "NMAP", "ELGEN", "ELCOPY", "BEAM ADDED INERTIA",
+                        "NONSTRUCTURAL MASS")
+#: keywords this reader acts on (a near miss of one of these is taken as a typo)
+HANDLED_KEYWORDS = ("NODE", "ELEMENT", "NSET", "ELSET", "SOLID SECTION", "SHELL SECTION",
+                    "BEAM SECTION", "BEAM GENERAL SECTION", "MATERIAL", "ELASTIC", "DENSITY",
+                    "MASS", "ROTARY INERTIA", "KINEMATIC COUPLING", "COUPLING",
+                    "DISTRIBUTING", "KINEMATIC", "SURFACE", "SPRING", "INSTANCE", "STEP",
+                    "INCLUDE")
 #: keywords that do not change M or K (listed in ``Mesh.info["dropped"]``)
 IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY",
                     "END INSTANCE", "BOUNDARY", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
@@ -391,6 +399,9 @@ def _parse(path: Path) -> _Deck:
                 first = int(tok[1]) if len(tok) > 1 and tok[1] else 1
                 last = int(tok[2]) if len(tok) > 2 and tok[2] else (first if len(tok) > 1
                                                                     and tok[1] else 6)
+                if not 1 <= first <= last <= 6:
+                    raise MeshError(f"*KINEMATIC COUPLING DOF range {first}..{last}; valid: "
+                                    "first <= last within 1..6", file=lf, line=lln)
                 rows.append((tok[0], first, last, lf, lln))
             deck.couplings.append((int(ref), rows, f, ln))
         elif kw == "SURFACE":
@@ -422,7 +433,10 @@ def _parse(path: Path) -> _Deck:
             deck.couplings2.append((kw, *deck.pending, "".join(sorted(set(dofs or "123456")))))
             deck.pending = None
         elif kw == "SPRING":
-            rows = _rows(lines, f, ln, "*SPRING", 2 if p.get("ELSET") else 1)
+            if "ORIENTATION" in p or "NONLINEAR" in p:
+                raise MeshError("*SPRING with ORIENTATION= or NONLINEAR is not supported",
+                                file=f, line=ln)
+            rows = _rows(lines, f, ln, "*SPRING", 2)
             deck.springs.append((p.get("ELSET"), rows, f, ln))
         elif kw == "INSTANCE":
             deck.instances += 1
@@ -435,6 +449,14 @@ def _parse(path: Path) -> _Deck:
                             "*COUPLING + *KINEMATIC; RBE3-type: *COUPLING + *DISTRIBUTING); "
                             "remove or convert it", file=f, line=ln)
         else:
+            if kw not in IGNORED_KEYWORDS:
+                import difflib
+
+                close = difflib.get_close_matches(kw, HANDLED_KEYWORDS, n=1, cutoff=0.8)
+                if close:
+                    raise MeshError(f"unknown keyword *{kw}: a misspelt *{close[0]}? (a "
+                                    "keyword that is not read could change the structure)",
+                                    file=f, line=ln)
             deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
             for _ in lines.data():
                 pass
