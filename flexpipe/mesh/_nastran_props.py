@@ -144,8 +144,9 @@ def section(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
             raise card.error(f"section TYPE '{card.raw(3)}' is not supported; valid: "
                              f"{', '.join(N_DIMS)}")
         n = N_DIMS[shape]
+        dims = _dims(card, 8, n)
         try:
-            s = standard_section(shape, _dims(card, 8, n), out["nu"])
+            s = standard_section(shape, dims, out["nu"])
         except ValueError as exc:
             raise card.error(str(exc)) from None
         _beam(out, s["A"], s["I1"], s["I2"], s["I12"], s["J"], s["K1"], s["K2"],
