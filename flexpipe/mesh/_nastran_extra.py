@@ -178,7 +178,7 @@ def rbar(c: Card, index) -> RigidLink:
 
 def celas(cards: list[Card], pelas: dict, index, frames):
     """CELAS1/CELAS2 cards -> two-node and grounded lists (cells, K, ids, B)."""
-    two, one = ([], [], [], []), ([], [], [], [])
+    two, one = [[], [], [], []], [[], [], [], []]
     for c in cards:
         if c.name == "CELAS1":
             pid = c.int(1, "PID", c.int(0, "EID"))

@@ -389,6 +389,10 @@ def read_nastran(path) -> Mesh:
             pelas.update(nprops.pelas(c))
     springs2, springs1 = extra.celas(deck.elements.get("CELAS1", [])
                                      + deck.elements.get("CELAS2", []), pelas, index, cd_frames)
+    nan = np.full(6, np.nan)
+    for sp_ in (springs2, springs1):   # + CBUSH parameters (k6, b6, frame, s) for writing
+        n_c = len(sp_[0])
+        sp_ += ([nan] * n_c, [nan] * n_c, [np.eye(3)] * n_c, [np.nan] * n_c)
     for c in deck.elements.get("CBUSH", []):
         pidb = c.int(1, "PID", c.int(0, "EID"))
         pc = deck.props.get(pidb)
@@ -416,11 +420,14 @@ def read_nastran(path) -> Mesh:
             Kb = spring.grounded_bush(R[None], pb["K"][None])[0]
             Bb = spring.grounded_bush(R[None], pb["B"][None])[0]
             target = springs1
-        for lst, v in zip(target, (idx, Kb, c.int(0, "EID"), Bb), strict=True):
+        for lst, v in zip(target, (idx, Kb, c.int(0, "EID"), Bb, pb["K"], pb["B"], R, s),
+                          strict=True):
             lst.append(v)
-    for cell_type, (cells, Ks, ids, Bs) in (("spring", springs2), ("spring1", springs1)):
+    for cell_type, (cells, Ks, ids, Bs, k6, b6, frames, ss) in (("spring", springs2),
+                                                                 ("spring1", springs1)):
         if cells:
-            data = {"K": np.array(Ks)}
+            data = {"K": np.array(Ks), "k6": np.array(k6), "b6": np.array(b6),
+                    "frame": np.array(frames), "s": np.array(ss, dtype=float)}
             if np.any(Bs):
                 data["B"] = np.array(Bs)
             blocks.append(CellBlock(cell_type, np.array(cells), np.array(ids), None, data))

@@ -125,6 +125,10 @@ def convert(mesh, system: UnitSystem, *, materials: bool):
             for key, extra_t in (("K", 1.0), ("B", system.time)):
                 if key in data:
                     data[key] = np.asarray(data[key], dtype=float) * pat * f * extra_t
+            rot = np.array([1.0, 1.0, 1.0, L * L, L * L, L * L]) * f
+            for key, extra_t in (("k6", 1.0), ("b6", system.time)):
+                if key in data:
+                    data[key] = np.asarray(data[key], dtype=float) * rot * extra_t
         blocks.append(CellBlock(b.type, b.cells, b.ids, b.tags, data))
     mass_f = system.mass if materials else 1.0
     inertia_f = system.factor((2, 1, 0)) if materials else 1.0
