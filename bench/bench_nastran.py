@@ -77,7 +77,7 @@ def write_deck(path: Path, n: int = N) -> dict:
             lines.append(f"CBAR    {eid:>8d}       2{a:>8d}{a + 1:>8d}      0.      0.      1.")
     nid = n * n
     extra = []
-    for k, corner in enumerate((1, n, n * n - n + 1, n * n)):    # mounts and spiders
+    for corner in (1, n, n * n - n + 1, n * n):                  # mounts and spiders
         nid += 1
         extra.append(f"GRID    {nid:>8d}        " + "".join(
             f"{_f8(v):>8}" for v in (x[corner - 1], y[corner - 1], z[corner - 1] - 0.05)))

@@ -94,6 +94,3 @@ def test_hand_written_deck_round_trips_with_identical_matrices(tmp_path):
     assert b.solution["spc"] == "SPC3" and b.solution["n_modes"] == 8
     assert np.array_equal(a.dof_sets["SPC3"], b.dof_sets["SPC3"])
     assert len(b.interpolations) == 1 and len(b.rigid_links) == 1
-    # and a deck written twice is the same text
-    again = write_mesh(b, tmp_path / "third.bdf").read_text()
-    assert again.splitlines()[6:] == out.read_text().splitlines()[6:]
