@@ -29,6 +29,7 @@ class Card:
     fields: list[str] = field(default_factory=list)
     file: str = ""
     line: int = 0
+    seq: int = 0
 
     def error(self, message: str) -> MeshError:
         """A :class:`MeshError` located at this card."""
@@ -117,9 +118,42 @@ def _include_target(line: str, path: Path, lineno: int) -> Path:
     return target
 
 
-def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
-    """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order."""
+#: cards taken by the vectorized fast path when written in plain small-field format
+FAST_CARDS = ("GRID", "CQUAD4", "CTRIA3")
+
+
+class FastLines:
+    """Plain small-field lines of the :data:`FAST_CARDS`, kept as text (no Card objects).
+
+    ``lines[name]`` are the raw lines, ``where[name]`` their (file, line, sequence) - the
+    sequence number orders them among all cards of the deck.  :meth:`card` builds the
+    :class:`Card` of one line when a message needs it.
+    """
+
+    def __init__(self):
+        self.lines: dict[str, list[str]] = {n: [] for n in FAST_CARDS}
+        self.where: dict[str, list[tuple]] = {n: [] for n in FAST_CARDS}
+
+    def card(self, name: str, i: int) -> Card:
+        """The Card of fast line ``i`` of ``name``."""
+        first, data = _split(self.lines[name][i])
+        f, ln, seq = self.where[name][i]
+        c = Card(name, data, f, ln, seq)
+        while c.fields and not c.fields[-1]:
+            c.fields.pop()
+        return c
+
+
+def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
+               _seq: list | None = None) -> list[Card]:
+    """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order.
+
+    With ``fast``, plain small-field GRID/CQUAD4/CTRIA3 lines without continuation go
+    to ``fast`` as text instead (see :class:`FastLines`); every card and fast line gets a
+    sequence number (``Card.seq``) that keeps the file order.
+    """
     path = Path(path)
+    seq = _seq if _seq is not None else [0]
     if path.resolve() in _stack:
         raise MeshError("INCLUDE loop: the file includes itself", file=str(path))
     try:
@@ -136,9 +170,22 @@ def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
             break
     cards: list[Card] = []
     current: Card | None = None
+    pending = None            # (name) of the last line taken by the fast path
+    fpath = str(path)
+    fast_names = set(FAST_CARDS) if fast is not None else set()
     for i in range(start, len(lines)):
-        s = lines[i].split("$", 1)[0].rstrip()
+        s = lines[i]
+        if "$" in s:
+            s = s.split("$", 1)[0]
+        s = s.rstrip()
         if not s.strip():
+            continue
+        if fast_names and "," not in s and "\t" not in s and s[:8].rstrip() in fast_names:
+            name = s[:8].rstrip()
+            fast.lines[name].append(s)
+            fast.where[name].append((fpath, i + 1, seq[0]))
+            seq[0] += 1
+            pending, current = name, None
             continue
         if "\t" in s:
             s = s.expandtabs(8)
@@ -146,18 +193,27 @@ def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
         if head == "ENDDATA":
             break
         if head == "INCLUDE":
-            current = None
+            current, pending = None, None
             target = _include_target(s, path, i + 1)
-            cards.extend(read_cards(target, _stack=_stack + (path.resolve(),)))
+            cards.extend(read_cards(target, fast=fast, _stack=_stack + (path.resolve(),),
+                                    _seq=seq))
             continue
         first, data = _split(s)
         if first == "" or first[0] in "+*":
+            if current is None and pending is not None:   # a fast line was continued
+                current = fast.card(pending, len(fast.lines[pending]) - 1)
+                current.fields += [""] * (8 - len(current.fields))
+                fast.lines[pending].pop()
+                fast.where[pending].pop()
+                cards.append(current)
+                pending = None
             if current is None:
                 raise MeshError("continuation line without a preceding card",
                                 file=str(path), line=i + 1)
             current.fields.extend(data)
             continue
-        current = Card(first.rstrip("*").upper(), data, str(path), i + 1)
+        current, pending = Card(first.rstrip("*").upper(), data, fpath, i + 1, seq[0]), None
+        seq[0] += 1
         cards.append(current)
     for c in cards:
         while c.fields and not c.fields[-1]:

@@ -45,7 +45,8 @@ from flexpipe.errors import MeshError
 from flexpipe.fem import spring
 from flexpipe.mesh import _nastran_extra as extra
 from flexpipe.mesh import _nastran_props as nprops
-from flexpipe.mesh._bulk import Card, case_control, read_cards
+from flexpipe.mesh import _nastran_fast as _fast
+from flexpipe.mesh._bulk import Card, FastLines, case_control, read_cards
 from flexpipe.mesh._nastran_coords import KINDS as CORD_CARDS
 from flexpipe.mesh._nastran_coords import Systems
 from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
@@ -267,10 +268,24 @@ def read_nastran(path) -> Mesh:
     """Read a Nastran bulk-data deck into a :class:`Mesh` (units of the file)."""
     path = Path(path)
     deck = _Deck()
-    cards = read_cards(path)
+    fast = FastLines()
+    cards = read_cards(path, fast=fast)
+    fgrid = _fast.grids(fast.lines["GRID"], [w[2] for w in fast.where["GRID"]])
+    fshell = {}
+    for name, ct, k in (("CQUAD4", "quad", 4), ("CTRIA3", "triangle", 3)):
+        fshell[ct] = _fast.shells(fast.lines[name], [w[2] for w in fast.where[name]], k)
+    for name, ok in (("GRID", fgrid is not None), ("CQUAD4", fshell["quad"] is not None),
+                     ("CTRIA3", fshell["triangle"] is not None)):
+        if not ok and fast.lines[name]:   # not exactly parsable: card by card, with messages
+            cards += [fast.card(name, i) for i in range(len(fast.lines[name]))]
+            fast.lines[name], fast.where[name] = [], []
+    if fgrid is None:
+        fgrid = _fast.grids([], [])
+    cards.sort(key=lambda c: c.seq)
     for c in cards:
         deck.add(c)
-    if not deck.grids:
+    n_fast_el = {ct: 0 if a is None else len(a["eid"]) for ct, a in fshell.items()}
+    if not deck.grids and not len(fgrid["gid"]):
         raise MeshError("no GRID cards found: not a Nastran bulk-data deck?", file=str(path))
     case = case_control(path)
     wtmass = 1.0
@@ -278,17 +293,36 @@ def read_nastran(path) -> Mesh:
         wtmass = deck.params["WTMASS"].real(1, "WTMASS")
         if not (np.isfinite(wtmass) and wtmass > 0):
             raise deck.params["WTMASS"].error(f"WTMASS = {wtmass:g}; valid: > 0")
-    info = {"read": dict(Counter(c.name for c in cards if c.name not in deck.dropped)),
-            "converted": {}, "dropped": dict(deck.dropped)}
+    read = Counter(c.name for c in cards if c.name not in deck.dropped)
+    for name in ("GRID", "CQUAD4", "CTRIA3"):
+        read[name] += len(fast.lines[name])
+    info = {"read": {k: v for k, v in read.items() if v}, "converted": {},
+            "dropped": dict(deck.dropped)}
 
     # ---- grids: ids, positions in basic (CP), displacement systems (CD)
-    grids = deck.grids
-    gid = np.array([c.int(0, "ID") for c in grids], dtype=np.int64)
+    slow = deck.grids
+    ns = len(slow)
+    gid = np.concatenate([np.array([c.int(0, "ID") for c in slow], dtype=np.int64),
+                          fgrid["gid"]])
+    cp = np.concatenate([np.array([c.int(1, "CP", 0) if c.raw(1) else 0 for c in slow],
+                                  dtype=np.int64), fgrid["cp"]])
+    X = np.concatenate([np.array([[c.real(2 + k, f"X{k + 1}", 0.0) for k in range(3)]
+                                  for c in slow]).reshape(-1, 3), fgrid["X"]])
+    cd = np.concatenate([np.array([c.int(5, "CD", 0) if c.raw(5) else 0 for c in slow],
+                                  dtype=np.int64), fgrid["cd"]])
+    has_ps = np.concatenate([np.array([bool(c.raw(6)) for c in slow], dtype=bool),
+                             fgrid["has_ps"]])
+    order = np.argsort(np.concatenate([np.array([c.seq for c in slow], dtype=np.int64),
+                                       fgrid["seq"]]), kind="stable")
+    gid, cp, X, cd, has_ps = gid[order], cp[order], X[order], cd[order], has_ps[order]
+
+    def grid_card(k):
+        i = int(order[k])
+        return slow[i] if i < ns else fast.card("GRID", i - ns)
+
+    grids = _fast.Lazy(grid_card, len(gid))
     _check_unique(gid, grids, "GRID")
     sorter = np.argsort(gid, kind="stable")
-    cp = np.array([c.int(1, "CP", 0) if c.raw(1) else 0 for c in grids], dtype=np.int64)
-    X = np.array([[c.real(2 + k, f"X{k + 1}", 0.0) for k in range(3)] for c in grids])
-    cd = np.array([c.int(5, "CD", 0) if c.raw(5) else 0 for c in grids], dtype=np.int64)
     done = cp == 0
 
     def grid_xyz(g, user, stack):
@@ -317,10 +351,21 @@ def read_nastran(path) -> Mesh:
     def index(ids, card):
         return _index_of(gid, sorter, ids, [card] * len(ids), "a grid point")
 
-    # ---- element ids unique across every element-like card
+    # ---- element ids unique across every element-like card (fast shells included)
     el_cards = [c for cs in deck.elements.values() for c in cs]
-    _check_unique(np.array([c.int(0, "EID") for c in el_cards], dtype=np.int64), el_cards,
-                  "element")
+    fast_ids = [a["eid"] for a in fshell.values() if a is not None]
+    n_slow = len(el_cards)
+    offsets = np.cumsum([n_slow] + [n_fast_el["quad"], n_fast_el["triangle"]])
+
+    def el_card(i):
+        if i < n_slow:
+            return el_cards[i]
+        name, base = ("CQUAD4", offsets[0]) if i < offsets[1] else ("CTRIA3", offsets[1])
+        return fast.card(name, i - base)
+
+    _check_unique(np.concatenate([np.array([c.int(0, "EID") for c in el_cards],
+                                           dtype=np.int64)] + fast_ids),
+                  _fast.Lazy(el_card, int(offsets[-1])), "element")
 
     # ---- cells
     els: dict = defaultdict(list)
@@ -342,10 +387,19 @@ def read_nastran(path) -> Mesh:
         sorter = np.argsort(gid, kind="stable")
     blocks, cell_sets, sections = [], {}, {}
     g0_nodes: list = []
-    for cell_type, items in els.items():
-        eid = np.array([it[1] for it in items], dtype=np.int64)
-        pid = np.array([it[2] for it in items], dtype=np.int64)
-        conn = np.array([it[3] for it in items], dtype=np.int64)
+    for ct in ("quad", "triangle"):
+        if fshell[ct] is not None and ct not in els:
+            els[ct] = []
+
+    def first_seq(ct):             # blocks in the order their types first appear
+        s0 = [els[ct][0][0].seq] if els[ct] else []
+        fa = fshell.get(ct)
+        return min(s0 + ([int(fa["seq"][0])] if fa is not None else []))
+
+    for cell_type in sorted(els, key=first_seq):
+        items = els[cell_type]
+        cols = _cell_arrays(cell_type, items, fshell.get(cell_type), fast, gid, sorter)
+        eid, pid, conn, zoff, user_of = cols
         data = {}
         if cell_type == "line":
             ori, w, g0 = _line_data(items, X, conn, cd_frames, gid, sorter)
@@ -353,19 +407,15 @@ def read_nastran(path) -> Mesh:
             g0_nodes += g0
             if np.any(w):
                 data["offset_a"], data["offset_b"] = w[:, :3], w[:, 3:]
-        elif cell_type in ("quad", "triangle"):
-            zi = 7 if cell_type == "quad" else 6
-            z = np.array([it[0].real(zi, "ZOFFS", 0.0) if it[0].name in ("CQUAD4", "CTRIA3")
-                          else 0.0 for it in items])
-            if np.any(z):
-                data["zoffset"] = z
+        elif zoff is not None and np.any(zoff):
+            data["zoffset"] = zoff
         bi = len(blocks)
         blocks.append(CellBlock(cell_type, conn, eid, np.abs(pid), data))
         for p in np.unique(pid):
             name = f"PID{p}" if p > 0 else f"CONROD{-p}"
             members = np.flatnonzero(pid == p)
             cell_sets.setdefault(name, {})[bi] = members
-            user = items[int(members[0])][0]
+            user = user_of(int(members[0]))
             if p < 0:
                 sections[name] = nprops.conrod_section(user, deck.mats, wtmass)
                 continue
@@ -450,8 +500,8 @@ def read_nastran(path) -> Mesh:
     # ---- constraints and solution set-up
     dof_sets = extra.spc_sets(deck.spc["SPC"], deck.spc["SPC1"], deck.spc["SPCADD"], index,
                               lambda nd: bool(cd[nd]))
-    ps = [(k, ch) for k, c in enumerate(grids) for ch in extra.components(
-        c, 6, "PS", allow_zero=True)]
+    ps = [(int(k), ch) for k in np.flatnonzero(has_ps) for ch in extra.components(
+        grids[k], 6, "PS", allow_zero=True)]
     if ps:
         dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
     solution = _solution(case, deck, dof_sets, path)
@@ -475,6 +525,35 @@ def read_nastran(path) -> Mesh:
         warnings.warn(MeshWarning(f"{path}: cards not used for M and K (loads, output, "
                                   f"other solutions or unknown): {listing}"), stacklevel=3)
     return mesh
+
+
+def _cell_arrays(cell_type, items, fa, fast, gid, sorter):
+    """``eid, pid, conn, zoffs, card_of`` of one cell type: card-by-card ``items`` (node
+    indices already resolved) and the fast-path arrays ``fa``, in file order."""
+    k = len(items)
+    eid = np.array([it[1] for it in items], dtype=np.int64)
+    pid = np.array([it[2] for it in items], dtype=np.int64)
+    conn = np.array([it[3] for it in items], dtype=np.int64)
+    zoff = None
+    if cell_type in ("quad", "triangle"):
+        zi = 7 if cell_type == "quad" else 6
+        zoff = np.array([it[0].real(zi, "ZOFFS", 0.0) if it[0].name in ("CQUAD4", "CTRIA3")
+                         else 0.0 for it in items])
+    if fa is None:
+        return eid, pid, conn, zoff, lambda j: items[j][0]
+    name = "CQUAD4" if cell_type == "quad" else "CTRIA3"
+    lazy = _fast.Lazy(lambda j: fast.card(name, j), len(fa["eid"]))
+    fconn = _index_of(gid, sorter, fa["g"], lazy, "a node")
+    seq = np.concatenate([np.array([it[0].seq for it in items], dtype=np.int64), fa["seq"]])
+    order = np.argsort(seq, kind="stable")
+
+    def card_of(j):
+        i = int(order[j])
+        return items[i][0] if i < k else fast.card(name, i - k)
+
+    return (np.concatenate([eid, fa["eid"]])[order], np.concatenate([pid, fa["pid"]])[order],
+            np.concatenate([conn.reshape(k, fconn.shape[1]), fconn])[order],  # noqa: E501
+            np.concatenate([zoff, fa["zoffs"]])[order], card_of)
 
 
 def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:
