@@ -9,6 +9,8 @@ exponent (``7.85-9``, ``1.+5``) or ``D`` exponents.
 
 from __future__ import annotations
 
+import bisect
+import itertools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -149,8 +151,9 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
     """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order.
 
     With ``fast``, plain small-field GRID/CQUAD4/CTRIA3 lines without continuation go
-    to ``fast`` as text instead (see :class:`FastLines`); every card and fast line gets a
-    sequence number (``Card.seq``) that keeps the file order.
+    to ``fast`` as text instead (see :class:`FastLines`).  Every card and fast line gets
+    a sequence number (``Card.seq``): file order, the cards of an included file
+    following those of the file that includes it.
     """
     path = Path(path)
     seq = _seq if _seq is not None else [0]
@@ -168,53 +171,70 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
         if ln.lstrip().upper().startswith("BEGIN BULK"):
             start = i + 1
             break
+    base = seq[0]
+    seq[0] = base + len(lines) + 1
+    fpath = str(path)
+    fast_at: list[int] = []
+    if fast is not None:       # plain small-field lines of the fast cards, in one pass
+        heads = {f"{n:<8}" for n in FAST_CARDS}
+        fast_at = [i for i in range(start, len(lines)) if lines[i][:8] in heads
+                   and "," not in lines[i] and "\t" not in lines[i] and "$" not in lines[i]]
+    is_fast = bytearray(len(lines))
+    for i in fast_at:
+        is_fast[i] = 1
+    others = [i for i in range(start, len(lines)) if not is_fast[i]] if fast_at else \
+        range(start, len(lines))
     cards: list[Card] = []
     current: Card | None = None
-    pending = None            # (name) of the last line taken by the fast path
-    fpath = str(path)
-    fast_names = set(FAST_CARDS) if fast is not None else set()
-    for i in range(start, len(lines)):
+    last = -1                    # index of the last card line read card by card
+    includes = []
+    for i in others:
+        if fast_at:              # a fast line since the last card: it is the current card
+            p = bisect.bisect_left(fast_at, i) - 1
+            if p >= 0 and fast_at[p] > last:
+                last, current = fast_at[p], None
         s = lines[i]
         if "$" in s:
             s = s.split("$", 1)[0]
         s = s.rstrip()
         if not s.strip():
             continue
-        if fast_names and "," not in s and "\t" not in s and s[:8].rstrip() in fast_names:
-            name = s[:8].rstrip()
-            fast.lines[name].append(s)
-            fast.where[name].append((fpath, i + 1, seq[0]))
-            seq[0] += 1
-            pending, current = name, None
-            continue
         if "\t" in s:
             s = s.expandtabs(8)
         head = s.lstrip()[:7].upper() if s[0] in "EeIi " else ""
         if head == "ENDDATA":
+            for j in fast_at[bisect.bisect_left(fast_at, i):]:
+                is_fast[j] = 0
             break
         if head == "INCLUDE":
-            current, pending = None, None
-            target = _include_target(s, path, i + 1)
-            cards.extend(read_cards(target, fast=fast, _stack=_stack + (path.resolve(),),
-                                    _seq=seq))
+            current, last = None, -1
+            includes.append((i, _include_target(s, path, i + 1)))
             continue
         first, data = _split(s)
         if first == "" or first[0] in "+*":
-            if current is None and pending is not None:   # a fast line was continued
-                current = fast.card(pending, len(fast.lines[pending]) - 1)
-                current.fields += [""] * (8 - len(current.fields))
-                fast.lines[pending].pop()
-                fast.where[pending].pop()
+            if current is None and last >= 0 and is_fast[last]:   # a fast line continued
+                is_fast[last] = 0
+                f0, d0 = _split(lines[last])
+                current = Card(f0.upper(), d0, fpath, last + 1, base + last)
                 cards.append(current)
-                pending = None
             if current is None:
                 raise MeshError("continuation line without a preceding card",
                                 file=str(path), line=i + 1)
             current.fields.extend(data)
             continue
-        current, pending = Card(first.rstrip("*").upper(), data, fpath, i + 1, seq[0]), None
-        seq[0] += 1
+        current = Card(first.rstrip("*").upper(), data, fpath, i + 1, base + i)
+        last = i
         cards.append(current)
+    if fast_at:
+        kept = [i for i in fast_at if is_fast[i]]
+        for name in FAST_CARDS:
+            idx = [i for i in kept if lines[i].startswith(name)]
+            fast.lines[name].extend([lines[i] for i in idx])
+            fast.where[name].extend(zip(itertools.repeat(fpath), [i + 1 for i in idx],
+                                        [base + i for i in idx]))
+    for _line, target in includes:
+        cards.extend(read_cards(target, fast=fast, _stack=_stack + (path.resolve(),),
+                                _seq=seq))
     for c in cards:
         while c.fields and not c.fields[-1]:
             c.fields.pop()
