@@ -220,3 +220,36 @@ def test_strictness_duplicates_unknown_and_misspelt_cards(tmp_path):
     p = _write(tmp_path, "nu.bdf", _deck(*tet, "MAT1,1,2.1+11,,0.5,7850."))
     with pytest.raises(MeshError, match=r"nu.bdf, line 8: MAT1 1: Poisson's ratio NU = 0.5"):
         read_mesh(p)
+
+
+def test_abaqus_distributing_coupling_and_springs_match_the_nastran_deck(tmp_path):
+    """*COUPLING + *DISTRIBUTING = RBE3 and SPRING1 = grounded CELAS2: same M, K, T."""
+    corners = [(1, -1.0, -0.5), (2, 1.0, -0.5), (3, 1.0, 0.5), (4, -1.0, 0.5)]
+    bdf = [f"GRID,{g},,{x},{y},0." for g, x, y in corners] + ["GRID,9,,0.,0.,0."]
+    bdf += [f"CELAS2,{10 * g + c},{1e5 * c},{g},{c}" for g, _, _ in corners for c in (1, 2, 3)]
+    bdf += ["RBE3,30,,9,123456,1.0,123,1,2,3,4", "CONM2,40,9,,5.0"]
+    inp = ["*NODE"] + [f"{g}, {x}, {y}, 0." for g, x, y in corners] + ["9, 0., 0., 0."]
+    for c in (1, 2, 3):
+        inp += [f"*ELEMENT, TYPE=SPRING1, ELSET=S{c}"]
+        inp += [f"{10 * g + c}, {g}" for g, _, _ in corners]
+        inp += [f"*SPRING, ELSET=S{c}", f"{c}", f"{1e5 * c}"]
+    inp += ["*ELEMENT, TYPE=MASS, ELSET=M", "40, 9", "*MASS, ELSET=M", "5.0",
+            "*NSET, NSET=C", "1, 2, 3, 4", "*SURFACE, TYPE=NODE, NAME=S", "C, 1.0",
+            "*COUPLING, REF NODE=9, SURFACE=S", "*DISTRIBUTING", "1, 6"]
+    a = assemble(read_mesh(_write(tmp_path, "c.bdf", _deck(*bdf))))
+    b = assemble(read_mesh(_write(tmp_path, "c.inp", "\n".join(inp) + "\n")))
+    for X, Y in ((a.K, b.K), (a.M, b.M), (a.T, b.T)):
+        assert abs(X - Y).max() <= 1e-12 * abs(X).max()
+
+
+def test_info_lists_read_converted_and_dropped(tmp_path, capsys):
+    from flexpipe.cli import main
+
+    deck = _deck("GRID,1,,0.,0.,0.", "GRID,2,,1.,0.,0.", "GRID,3,,1.,1.,0.", "GRID,4,,0.,1.,0.",
+                 "GRID,5,,0.5,0.,0.", "GRID,6,,1.,0.5,0.", "GRID,7,,0.5,1.,0.",
+                 "GRID,8,,0.,0.5,0.", "CQUAD8,1,2,1,2,3,4,5,6,+", "+,7,8",
+                 "PSHELL,2,1,0.01,1", MAT, "FORCE,1,2,,1.,1.,0.,0.")
+    assert main(["info", str(_write(tmp_path, "q8.bdf", deck))]) == 0
+    out = capsys.readouterr().out
+    assert "converted: CQUAD8 1 -> 4 CQUAD4 (+1 centre grids)" in out
+    assert "not used (dropped): FORCE 1" in out and "read: CQUAD8 1" in out

@@ -44,8 +44,8 @@ import numpy as np
 from flexpipe.errors import MeshError
 from flexpipe.fem import spring
 from flexpipe.mesh import _nastran_extra as extra
-from flexpipe.mesh import _nastran_props as nprops
 from flexpipe.mesh import _nastran_fast as _fast
+from flexpipe.mesh import _nastran_props as nprops
 from flexpipe.mesh._bulk import Card, FastLines, case_control, read_cards
 from flexpipe.mesh._nastran_coords import KINDS as CORD_CARDS
 from flexpipe.mesh._nastran_coords import Systems
