@@ -221,8 +221,21 @@ def to_global(K: np.ndarray, R: np.ndarray, h: np.ndarray, *,
     return out
 
 
-def in_sub_batches(fn, geometry, E, nu, rho, t, *, bending=1.0, size: int = SUB_BATCH):
-    """Run ``fn(R, xy, h, E, nu, rho, t, bending) -> (K, M)`` over cache-sized sub-batches.
+def rigidities(E, nu, t, bend, lam):
+    """Membrane ``C_m`` (ne, 3, 3), bending ``D`` (ne, 3, 3) and shear ``G t`` (ne,).
+
+    ``lam`` is None (isotropic: plane stress from ``E, nu, t``, bending scaled by
+    ``bend``) or a laminate ``(A, D, Gt)`` from :mod:`flexpipe.fem.laminate`.
+    """
+    if lam is None:
+        return (plane_stress(E, nu, t), bending_rigidity(E, nu, t) * bend[:, None, None],
+                E / (2 * (1 + nu)) * t)
+    return lam
+
+
+def in_sub_batches(fn, geometry, E, nu, rho, t, *, bending=1.0, laminate=None,
+                   size: int = SUB_BATCH):
+    """Run ``fn(R, xy, h, E, nu, rho, t, bending, lam) -> (K, M)`` over sub-batches.
 
     ``bending`` scales the plate bending rigidity (Nastran PSHELL ``12I/T^3`` times
     ``E(MID2) / E(MID1)``; 0 = membrane only).  Element matrices are written into
@@ -236,8 +249,9 @@ def in_sub_batches(fn, geometry, E, nu, rho, t, *, bending=1.0, size: int = SUB_
     M = np.empty((ne, 6 * nn, 6 * nn))
     for s in range(0, ne, size):
         sl = slice(s, s + size)
+        lam = None if laminate is None else tuple(np.asarray(a)[sl] for a in laminate)
         K[sl], M[sl] = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl],
-                          bending[sl])
+                          bending[sl], lam)
     return K, M
 
 

@@ -57,6 +57,15 @@ def _batch_size(nd: int) -> int:
     return int(max(256, min(CHUNK, BATCH_BYTES // (8 * nd * nd))))
 
 
+class _Stacked(tuple):
+    """A tuple of per-cell arrays that slices element-wise like one array."""
+
+    def __getitem__(self, sl):
+        if isinstance(sl, slice):
+            return tuple(a[sl] for a in self)
+        return tuple.__getitem__(self, sl)
+
+
 def _family(cell_type: str):
     try:
         return importlib.import_module(FAMILIES[cell_type])
@@ -383,6 +392,11 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
             pass
         elif block.type in SHELL_TYPES:
             props = shell_props(mesh, bi, block, thickness)
+            if "laminate_rows" in props:   # composite sections (PCOMP): A, D, Gt per cell
+                from flexpipe.fem.properties import laminate_arrays
+
+                lam = laminate_arrays(props.pop("laminate_rows"), E, nu, props["thickness"])
+                props["laminate"] = _Stacked(lam)
         elif block.type in BEAM_TYPES:
             props = beam_props(mesh, bi, block, beam_section)
         else:

@@ -151,7 +151,37 @@ def shell_props(mesh, bi, block, thickness):
            "bending": np.array([1.0 if v is None else v for v in b], dtype=float)}
     if "zoffset" in block.data:
         out["zoffset"] = np.asarray(block.data["zoffset"], dtype=float)
+
+    def lam(p):
+        return p if "A11" in p else None
+
+    lams = per_cell(mesh, bi, len(block), None, "laminate", lam)
+    if any(v is not None for v in lams):
+        out["laminate_rows"] = lams
     return out
+
+
+_IJ = ((0, 0, "11"), (0, 1, "12"), (0, 2, "16"), (1, 1, "22"), (1, 2, "26"), (2, 2, "66"))
+
+
+def laminate_arrays(rows, E, nu, t):
+    """``(A, D, Gt)`` arrays of a shell block: laminate sections (PCOMP) where given,
+    the isotropic plane-stress values elsewhere."""
+    from flexpipe.fem import _shell
+
+    n = len(rows)
+    ones = np.ones(n)
+    A, D, Gt = _shell.rigidities(np.asarray(E, float), np.asarray(nu, float),
+                                 np.asarray(t, float), ones, None)
+    A, D, Gt = A.copy(), D.copy(), np.array(Gt, dtype=float)
+    for c, p in enumerate(rows):
+        if p is None:
+            continue
+        for i, j, ij in _IJ:
+            A[c, i, j] = A[c, j, i] = float(p["A" + ij])
+            D[c, i, j] = D[c, j, i] = float(p["D" + ij])
+        Gt[c] = float(p["Gt"])
+    return A, D, Gt
 
 
 def beam_props(mesh, bi, block, beam_section):

@@ -197,3 +197,85 @@ def pbush(card: Card) -> dict:
             raise card.error(f"unknown flag '{card.raw(k)}'; valid: K, B, GE, RCV, M")
         k += 8
     return out
+
+
+def _ply_material(card: Card, mats: dict, mid: int):
+    """``(Q, G_transverse, rho)`` of ply material ``mid`` (MAT8 or MAT1)."""
+    from flexpipe.fem.laminate import ply_q
+
+    m = mats.get(mid)
+    if m is None:
+        raise card.error(f"ply material MID {mid} has no MAT1 or MAT8 card")
+    if m.name == "MAT1":
+        p = material(m)
+        G = p["E"] / (2 * (1 + p["nu"]))
+        return ply_q(p["E"], p["E"], p["nu"], G), G, p["rho"]
+    if m.name != "MAT8":
+        raise card.error(f"ply material {mid} is {m.name}; valid: MAT1 or MAT8")
+    E1, E2, nu12, G12 = (m.real(k, n) for k, n in ((1, "E1"), (2, "E2"), (3, "NU12"),
+                                                   (4, "G12")))
+    G1z = m.real(5, "G1Z", G12)
+    rho = m.real(7, "RHO", 0.0)
+    for n, v in (("E1", E1), ("E2", E2), ("G12", G12), ("G1Z", G1z)):
+        if not (np.isfinite(v) and 0 < v < _HUGE):
+            raise m.error(f"{n} = {v:g}; valid: 0 < {n} < {_HUGE:g}")
+    if not (np.isfinite(rho) and 0 <= rho < _HUGE):
+        raise m.error(f"RHO = {rho:g}; valid: >= 0")
+    if not (np.isfinite(nu12) and nu12**2 * E2 / E1 < 1):
+        raise m.error(f"NU12 = {nu12:g}; valid: NU12^2 E2 / E1 < 1")
+    return ply_q(E1, E2, nu12, G12), G1z, rho
+
+
+def composite(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
+    """Section of a PCOMP/PCOMPG: laminate rigidities by classical lamination.
+
+    Keys ``A11 .. A66`` and ``D11 .. D66`` (upper triangles), ``Gt`` (transverse shear
+    ``sum G1Z t``), ``thickness``, mean ``rho`` (with NSM) and, for the assembler's
+    material check, an equivalent ``E``, ``nu``.  ``LAM = SYM`` mirrors the plies; an
+    unsymmetric laminate (``B != 0``) or an offset ``Z0`` raises an error.
+    """
+    from flexpipe.fem.laminate import abd
+
+    g = card.name == "PCOMPG"
+    lam = card.raw(7).upper()
+    if lam not in ("", "SYM"):
+        raise card.error(f"LAM = {lam} is not supported; valid: blank or SYM")
+    plies, k, last = [], 8, (None, None)
+    while k < len(card.fields):
+        off = k + (1 if g else 0)
+        mid = card.int(off, "MID", last[0])
+        t = card.real(off + 1, "T", last[1])
+        theta = card.real(off + 2, "THETA", 0.0)
+        if mid is None or t is None:
+            raise card.error(f"ply {len(plies) + 1}: MID and T are needed (blank only after "
+                             "a ply that gives them)")
+        if not (np.isfinite(t) and t > 0) or not np.isfinite(theta):
+            raise card.error(f"ply {len(plies) + 1}: T = {t:g}, THETA = {theta:g}; valid: "
+                             "T > 0, THETA finite")
+        plies.append((mid, t, theta))
+        last = (mid, t)
+        k += 8 if g else 4
+    if not plies:
+        raise card.error("has no plies")
+    if lam == "SYM":
+        plies = plies + plies[::-1]
+    mat = {mid: _ply_material(card, mats, mid) for mid in {p[0] for p in plies}}
+    T = sum(p[1] for p in plies)
+    z0 = card.real(1, "Z0", -T / 2)
+    if abs(z0 + T / 2) > 1e-9 * T:
+        raise card.error(f"Z0 = {z0:g} offsets the laminate (Z0 != -T/2 = {-T / 2:g}); "
+                         "give the offset as ZOFFS on the elements instead")
+    A, B, D, T = abd([(mat[m][0], t, th) for m, t, th in plies])
+    if np.abs(B).max() > 1e-9 * np.abs(A).max() * T:
+        raise card.error("the laminate is not symmetric (coupling matrix B != 0); only "
+                         "symmetric laminates are supported")
+    out = {"thickness": T}
+    iu = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+    for (i, j), name in zip(iu, ("11", "12", "16", "22", "26", "66"), strict=True):
+        out["A" + name], out["D" + name] = float(A[i, j]), float(D[i, j])
+    out["Gt"] = float(sum(mat[m][1] * t for m, t, _ in plies))
+    nsm = card.real(2, "NSM", 0.0)
+    out["rho"] = (sum(mat[m][2] * t for m, t, _ in plies) + nsm) / T * wtmass
+    out["E"] = float(A[0, 0] / T * (1 - min(max(A[0, 1] / A[0, 0], 0.0), 0.49) ** 2))
+    out["nu"] = float(min(max(A[0, 1] / A[0, 0], 0.0), 0.49))
+    return out

@@ -75,7 +75,7 @@ UNSUPPORTED_ELEMENTS = {
     "CDAMP2", "CVISC", "CMASS1", "CMASS2", "RBE1", "RBAR1", "RROD", "RTRPLT", "RSPLINE",
     "MPC", "GENEL", "DMIG", "CBEAM3", "CSPOT", "GRDSET", "CONM3",
 }
-UNSUPPORTED_PROPERTIES = {"PCOMP", "PCOMPG", "PSHEAR", "PGAP", "PWELD", "PFAST", "PBEAM3",
+UNSUPPORTED_PROPERTIES = {"PSHEAR", "PGAP", "PWELD", "PFAST", "PBEAM3",
                           "PBUSH1D", "PCOMPLS", "PLPLANE"}
 #: cards that do not change M or K (loads, output, other solutions): listed as ignored
 NOT_STRUCTURAL = {
@@ -426,11 +426,12 @@ def read_nastran(path) -> Mesh:
                 raise user.error(f"refers to {card.name} {card.label()} (line {card.line}), "
                                  f"which is not a property of {user.name} elements")
             if card.name in UNSUPPORTED_PROPERTIES:
-                raise card.error(f"{card.name} (composite/other shell property) is not "
-                                 "supported; give an equivalent PSHELL or pass thickness "
-                                 "and material to assemble() for this PID")
+                raise card.error(f"{card.name} is not supported; give an equivalent PSHELL "
+                                 "or pass thickness and material to assemble() for this PID")
             if name not in sections:
-                sections[name] = nprops.section(card, deck.mats, wtmass)
+                sections[name] = (nprops.composite(card, deck.mats, wtmass)
+                                  if card.name in ("PCOMP", "PCOMPG")
+                                  else nprops.section(card, deck.mats, wtmass))
 
     # ---- springs
     pelas = {}

@@ -36,6 +36,10 @@ ALIASES = {"si": "m-kg-s", "mks": "m-kg-s", "mmns": "mm-t-s", "cgs": "cm-g-s"}
 SECTION_DIMENSIONS = {
     "thickness": (1, 0, 0), "A": (2, 0, 0), "Iy": (4, 0, 0), "Iz": (4, 0, 0),
     "J": (4, 0, 0), "E": (-1, 1, -2), "G": (-1, 1, -2), "rho": (-3, 1, 0),
+    # laminate rigidities (PCOMP): A and Gt force per length, D force times length
+    **{f"A{ij}": (0, 1, -2) for ij in ("11", "12", "16", "22", "26", "66")},
+    **{f"D{ij}": (2, 1, -2) for ij in ("11", "12", "16", "22", "26", "66")},
+    "Gt": (0, 1, -2),
 }
 
 
