@@ -177,8 +177,8 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
     fast_at: list[int] = []
     if fast is not None:       # plain small-field lines of the fast cards, in one pass
         heads = {f"{n:<8}" for n in FAST_CARDS}
-        fast_at = [i for i in range(start, len(lines)) if lines[i][:8] in heads
-                   and "," not in lines[i] and "\t" not in lines[i] and "$" not in lines[i]]
+        fast_at = [i for i, ln in enumerate(lines) if ln[:8] in heads and "," not in ln
+                   and "\t" not in ln and "$" not in ln and i >= start]
     is_fast = bytearray(len(lines))
     for i in fast_at:
         is_fast[i] = 1
@@ -227,8 +227,9 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
         cards.append(current)
     if fast_at:
         kept = [i for i in fast_at if is_fast[i]]
+        code = [lines[i][1] for i in kept]           # R: GRID, Q: CQUAD4, T: CTRIA3
         for name in FAST_CARDS:
-            idx = [i for i in kept if lines[i].startswith(name)]
+            idx = list(itertools.compress(kept, [ch == name[1] for ch in code]))
             fast.lines[name].extend([lines[i] for i in idx])
             fast.where[name].extend(zip(itertools.repeat(fpath), [i + 1 for i in idx],
                                         [base + i for i in idx]))

@@ -10,6 +10,8 @@ by card instead, with the usual located error messages.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 BLANK = b" " * 8
@@ -23,9 +25,36 @@ def _fields(lines: list[str], n: int) -> np.ndarray:
 
 
 def _num(col: np.ndarray, dtype, default) -> np.ndarray:
-    """Column(s) of fields as numbers, blank = ``default``; raises ValueError if bad."""
-    col = np.where(col == BLANK, str(default).encode(), col)
-    return col.astype(dtype)
+    """Column(s) of fields as numbers, blank = ``default``; raises ValueError if bad.
+
+    The fields are parsed by one C-level ``np.fromstring`` over space-separated text when
+    that is exact: plain decimal integers, or reals without Nastran's implied exponent
+    (``1.5-3``) or ``D`` exponents; otherwise by ``astype`` (which rejects those).
+    """
+    col = np.ascontiguousarray(col)
+    shape = col.shape
+    b = col.view(np.uint8).reshape(shape + (8,)).copy()
+    blank = (b == 32).all(axis=-1)
+    if blank.any():
+        d = str(default).encode()
+        b[blank] = np.frombuffer(d.rjust(8), dtype=np.uint8)
+    integer = np.dtype(dtype).kind == "i"
+    digit = (b >= 48) & (b <= 57)
+    sign = (b == 43) | (b == 45)
+    bad = (b == 46) if integer else (b == 68) | (b == 100)      # '.' in ints; D exponents
+    implied = sign[..., 1:] & (digit[..., :-1] | (b[..., :-1] == 46))
+    if not bad.any() and not implied.any():
+        buf = np.full(shape + (9,), 32, dtype=np.uint8)
+        buf[..., :8] = b
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                v = np.fromstring(buf.tobytes(), dtype=dtype, sep=" ")
+            except ValueError:
+                v = np.zeros(0)
+        if v.size == int(np.prod(shape)):
+            return v.reshape(shape)
+    return b.view(f"S8").reshape(shape).astype(dtype)
 
 
 def grids(lines: list[str], seq) -> dict | None:
@@ -36,7 +65,7 @@ def grids(lines: list[str], seq) -> dict | None:
                 "has_ps": np.zeros(0, bool), "seq": np.zeros(0, np.int64)}
     A = _fields(lines, 7)
     try:
-        gid = A[:, 0].astype(np.int64)
+        gid = _num(A[:, 0], np.int64, "x")
         cp = _num(A[:, 1], np.int64, 0)
         X = _num(A[:, 2:5], float, 0.0)
         cd = _num(A[:, 5], np.int64, 0)
@@ -52,9 +81,9 @@ def shells(lines: list[str], seq, nodes: int) -> dict | None:
         return None
     A = _fields(lines, nodes + 4)
     try:
-        eid = A[:, 0].astype(np.int64)
+        eid = _num(A[:, 0], np.int64, "x")
         pid = np.where(A[:, 1] == BLANK, eid, _num(A[:, 1], np.int64, 0))
-        g = A[:, 2:2 + nodes].astype(np.int64)
+        g = _num(A[:, 2:2 + nodes], np.int64, 0)
         z = _num(A[:, 3 + nodes], float, 0.0)
     except ValueError:
         return None

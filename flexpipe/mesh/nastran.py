@@ -236,11 +236,11 @@ def _line_data(items, X, conn, cd_frames, gid, sorter):
     return ori, w, g0_nodes
 
 
-def _split_second_order(els: dict, X: list, gid: list):
+def _split_second_order(els: dict, X: np.ndarray, max_gid: int):
     """CQUAD8 -> 4 CQUAD4 (+ centre grid), CTRIA6 -> 4 CTRIA3 through the mid-side grids."""
     converted = {}
     new_pts = []
-    next_id = max(gid) + 1 if gid else 1
+    next_id = max_gid + 1
     q8 = els.pop("quad8", [])
     for c, eid, pid, g in q8:
         corner_x = [X[i] for i in g[:4]]
@@ -340,8 +340,11 @@ def read_nastran(path) -> Mesh:
     frame_cache: dict = {}
 
     def cd_frames(nodes, user):
+        nodes = np.asarray(nodes).ravel()
         out = np.broadcast_to(np.eye(3), (len(nodes), 3, 3)).copy()
-        for k, nd in enumerate(np.asarray(nodes).ravel()):
+        if not cd[nodes].any():
+            return out
+        for k, nd in enumerate(nodes):
             if cd[nd]:
                 if nd not in frame_cache:
                     frame_cache[nd] = systems.frames(int(cd[nd]), X[nd:nd + 1], user)[0]
@@ -378,8 +381,7 @@ def read_nastran(path) -> Mesh:
                          "a node")
         els[cell_type] = [(it[0], it[1], it[2], list(row))
                           for it, row in zip(items, conn, strict=True)]
-    pts = list(X)
-    new_pts, info["converted"] = _split_second_order(els, pts, gid.tolist())
+    new_pts, info["converted"] = _split_second_order(els, X, int(gid.max()))
     if new_pts:
         gid = np.concatenate([gid, [p[0] for p in new_pts]])
         X = np.vstack([X, [p[1] for p in new_pts]])

@@ -200,11 +200,17 @@ def cases():
             ("typo_pshell", "PSHEL,72,1,0.01,1", "error"),
             ("typo_grid", "GIRD,73,,0.,0.,0.", "error"),
             ("unsupported_cgap", "CGAP,74,1,1,2", "error"),
-            ("unsupported_pcomp", "PCOMP,2,,,,,,,,+\n+,1,0.01,0.", "error"),
+            ("unsymmetric_pcomp", "PCOMP,2,,,,,,,,+\n+,8,0.005,0.,,8,0.005,90.\n"
+             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.", "error"),
+            ("symmetric_pcomp", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.,,8,0.005,90.\n"
+             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.", "ok"),
+            ("pcomp_ply_material_missing", "PCOMP,2,,,,,,,SYM,+\n+,9,0.005,0.", "error"),
+            ("mat8_negative_e2", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
+             "MAT8,8,140.+9,-10.+9,0.3,5.+9,,,1600.", "error"),
             ("unsupported_cquadr", "CQUADR,75,2,5,6,7,8", "error"),
             ("unsupported_mpc", "MPC,1,1,1,1.,2,1,-1.", "error")):
         bulk = BULK + extra.split("\n")
-        if name == "unsupported_pcomp":
+        if "pcomp" in name or "mat8" in name:
             bulk = _replace("PSHELL", None, bulk)
         yield name, f"{name}.bdf", _deck(bulk), expect
     # ---- typos in fields
