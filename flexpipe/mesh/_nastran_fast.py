@@ -54,7 +54,7 @@ def _num(col: np.ndarray, dtype, default) -> np.ndarray:
                 v = np.zeros(0)
         if v.size == int(np.prod(shape)):
             return v.reshape(shape)
-    return b.view(f"S8").reshape(shape).astype(dtype)
+    return b.view("S8").reshape(shape).astype(dtype)
 
 
 def grids(lines: list[str], seq) -> dict | None:
