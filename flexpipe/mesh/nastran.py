@@ -49,24 +49,20 @@ from flexpipe.mesh import _nastran_props as nprops
 from flexpipe.mesh._bulk import Card, FastLines, case_control, read_cards
 from flexpipe.mesh._nastran_coords import KINDS as CORD_CARDS
 from flexpipe.mesh._nastran_coords import Systems
-from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
+from flexpipe.mesh._nastran_elements import (
+    ELEMENTS,
+    cell_arrays,
+    conm1,
+    conm2,
+    element,
+    line_data,
+    rbe2,
+    split_second_order,
+)
+from flexpipe.mesh._nastran_elements import index_of as _index_of
+from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass
 from flexpipe.mesh.validate import MeshWarning, prune, referenced
 
-#: element card -> (meshio type by node count, index of first node field, max nodes)
-ELEMENTS = {
-    "CTETRA": ({4: "tetra", 10: "tetra10"}, 2, 10),
-    "CHEXA": ({8: "hexahedron"}, 2, 20),
-    "CPENTA": ({6: "wedge"}, 2, 15),
-    "CPYRAM": ({5: "pyramid"}, 2, 13),
-    "CQUAD4": ({4: "quad"}, 2, 4),
-    "CTRIA3": ({3: "triangle"}, 2, 3),
-    "CQUAD8": ({8: "quad8"}, 2, 8),
-    "CTRIA6": ({6: "triangle6"}, 2, 6),
-    "CBAR": ({2: "line"}, 2, 2),
-    "CBEAM": ({2: "line"}, 2, 2),
-    "CROD": ({2: "line"}, 2, 2),
-    "CONROD": ({2: "line"}, 1, 2),
-}
 SUPPORTED = tuple(ELEMENTS) + ("CELAS1", "CELAS2", "CBUSH", "CONM1", "CONM2", "RBE2", "RBE3",
                                "RBAR")
 UNSUPPORTED_ELEMENTS = {
@@ -152,21 +148,6 @@ class _Deck:
             self.first.setdefault(n, c)
 
 
-def _index_of(grid_ids, sorter, wanted, cards, label):
-    """0-based node indices of grid ids ``wanted`` (n, k); error names the card."""
-    wanted = np.asarray(wanted, dtype=np.int64)
-    pos = np.searchsorted(grid_ids, wanted.ravel(), sorter=sorter)
-    pos = np.clip(pos, 0, len(grid_ids) - 1)
-    idx = sorter[pos] if len(grid_ids) else pos
-    ok = grid_ids[idx] == wanted.ravel() if len(grid_ids) else np.zeros(wanted.size, bool)
-    if not ok.all():
-        bad = int(np.flatnonzero(~ok)[0])
-        card = cards[bad // max(wanted.shape[1], 1)] if wanted.ndim == 2 else cards[bad]
-        raise card.error(f"{label} refers to GRID {int(wanted.ravel()[bad])}, which is not "
-                         "defined")
-    return idx.reshape(wanted.shape)
-
-
 def _check_unique(ids: np.ndarray, cards: list[Card], what: str) -> None:
     order = np.argsort(ids, kind="stable")
     s = ids[order]
@@ -177,91 +158,6 @@ def _check_unique(ids: np.ndarray, cards: list[Card], what: str) -> None:
             f"{what} id {int(s[dup[0]])} is defined twice: {a.name} at {Path(a.file).name} "
             f"line {a.line} and {b.name} at {Path(b.file).name} line {b.line}; ids must be "
             "unique", file=b.file, line=b.line)
-
-
-def _element(card: Card, els: dict) -> None:
-    """Append one element card to ``els[cell_type]`` = list of (card, eid, pid, grids)."""
-    types, first, nmax = ELEMENTS[card.name]
-    eid = card.int(0, "EID")
-    if card.name == "CONROD":
-        pid = -eid
-    else:
-        pid = card.int(1, "PID", eid)
-    raw = card.fields[first:first + nmax]
-    try:  # fast path; on a bad field fall back to the checked parser for its message
-        g = [int(x) if x else 0 for x in raw]
-    except ValueError:
-        g = [card.int(first + k, f"G{k + 1}", 0) for k in range(nmax)]
-    g += [0] * (nmax - len(g))
-    if card.name in ("CTETRA", "CHEXA", "CPENTA", "CPYRAM"):
-        g = [x for x in g if x]
-    n = len(g)
-    if n not in types or 0 in g:
-        if card.name in ("CHEXA", "CPENTA", "CPYRAM") and n > min(types):
-            raise card.error(f"{card.name} with {n} nodes (second order) is not supported; "
-                             f"use the {min(types)}-node form or 10-node CTETRA")
-        why = "a blank or zero grid field" if 0 in g else "wrong count"
-        raise card.error(f"{card.name} with {n} node(s) ({why}) is not supported; valid: "
-                         f"{sorted(types)} node(s)")
-    els[types[n]].append((card, eid, pid, g))
-
-
-def _line_data(items, X, conn, cd_frames, gid, sorter):
-    """Orientation vectors and end offsets of CBAR/CBEAM/CROD cells."""
-    n = len(items)
-    ori = np.full((n, 3), np.nan)
-    w = np.zeros((n, 6))
-    g0_nodes = []
-    for k, (c, _, _, _) in enumerate(items):
-        if c.name not in ("CBAR", "CBEAM"):
-            continue
-        if c.is_int(4) and not c.raw(5) and not c.raw(6):
-            gi = int(_index_of(gid, sorter, [c.int(4, "G0")], [c], "G0")[0])
-            ori[k] = X[gi] - X[conn[k, 0]]
-            g0_nodes.append(gi)
-        else:
-            vals = [c.real(4 + j, f"X{j + 1}", None) for j in range(3)]
-            if any(v is not None for v in vals):
-                ori[k] = cd_frames(conn[k, :1], c)[0] @ [v or 0.0 for v in vals]
-        if c.raw(8) or c.raw(9):
-            raise c.error("pin flags PA/PB are not supported (they release end DOF); model "
-                          "the release with a separate grid and an RBE2/CBUSH")
-        off = [c.real(10 + j, "W", 0.0) for j in range(6)]
-        if any(off):
-            if c.raw(7).upper() not in ("", "GGG"):
-                raise c.error(f"OFFT = {c.raw(7)} is not supported; only GGG (offsets in "
-                              "the grids' displacement systems)")
-            w[k, :3] = cd_frames(conn[k, :1], c)[0] @ off[:3]
-            w[k, 3:] = cd_frames(conn[k, 1:2], c)[0] @ off[3:]
-    return ori, w, g0_nodes
-
-
-def _split_second_order(els: dict, X: np.ndarray, max_gid: int):
-    """CQUAD8 -> 4 CQUAD4 (+ centre grid), CTRIA6 -> 4 CTRIA3 through the mid-side grids."""
-    converted = {}
-    new_pts = []
-    next_id = max_gid + 1
-    q8 = els.pop("quad8", [])
-    for c, eid, pid, g in q8:
-        corner_x = [X[i] for i in g[:4]]
-        mid_x = [X[i] for i in g[4:]]
-        xc = -0.25 * np.sum(corner_x, axis=0) + 0.5 * np.sum(mid_x, axis=0)
-        ci = len(X) + len(new_pts)
-        new_pts.append((next_id, xc))
-        next_id += 1
-        a, b, cc, d, ab, bc, cd, da = g
-        for sub in ((a, ab, ci, da), (ab, b, bc, ci), (ci, bc, cc, cd), (da, ci, cd, d)):
-            els["quad"].append((c, eid, pid, list(sub)))
-    t6 = els.pop("triangle6", [])
-    for c, eid, pid, g in t6:
-        a, b, cc, ab, bc, ca = g
-        for sub in ((a, ab, ca), (ab, b, bc), (ca, bc, cc), (ab, bc, ca)):
-            els["triangle"].append((c, eid, pid, list(sub)))
-    if q8:
-        converted["CQUAD8"] = f"{len(q8)} -> {4 * len(q8)} CQUAD4 (+{len(q8)} centre grids)"
-    if t6:
-        converted["CTRIA6"] = f"{len(t6)} -> {4 * len(t6)} CTRIA3"
-    return new_pts, converted
 
 
 def read_nastran(path) -> Mesh:
@@ -374,14 +270,14 @@ def read_nastran(path) -> Mesh:
     els: dict = defaultdict(list)
     for c in cards:               # file order: blocks appear in the order of the deck
         if c.name in ELEMENTS:
-            _element(c, els)
+            element(c, els)
     for cell_type in list(els):   # grid ids -> node indices
         items = els[cell_type]
         conn = _index_of(gid, sorter, [it[3] for it in items], [it[0] for it in items],
                          "a node")
         els[cell_type] = [(it[0], it[1], it[2], list(row))
                           for it, row in zip(items, conn, strict=True)]
-    new_pts, info["converted"] = _split_second_order(els, X, int(gid.max()))
+    new_pts, info["converted"] = split_second_order(els, X, int(gid.max()))
     if new_pts:
         gid = np.concatenate([gid, [p[0] for p in new_pts]])
         X = np.vstack([X, [p[1] for p in new_pts]])
@@ -400,11 +296,11 @@ def read_nastran(path) -> Mesh:
 
     for cell_type in sorted(els, key=first_seq):
         items = els[cell_type]
-        cols = _cell_arrays(cell_type, items, fshell.get(cell_type), fast, gid, sorter)
+        cols = cell_arrays(cell_type, items, fshell.get(cell_type), fast, gid, sorter)
         eid, pid, conn, zoff, user_of = cols
         data = {}
         if cell_type == "line":
-            ori, w, g0 = _line_data(items, X, conn, cd_frames, gid, sorter)
+            ori, w, g0 = line_data(items, X, conn, cd_frames, gid, sorter)
             data["orientation"] = ori
             g0_nodes += g0
             if np.any(w):
@@ -485,12 +381,12 @@ def read_nastran(path) -> Mesh:
                 data["B"] = np.array(Bs)
             blocks.append(CellBlock(cell_type, np.array(cells), np.array(ids), None, data))
     # ---- masses, rigid elements
-    masses = [_conm2(c, index, X, systems) for c in deck.elements.get("CONM2", [])]
-    masses += [_conm1(c, index, X, systems) for c in deck.elements.get("CONM1", [])]
+    masses = [conm2(c, index, X, systems) for c in deck.elements.get("CONM2", [])]
+    masses += [conm1(c, index, X, systems) for c in deck.elements.get("CONM1", [])]
     if wtmass != 1.0:
         masses = [PointMass(m.node, m.mass * wtmass, m.inertia * wtmass, m.offset, m.id,
                             None if m.matrix is None else m.matrix * wtmass) for m in masses]
-    links = [_rbe2(c, gid, sorter) for c in deck.elements.get("RBE2", [])]
+    links = [rbe2(c, gid, sorter) for c in deck.elements.get("RBE2", [])]
     links += [extra.rbar(c, index) for c in deck.elements.get("RBAR", [])]
     for lk, c in zip(links, deck.elements.get("RBE2", []) + deck.elements.get("RBAR", []),
                      strict=True):
@@ -530,35 +426,6 @@ def read_nastran(path) -> Mesh:
     return mesh
 
 
-def _cell_arrays(cell_type, items, fa, fast, gid, sorter):
-    """``eid, pid, conn, zoffs, card_of`` of one cell type: card-by-card ``items`` (node
-    indices already resolved) and the fast-path arrays ``fa``, in file order."""
-    k = len(items)
-    eid = np.array([it[1] for it in items], dtype=np.int64)
-    pid = np.array([it[2] for it in items], dtype=np.int64)
-    conn = np.array([it[3] for it in items], dtype=np.int64)
-    zoff = None
-    if cell_type in ("quad", "triangle"):
-        zi = 7 if cell_type == "quad" else 6
-        zoff = np.array([it[0].real(zi, "ZOFFS", 0.0) if it[0].name in ("CQUAD4", "CTRIA3")
-                         else 0.0 for it in items])
-    if fa is None:
-        return eid, pid, conn, zoff, lambda j: items[j][0]
-    name = "CQUAD4" if cell_type == "quad" else "CTRIA3"
-    lazy = _fast.Lazy(lambda j: fast.card(name, j), len(fa["eid"]))
-    fconn = _index_of(gid, sorter, fa["g"], lazy, "a node")
-    seq = np.concatenate([np.array([it[0].seq for it in items], dtype=np.int64), fa["seq"]])
-    order = np.argsort(seq, kind="stable")
-
-    def card_of(j):
-        i = int(order[j])
-        return items[i][0] if i < k else fast.card(name, i - k)
-
-    return (np.concatenate([eid, fa["eid"]])[order], np.concatenate([pid, fa["pid"]])[order],
-            np.concatenate([conn.reshape(k, fconn.shape[1]), fconn])[order],  # noqa: E501
-            np.concatenate([zoff, fa["zoffs"]])[order], card_of)
-
-
 def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:
     out: dict = {}
     if "SPC" in case:
@@ -586,44 +453,6 @@ def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:
     return out
 
 
-def _conm2(c: Card, index, X, systems) -> PointMass:
-    node = int(index([c.int(1, "G")], c)[0])
-    cid = c.int(2, "CID", 0)
-    m = c.real(3, "M")
-    if not (np.isfinite(m) and m >= 0):
-        raise c.error(f"mass M = {m:g}; valid: a finite value >= 0")
-    off = np.array([c.real(4 + k, f"X{k + 1}", 0.0) for k in range(3)])
-    i11, i21, i22, i31, i32, i33 = (c.real(8 + k, "I", 0.0) for k in range(6))
-    inertia = np.array([[i11, -i21, -i31], [-i21, i22, -i32], [-i31, -i32, i33]])
-    if not np.isfinite(inertia).all() or np.linalg.eigvalsh(inertia).min() < -1e-9 * max(
-            abs(inertia).max(), 1e-300):
-        raise c.error("inertia I11..I33 is not positive semi-definite (or not finite)")
-    if cid == -1:
-        off = off - X[node]
-    elif cid > 0:
-        R = systems.frames(cid, X[node:node + 1], c)[0]
-        off, inertia = R @ off, R @ inertia @ R.T
-    return PointMass(node, m, inertia, off, c.int(0, "EID"))
-
-
-def _conm1(c: Card, index, X, systems) -> PointMass:
-    """CONM1: a symmetric 6 x 6 mass matrix (lower triangle M11, M21, M22, ...)."""
-    node = int(index([c.int(1, "G")], c)[0])
-    vals = [c.real(3 + k, "Mij", 0.0) for k in range(21)]
-    Mm = np.zeros((6, 6))
-    Mm[np.tril_indices(6)] = vals
-    Mm = Mm + np.tril(Mm, -1).T
-    if not np.isfinite(Mm).all() or np.linalg.eigvalsh(Mm).min() < -1e-9 * max(
-            abs(Mm).max(), 1e-300):
-        raise c.error("mass matrix is not symmetric positive semi-definite (or not finite)")
-    cid = c.int(2, "CID", 0)
-    if cid:
-        R = systems.frames(cid, X[node:node + 1], c)[0]
-        T = np.kron(np.eye(2), R)
-        Mm = T @ Mm @ T.T
-    return PointMass(node, float(Mm[0, 0]), np.zeros((3, 3)), np.zeros(3), c.int(0, "EID"),
-                     Mm)
-
 def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:
     """Remove nodes that only orient beams (CBAR G0, Abaqus n1 node): they carry no DOF."""
     nodes = np.asarray(nodes, dtype=np.int64)
@@ -633,17 +462,4 @@ def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:
     only[nodes] = True
     only &= ~referenced(mesh)
     return prune(mesh, ~only) if only.any() else mesh
-
-
-def _rbe2(c: Card, gid, sorter) -> RigidLink:
-    gn = c.int(1, "GN")
-    cm = c.raw(2)
-    if not cm or not cm.isdigit() or set(cm) - set("123456"):
-        raise c.error(f"component field CM = '{cm}' must be digits 1-6, e.g. 123456")
-    slaves, _ = extra.grid_list(c, 3)     # a real (ALPHA) ends the node list
-    if not slaves:
-        raise c.error("has no dependent grid points GMi")
-    idx = _index_of(gid, sorter, [gn] + slaves, [c] * (len(slaves) + 1), "a grid point")
-    return RigidLink(int(idx[0]), idx[1:], "".join(sorted(set(cm))), c.int(0, "EID"))
-
 
