@@ -79,7 +79,7 @@ def spring_cards(block, eids, nid, source) -> list[str]:
 
 
 def constraint_cards(mesh, nid, next_eid: int) -> list[str]:
-    """RBE3, SPC1 and EIGRL cards."""
+    """RBE3, SPC1, SET1 (node sets named ``SET<n>``) and EIGRL cards."""
     out = []
     for k, it in enumerate(mesh.interpolations):
         groups = {}
@@ -102,6 +102,9 @@ def constraint_cards(mesh, nid, next_eid: int) -> list[str]:
             by_comp.setdefault("".join(map(str, sorted(cs))), []).append(int(nid[n]))
         for comps, nodes in by_comp.items():
             out.append(_card("SPC1", [int(name[3:]), comps, *sorted(nodes)]))
+    for name, nodes in mesh.node_sets.items():
+        if name.startswith("SET") and name[3:].isdigit():
+            out.append(_card("SET1", [int(name[3:]), *map(int, nid[np.asarray(nodes)])]))
     sol = mesh.solution
     if any(sol.get(k) is not None for k in ("n_modes", "f_min", "f_max")):
         out.append(_card("EIGRL", [1, sol.get("f_min"), sol.get("f_max"),

@@ -11,7 +11,8 @@ of GA, end offsets ``WA``/``WB`` applied), ``CROD``/``CONROD``, ``CELAS1``/``CEL
 ``CBUSH``, ``CONM1``, ``CONM2``, ``RBE2``, ``RBE3``, ``RBAR``.
 Properties and materials: see :mod:`flexpipe.mesh._nastran_props` (``PSHELL``,
 ``PSOLID``, ``PBAR``, ``PBEAM``, ``PBARL``, ``PBEAML``, ``PROD``, ``PELAS``, ``PBUSH``,
-``MAT1``).  Constraints and set-up: see :mod:`flexpipe.mesh._nastran_extra` (``SPC``,
+``MAT1``); ``SET1`` lists of grids become node sets ``"SET<sid>"``.  Constraints and
+set-up: see :mod:`flexpipe.mesh._nastran_extra` (``SPC``,
 ``SPC1``, ``SPCADD``, ``EIGRL``, case control ``SPC``/``METHOD``, ``PARAM WTMASS``,
 ``PARAM COUPMASS``).
 
@@ -79,12 +80,12 @@ NOT_STRUCTURAL = {
     "PLOAD4", "GRAV", "LOAD", "TEMP", "TEMPD", "DLOAD", "RLOAD1", "RLOAD2", "TLOAD1",
     "TLOAD2", "FREQ", "FREQ1", "FREQ2", "TSTEP", "EIGR", "EIGRL", "DAREA", "TABDMP1",
     "TABLED1", "TABLED2", "TABLEM1", "PLOTEL", "ASET", "ASET1", "QSET1", "BSET1", "CSET1",
-    "SUPORT", "SUPORT1", "SET1", "SPOINT", "NLPARM", "DESVAR", "DRESP1", "DCONSTR", "MAT4",
+    "SUPORT", "SUPORT1", "SPOINT", "NLPARM", "DESVAR", "DRESP1", "DCONSTR", "MAT4",
     "PARAM", "SPC", "SPC1", "SPCADD", "SPCD", "MPCADD", "ENDDATA", "DTI", "MDLPRM",
     "PBUSHT", "PELAST",
 }
 _KNOWN = set(ELEMENTS) | set(SUPPORTED) | UNSUPPORTED_ELEMENTS | UNSUPPORTED_PROPERTIES | \
-    set(nprops.PROPERTIES) | {"MAT1", "GRID"} | nprops.OTHER_MATERIALS | set(CORD_CARDS)
+    set(nprops.PROPERTIES) | {"MAT1", "GRID", "SET1"} | nprops.OTHER_MATERIALS | set(CORD_CARDS)
 #: names a misspelling is checked against (element, property, material, grid cards)
 _SPELLED = sorted(set(SUPPORTED) | set(nprops.PROPERTIES) | {"MAT1", "GRID", "MAT8"})
 
@@ -101,6 +102,7 @@ class _Deck:
         self.eigrl: dict[int, Card] = {}
         self.spc: dict = defaultdict(list)
         self.params: dict[str, Card] = {}
+        self.sets: dict[int, Card] = {}
         self.dropped: Counter = Counter()
         self.first: dict[str, Card] = {}
 
@@ -132,6 +134,8 @@ class _Deck:
             self.unique(self.eigrl, c.int(0, "SID"), c, "EIGRL")
         elif n in ("SPC", "SPC1", "SPCADD"):
             self.spc[n].append(c)
+        elif n == "SET1":
+            self.unique(self.sets, c.int(0, "SID"), c, "SET1")
         elif n == "PARAM":
             self.params[c.raw(0).upper()] = c
         elif n in UNSUPPORTED_ELEMENTS:
@@ -405,7 +409,16 @@ def read_nastran(path) -> Mesh:
         dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
     solution = _solution(case, deck, dof_sets, path)
 
+    node_sets = {}
+    gid_set = set(gid.tolist()) if deck.sets else set()
+    for sid, c in deck.sets.items():        # SET1 of grid ids -> node set "SET<sid>"
+        ids, _ = extra.grid_list(c, 1)
+        if ids and all(g in gid_set for g in ids):
+            node_sets[f"SET{sid}"] = index(ids, c)
+        else:
+            info["dropped"][f"SET{sid}"] = "lists ids that are not all GRIDs"
     mesh = Mesh(points=X, blocks=tuple(blocks), node_ids=gid, cell_sets=cell_sets,
+                node_sets=node_sets,
                 point_masses=tuple(masses), rigid_links=tuple(links), sections=sections,
                 source=str(path), interpolations=tuple(interp), dof_sets=dof_sets,
                 solution=solution, info=info)

@@ -215,7 +215,8 @@ def nastran_text(mesh: Mesh) -> str:
 
     nxt = int(eids.max(initial=0)) + 1
     parts.extend(constraint_cards(mesh, nid, nxt))
-    if mesh.node_sets or any(not _PID.match(n) for n in mesh.cell_sets):
+    if any(not re.match(r"^SET\d+$", n) for n in mesh.node_sets) or any(
+            not _PID.match(n) for n in mesh.cell_sets):
         warnings.warn(MeshWarning("named node/cell sets are not written to Nastran bulk data "
                                   "(only property ids are)"), stacklevel=3)
     return "".join(parts) + tail
