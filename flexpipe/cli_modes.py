@@ -6,7 +6,9 @@ frequencies as field data) and ``frequencies.csv`` into ``--out`` (default
 
 A Nastran SOL 103 deck runs as Nastran would: its case-control ``SPC = n`` set (with
 ``GRID`` ``PS``) is held fixed and its ``METHOD`` ``EIGRL`` (number of roots ``ND``,
-frequency range ``V1..V2``) chooses the modes, unless ``--fixed`` / ``--n`` are given.
+frequency range ``V1..V2``) chooses the modes, unless ``--fixed`` / ``--n`` are given;
+``PARAM, COUPMASS, -1`` (lumped mass, Nastran's default when the deck says so) is
+honoured.
 
 Example::
 
@@ -114,7 +116,7 @@ def run(args) -> int:
         _check_file_materials(mesh)
     with _step("assembling", args.quiet):
         fe = assemble(mesh, material, allow_disconnected=args.allow_disconnected,
-                      progress=not args.quiet)
+                      progress=not args.quiet, lumped=bool(mesh.solution.get("lumped_mass")))
     fixed = None
     sol = dict(mesh.solution)
     if args.fixed:

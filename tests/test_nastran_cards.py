@@ -253,3 +253,29 @@ def test_info_lists_read_converted_and_dropped(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "converted: CQUAD8 1 -> 4 CQUAD4 (+1 centre grids)" in out
     assert "not used (dropped): FORCE 1" in out and "read: CQUAD8 1" in out
+
+
+@pytest.mark.parametrize("coupmass", [-1, 1])
+def test_coupmass_lumped_rod_chain_matches_the_discrete_closed_form(tmp_path, coupmass):
+    """Fixed-free CROD chain, axial only (SPC1 23456): lumped masses m (m/2 at the free
+    end) give omega_j = 2 sqrt(k/m) sin(theta_j / 2), theta_j = (2j - 1) pi / (2n)."""
+    from flexpipe.cli import main
+
+    n, L, A = 10, 1.0, 1e-4
+    h = L / n
+    grids = [f"GRID,{i + 1},,{h * i},0.,0." for i in range(n + 1)]
+    rods = [f"CROD,{100 + i},5,{i + 1},{i + 2}" for i in range(n)]
+    text = ("SOL 103\nCEND\nSPC = 1\nMETHOD = 2\nBEGIN BULK\n" + "\n".join(
+        grids + rods + ["PROD,5,1,1.-4,1.-9", MAT, "SPC1,1,123456,1",
+                        f"SPC1,1,23456,2,THRU,{n + 1}", "EIGRL,2,,,4",
+                        f"PARAM,COUPMASS,{coupmass}"]) + "\nENDDATA\n")
+    p = _write(tmp_path, "chain.bdf", text)
+    assert main(["modes", str(p), "-o", str(tmp_path / "o"), "-q"]) == 0
+    f = np.loadtxt(tmp_path / "o" / "frequencies.csv", delimiter=",", skiprows=1)[:, 1]
+    k, m = 2.1e11 * A / h, 7850.0 * A * h
+    theta = (2 * np.arange(1, 5) - 1) * np.pi / (2 * n)
+    lumped = 2 * np.sqrt(k / m) * np.sin(theta / 2) / (2 * np.pi)
+    if coupmass < 0:
+        assert np.allclose(f, lumped, rtol=1e-10)
+    else:   # consistent mass: above the lumped values (and above the exact rod)
+        assert (f > lumped * 1.0001).all()

@@ -344,7 +344,8 @@ def _constraint_map(mesh, dpn, n_dof, K, M):
 
 
 def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
-             allow_disconnected: bool = False, progress: bool = False) -> FEModel:
+             allow_disconnected: bool = False, progress: bool = False,
+             lumped: bool = False) -> FEModel:
     """Assemble mass and stiffness matrices of a mesh.
 
     Parameters
@@ -361,6 +362,9 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
         Accept a structure made of several unconnected parts.
     progress : bool
         Show a progress bar over element batches.
+    lumped : bool
+        Lumped (diagonal, translational) element masses instead of consistent ones, as
+        Nastran's default ``PARAM COUPMASS -1`` (see :mod:`flexpipe.fem.lumped`).
 
     Returns
     -------
@@ -427,6 +431,10 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
                 f"ids {ids}; fix the node order/coordinates of these elements",
                 file=mesh.source or None,
             ) from None
+        if lumped:
+            from flexpipe.fem.lumped import lump
+
+            Me = lump(Me, fam.DOFS_PER_NODE)
         # exact symmetry of the element matrices makes the assembled ones exactly symmetric
         # (both triangles receive the same values in the same order)
         if not getattr(fam, "SYMMETRIC", False):

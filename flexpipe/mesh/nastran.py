@@ -458,11 +458,6 @@ def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:
     if "COUPMASS" in deck.params:
         c = deck.params["COUPMASS"]
         out["lumped_mass"] = c.int(1, "COUPMASS") <= 0
-        if out["lumped_mass"]:
-            warnings.warn(MeshWarning(
-                f"{c.file} line {c.line}: PARAM COUPMASS {c.raw(1)} asks for lumped mass; "
-                "flexpipe uses the coupled (consistent) mass, so frequencies differ slightly "
-                "from a lumped-mass Nastran run"), stacklevel=4)
     return out
 
 
