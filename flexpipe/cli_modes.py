@@ -85,7 +85,7 @@ def _material(args):
 
 def _check_file_materials(mesh) -> None:
     for bi, b in enumerate(mesh.blocks):
-        if b.type == "vertex" or len(b) == 0:
+        if b.type in ("vertex", "spring", "spring1") or len(b) == 0:
             continue
         covered = np.zeros(len(b), dtype=bool)
         for name, props in mesh.sections.items():

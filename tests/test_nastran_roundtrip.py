@@ -94,3 +94,31 @@ def test_hand_written_deck_round_trips_with_identical_matrices(tmp_path):
     assert b.solution["spc"] == "SPC3" and b.solution["n_modes"] == 8
     assert np.array_equal(a.dof_sets["SPC3"], b.dof_sets["SPC3"])
     assert len(b.interpolations) == 1 and len(b.rigid_links) == 1
+
+
+def test_rbe3_and_wedges_round_trip_through_abaqus(tmp_path):
+    deck = """BEGIN BULK
+MAT1,1,2.1+11,,0.3,7850.
+PSOLID,1,1
+GRID,1,,0.,0.,0.
+GRID,2,,1.,0.,0.
+GRID,3,,0.,1.,0.
+GRID,4,,0.,0.,1.
+GRID,5,,1.,0.,1.
+GRID,6,,0.,1.,1.
+GRID,7,,1.,1.,0.
+GRID,8,,1.,1.,1.
+GRID,9,,0.5,0.5,2.
+CPENTA,1,1,1,2,3,4,5,6
+CPENTA,2,1,2,7,3,5,8,6
+RBE3,3,,9,123456,1.0,123,4,5,2.0,123,6,8
+CONM2,4,9,,10.
+ENDDATA
+"""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = read_mesh(_write(tmp_path, "w.bdf", deck))
+        b = read_mesh(write_mesh(a, tmp_path / "w.inp"))
+    fa, fb = _fe(a), _fe(b)
+    for X, Y in ((fa.K, fb.K), (fa.M, fb.M), (fa.T, fb.T)):
+        assert abs(X - Y).max() <= 1e-12 * abs(X).max()

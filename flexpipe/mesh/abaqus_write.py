@@ -18,9 +18,9 @@ from flexpipe.mesh.mesh import Mesh
 from flexpipe.mesh.validate import MeshWarning
 
 ELEMENT_OF = {"tetra": "C3D4", "tetra10": "C3D10", "hexahedron": "C3D8", "triangle": "S3",
-              "quad": "S4", "line": "B31"}
+              "quad": "S4", "line": "B31", "wedge": "C3D6", "pyramid": "C3D5"}
 KIND = {"tetra": "solid", "tetra10": "solid", "hexahedron": "solid", "triangle": "shell",
-        "quad": "shell", "line": "beam"}
+        "quad": "shell", "line": "beam", "wedge": "solid", "pyramid": "solid"}
 
 
 def _q(name: str) -> str:
@@ -127,6 +127,11 @@ def abaqus_text(mesh: Mesh) -> str:
     for (E, nu, rho), name in materials.items():
         out += [f"*MATERIAL, NAME={name}", "*ELASTIC", f"{_r(E)}, {_r(nu)}", "*DENSITY", _r(rho)]
     for pm in mesh.point_masses:
+        if pm.matrix is not None:
+            from flexpipe.errors import InputError
+
+            raise InputError(f"point mass {pm.id} is a full 6x6 mass matrix (CONM1), which "
+                             "Abaqus MASS/ROTARYI elements cannot hold; write .bdf instead")
         if np.any(np.asarray(pm.offset) != 0):
             warnings.warn(MeshWarning(f"point mass {pm.id}: Abaqus MASS elements have no "
                                       "offset; the offset is not written"), stacklevel=3)
@@ -150,4 +155,19 @@ def abaqus_text(mesh: Mesh) -> str:
                 s0 = b
         for s in np.asarray(lk.slaves):
             out += [f"{int(nid[s])}, {a}, {b}" for a, b in runs]
+    for k, it in enumerate(mesh.interpolations):       # RBE3: distributing coupling
+        if any(c != "123" for c in (it.node_dofs or ("123",))):
+            from flexpipe.errors import InputError
+
+            raise InputError(f"RBE3 {it.id} ties independent components other than 123, "
+                             "which *DISTRIBUTING coupling cannot express; write .bdf")
+        name = f"RBE3_{k + 1}"
+        out.append(f"*SURFACE, TYPE=NODE, NAME={name}")
+        out += [f"{int(nid[n])}, {_r(w)}" for n, w in zip(np.asarray(it.nodes),
+                                                          np.asarray(it.weights), strict=True)]
+        out += [f"*COUPLING, REF NODE={int(nid[it.ref])}, SURFACE={name}", "*DISTRIBUTING"]
+        out += [f"{c}, {c}" for c in sorted(it.ref_dofs)]
+    if mesh.dof_sets or mesh.solution:
+        warnings.warn(MeshWarning("SPC sets and the solution set-up (EIGRL) are not written "
+                                  "to .inp (only to .bdf)"), stacklevel=3)
     return "\n".join(out) + "\n"
