@@ -131,11 +131,12 @@ def run(args) -> int:
     n = args.n if args.n is not None else (sol.get("n_modes") or 20)
     f_lo, f_hi = (None, None) if args.n is not None else (sol.get("f_min"), sol.get("f_max"))
     with _step(f"solving for {n} modes ({fe.Kr.shape[0]} DOF)", args.quiet):
-        freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed)
+        dirs = None if args.fixed else mesh.solution.get("spc_directions")
+        freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed, directions=dirs)
         while f_hi is not None and freqs[-1] < f_hi and sol.get("n_modes") is None \
                 and len(freqs) < fe.Kr.shape[0] - (0 if fixed is None else len(fixed)) - 1:
             n = min(2 * n, fe.Kr.shape[0] - 1 - (0 if fixed is None else len(fixed)))
-            freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed)
+            freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed, directions=dirs)
         keep = np.ones(len(freqs), dtype=bool)
         if f_lo is not None:
             keep &= freqs >= f_lo
@@ -175,7 +176,7 @@ def deck_fixed_dofs(mesh, dpn: int):
     """Global DOF held fixed by the deck's case-control SPC set and GRID PS, or None."""
     names = deck_sets(mesh)
     if not names:
-        return None
+        return None if mesh.solution.get("spc_directions") is None else np.zeros(0, np.int64)
     rows = np.vstack([np.asarray(mesh.dof_sets[k]).reshape(-1, 2) for k in names])
     rows = rows[rows[:, 1] < dpn]
     return np.unique(rows[:, 0] * dpn + rows[:, 1])

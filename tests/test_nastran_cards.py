@@ -279,3 +279,22 @@ def test_coupmass_lumped_rod_chain_matches_the_discrete_closed_form(tmp_path, co
         assert np.allclose(f, lumped, rtol=1e-10)
     else:   # consistent mass: above the lumped values (and above the exact rod)
         assert (f > lumped * 1.0001).all()
+
+
+def test_spc_on_a_cylindrical_cd_component_is_a_directional_constraint(tmp_path):
+    """Radial SPC (component 1 of a CORD2C displacement system) at theta = 30 deg: the
+    mass moves tangentially with stiffness K1 sin^2 + K2 cos^2 (and along z with K3)."""
+    from flexpipe.cli import main
+
+    K1, K2, K3, m = 1.0e4, 4.0e4, 9.0e4, 2.0
+    text = ("SOL 103\nCEND\nSPC = 7\nBEGIN BULK\n" + "\n".join([
+        "CORD2C,5,,0.,0.,0.,0.,0.,1.,+", "+,1.,0.,0.",
+        "GRID,1,5,1.,30.,0.,5", "CONM2,10,1,,2.0",
+        "CBUSH,20,21,1,,,,,0", f"PBUSH,21,K,{K1},{K2},{K3},1.,1.,1.",
+        "SPC1,7,1456,1", "EIGRL,1,,,2"]) + "\nENDDATA\n")
+    p = _write(tmp_path, "radial.bdf", text)
+    assert main(["modes", str(p), "-o", str(tmp_path / "o"), "-q"]) == 0
+    f = np.loadtxt(tmp_path / "o" / "frequencies.csv", delimiter=",", skiprows=1)[:, 1]
+    s, c = np.sin(np.radians(30)), np.cos(np.radians(30))
+    ref = np.sort(np.sqrt(np.array([K1 * s * s + K2 * c * c, K3]) / m) / (2 * np.pi))
+    assert np.allclose(f, ref, rtol=1e-10), (f, ref)

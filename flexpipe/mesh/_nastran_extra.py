@@ -16,9 +16,11 @@
   systems) and ``CBUSH``/``PBUSH`` (stiffness and viscous damping ``B``) -> ``spring`` /
   ``spring1`` cells whose matrices :mod:`flexpipe.fem.spring` computes.
 
-Components of grids with a ``CD`` system: scalar springs use the ``CD`` directions; SPC,
-RBE2/RBAR and RBE3 components must then be rotation-invariant (all of 1-3 or none, all
-of 4-6 or none) and are applied as given, otherwise an error says so.
+Components of grids with a ``CD`` system: scalar springs and SPCs use the ``CD``
+directions (an SPC on, say, the radial component of a cylindrical system becomes a
+directional constraint, ``Mesh.solution["spc_directions"]``, which ``flexpipe modes``
+applies exactly); RBE2/RBAR and RBE3 components must be rotation-invariant there (all of
+1-3 or none, all of 4-6 or none), otherwise an error says so.
 """
 
 from __future__ import annotations
@@ -67,8 +69,14 @@ def grid_list(card: Card, start: int, stop_words=()) -> tuple[list[int], int]:
     return out, k
 
 
-def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of):
-    """DOF sets ``{"SPC<sid>": (k, 2)}``; ``index(ids, card)`` -> node indices."""
+def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of, frames):
+    """DOF sets ``{"SPC<sid>": (k, 2)}`` and directional constraints.
+
+    ``index(ids, card)`` -> node indices; ``cd_of(node)`` -> CD id; ``frames(nodes,
+    card)`` -> displacement frames.  Components of a grid with a CD system that are not
+    rotation-invariant become directions ``{"SPC<sid>": (m, 5)}`` with rows (node, group
+    0 = translation / 1 = rotation, direction x, y, z in basic).
+    """
     raw: dict[int, list] = {}
     for c in spc:
         sid = c.int(0, "SID")
@@ -85,20 +93,30 @@ def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of
         if not grids:
             raise c.error("lists no grid points")
         raw.setdefault(sid, []).append((c, grids, comps))
-    sets = {}
+    sets, dirs = {}, {}
     for sid, items in raw.items():
-        rows = []
+        rows, drows = [], []
         for c, grids, comps in items:
             if not comps:
                 continue
             idx = index(grids, c)
-            for nd in idx:
+            plain = np.ones(len(idx), dtype=bool)
+            for k, nd in enumerate(idx):
                 if cd_of(nd) and not invariant(comps):
-                    raise c.error(f"components {comps} of a grid with a CD system: only 123, "
-                                  "456 or 123456 are supported there")
+                    plain[k] = False
+                    F = frames([nd], c)[0]
+                    for g, part in ((0, "123"), (1, "456")):
+                        sub = [int(ch) - 1 for ch in comps if ch in part]
+                        if len(sub) == 3:
+                            rows.append(np.array([[nd, 3 * g + j] for j in range(3)]))
+                        else:
+                            drows += [[nd, g, *F[:, j % 3]] for j in sub]
             cc = np.array([int(ch) - 1 for ch in comps])
+            idx = idx[plain]
             rows.append(np.column_stack([np.repeat(idx, len(cc)), np.tile(cc, len(idx))]))
         sets[sid] = np.unique(np.vstack(rows), axis=0) if rows else np.zeros((0, 2), np.int64)
+        if drows:
+            dirs[sid] = np.array(drows, dtype=float)
     for c in spcadd:
         sid = c.int(0, "SID")
         members, _ = grid_list(c, 1)
@@ -107,7 +125,11 @@ def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of
             raise c.error(f"refers to SPC set(s) {missing}, which no SPC/SPC1 card defines")
         sets[sid] = np.unique(np.vstack([sets[m] for m in members] + [sets.get(sid, np.zeros(
             (0, 2), np.int64))]), axis=0)
-    return {f"SPC{sid}": v for sid, v in sets.items()}
+        d = [dirs[m] for m in members + [sid] if m in dirs]
+        if d:
+            dirs[sid] = np.vstack(d)
+    return ({f"SPC{sid}": v for sid, v in sets.items()},
+            {f"SPC{sid}": v for sid, v in dirs.items()})
 
 
 def eigrl(card: Card) -> dict:

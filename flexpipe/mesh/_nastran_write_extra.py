@@ -80,6 +80,10 @@ def spring_cards(block, eids, nid, source) -> list[str]:
 
 def constraint_cards(mesh, nid, next_eid: int) -> list[str]:
     """RBE3, SPC1, SET1 (node sets named ``SET<n>``) and EIGRL cards."""
+    if mesh.solution.get("spc_directions") is not None:
+        raise InputError("the mesh carries SPCs in rotated displacement systems (CD), which "
+                         "the writer does not reproduce; keep the original deck",
+                         file=mesh.source or None)
     out = []
     for k, it in enumerate(mesh.interpolations):
         groups = {}

@@ -401,13 +401,15 @@ def read_nastran(path) -> Mesh:
               for c in deck.elements.get("RBE3", [])]
 
     # ---- constraints and solution set-up
-    dof_sets = extra.spc_sets(deck.spc["SPC"], deck.spc["SPC1"], deck.spc["SPCADD"], index,
-                              lambda nd: bool(cd[nd]))
+    dof_sets, spc_dirs = extra.spc_sets(deck.spc["SPC"], deck.spc["SPC1"], deck.spc["SPCADD"],
+                                        index, lambda nd: bool(cd[nd]), cd_frames)
     ps = [(int(k), ch) for k in np.flatnonzero(has_ps) for ch in extra.components(
         grids[k], 6, "PS", allow_zero=True)]
     if ps:
         dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
     solution = _solution(case, deck, dof_sets, path)
+    if solution.get("spc") in spc_dirs:
+        solution["spc_directions"] = spc_dirs[solution["spc"]]
 
     node_sets = {}
     gid_set = set(gid.tolist()) if deck.sets else set()

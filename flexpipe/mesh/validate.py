@@ -89,9 +89,15 @@ def prune(mesh: Mesh, keep: np.ndarray) -> Mesh:
         v = np.asarray(v, dtype=np.int64).reshape(-1, 2)
         n = new_of[v[:, 0]]
         dof_sets[k] = np.column_stack([n, v[:, 1]])[n >= 0]
+    solution = dict(mesh.solution)
+    if "spc_directions" in solution:      # rows (node, group, direction) of flexpipe modes
+        d = np.array(solution["spc_directions"], dtype=float)
+        n = new_of[d[:, 0].astype(np.int64)]
+        d[:, 0] = n
+        solution["spc_directions"] = d[n >= 0]
     return replace(mesh, points=mesh.points[keep], node_ids=mesh.node_ids[keep],
                    blocks=blocks, node_sets=node_sets, point_masses=masses, rigid_links=links,
-                   interpolations=interp, dof_sets=dof_sets)
+                   interpolations=interp, dof_sets=dof_sets, solution=solution)
 
 
 def _check_repeated_nodes(mesh: Mesh) -> None:
