@@ -298,3 +298,22 @@ def test_spc_on_a_cylindrical_cd_component_is_a_directional_constraint(tmp_path)
     s, c = np.sin(np.radians(30)), np.cos(np.radians(30))
     ref = np.sort(np.sqrt(np.array([K1 * s * s + K2 * c * c, K3]) / m) / (2 * np.pi))
     assert np.allclose(f, ref, rtol=1e-10), (f, ref)
+
+
+def test_abaqus_bushing_connector_equals_cbush(tmp_path):
+    ks, bs = [1e5, 2e5, 3e5, 40.0, 50.0, 60.0], [1.0, 2.0, 3.0, 0.4, 0.5, 0.6]
+    bdf = _deck("GRID,1,,0.,0.,0.", "GRID,2,,0.,0.,0.", "CBUSH,5,6,1,2,,,,0",
+                "PBUSH,6,K," + ",".join(map(str, ks)) + ",,B," + ",".join(map(str, bs)),
+                "CONM2,7,2,,2.0")
+    inp = ["*NODE", "1, 0., 0., 0.", "2, 0., 0., 0.", "*ELEMENT, TYPE=CONN3D2, ELSET=C",
+           "5, 1, 2", "*CONNECTOR SECTION, ELSET=C, BEHAVIOR=B1", "BUSHING,",
+           "*ELEMENT, TYPE=MASS, ELSET=M", "7, 2", "*MASS, ELSET=M", "2.0",
+           "*CONNECTOR BEHAVIOR, NAME=B1"]
+    for c in range(6):
+        inp += [f"*CONNECTOR ELASTICITY, COMPONENT={c + 1}", f"{ks[c]},",
+                f"*CONNECTOR DAMPING, COMPONENT={c + 1}", f"{bs[c]},"]
+    a = assemble(read_mesh(_write(tmp_path, "b.bdf", bdf)))
+    b = assemble(read_mesh(_write(tmp_path, "b.inp", "\n".join(inp) + "\n")))
+    for X, Y in ((a.K, b.K), (a.M, b.M), (a.C, b.C), (a.T, b.T)):
+        assert abs(X - Y).max() <= 1e-12 * abs(X).max()
+    assert np.allclose(b.K.diagonal()[:6], ks) and np.allclose(b.C.diagonal()[:6], bs)

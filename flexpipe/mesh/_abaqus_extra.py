@@ -233,3 +233,57 @@ def _springs(deck, cells_of, blocks):
             raise MeshError(f"{len(bad)} {t.upper()} element(s) have no *SPRING section, e.g. "
                             f"{eids[bad[:10]].tolist()}", file=str(deck.path))
     return out
+
+
+#: connection types and the components they make available (1-3 translations, 4-6 rotations)
+CONNECTION = {"BUSHING": "123456", "CARTESIAN": "123", "CARDAN": "456", "ROTATION": "456",
+              "EULER": "456"}
+
+
+def _connectors(deck, cells_of, blocks, X, index):
+    """Block data of CONN3D2 connectors: linear uncoupled elasticity and damping along the
+    global axes (BUSHING, or CARTESIAN with CARDAN/ROTATION/EULER), between coincident
+    nodes; stored like a Nastran CBUSH (``K``, ``B``, ``k6``, ``b6``, ``frame``, ``s``)."""
+    from flexpipe.fem import spring
+
+    conn_block = next((b for b in blocks if b[0] == "connector"), None)
+    if conn_block is None:
+        return {}
+    _, conn, eids = conn_block
+    n = len(eids)
+    k6 = np.full((n, 6), np.nan)
+    b6 = np.zeros((n, 6))
+    for elset, types, behavior, f, ln in deck.connectors:
+        bad = [t for t in types if t not in CONNECTION]
+        if bad or not types:
+            raise MeshError(f"*CONNECTOR SECTION connection type {bad or types}; supported: "
+                            f"{', '.join(CONNECTION)}", file=f, line=ln)
+        avail = "".join(sorted(set("".join(CONNECTION[t] for t in types))))
+        beh = deck.behaviors.get(behavior)
+        if beh is None:
+            raise MeshError(f"*CONNECTOR SECTION refers to BEHAVIOR '{behavior}', which is not "
+                            "defined (a *CONNECTOR BEHAVIOR with that NAME)", file=f, line=ln)
+        used = set(beh["K"]) | set(beh["B"])
+        if any(str(c) not in avail for c in used):
+            raise MeshError(f"*CONNECTOR BEHAVIOR {behavior} gives components {sorted(used)}, "
+                            f"but {'+'.join(types)} makes only {avail} available", file=f,
+                            line=ln)
+        _, members = cells_of(elset, f, ln, "*CONNECTOR SECTION")
+        cells = members.get("connector", [])
+        k6[cells] = [beh["K"].get(c, 0.0) for c in range(1, 7)]
+        b6[cells] = [beh["B"].get(c, 0.0) for c in range(1, 7)]
+    missing = np.flatnonzero(np.isnan(k6).any(axis=1))
+    if missing.size:
+        raise MeshError(f"{missing.size} CONN3D2 element(s) have no *CONNECTOR SECTION, e.g. "
+                        f"{eids[missing[:10]].tolist()}", file=str(deck.path))
+    XA, XB = X[conn[:, 0]], X[conn[:, 1]]
+    size = max(float(np.ptp(X, axis=0).max()), 1e-300)
+    apart = np.flatnonzero(np.linalg.norm(XB - XA, axis=1) > 1e-9 * size)
+    if apart.size:
+        raise MeshError(f"{apart.size} CONN3D2 connector(s) join nodes that are apart, e.g. "
+                        f"element {int(eids[apart[0]])}; only coincident nodes are supported",
+                        file=str(deck.path))
+    R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
+    s = np.full(n, 0.5)
+    return {"K": spring.bush(XA, XB, R, k6, s), "B": spring.bush(XA, XB, R, b6, s), "k6": k6,
+            "b6": b6, "frame": R, "s": s}

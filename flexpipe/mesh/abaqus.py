@@ -29,7 +29,14 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import MeshError
-from flexpipe.mesh._abaqus_extra import _beam_section, _couplings, _couplings2, _masses, _springs
+from flexpipe.mesh._abaqus_extra import (
+    _beam_section,
+    _connectors,
+    _couplings,
+    _couplings2,
+    _masses,
+    _springs,
+)
 from flexpipe.mesh._abaqus_extra import values as _values
 from flexpipe.mesh.mesh import CellBlock, Mesh
 from flexpipe.mesh.nastran import drop_orientation_nodes
@@ -45,12 +52,13 @@ _TYPES = {"tetra": ("C3D4", "C3D4H"),
           "pyramid": ("C3D5", "C3D5H"),
           "spring1": ("SPRING1",),
           "spring": ("SPRING2",),
+          "connector": ("CONN3D2",),
           "mass": ("MASS", "ROTARYI")}
 TYPE_OF = {a: t for t, names in _TYPES.items() for a in names}
 NODES = {"tetra": 4, "tetra10": 10, "hexahedron": 8, "triangle": 3, "quad": 4, "line": 2,
-         "wedge": 6, "pyramid": 5, "spring1": 1, "spring": 2, "mass": 1}
+         "wedge": 6, "pyramid": 5, "spring1": 1, "spring": 2, "connector": 2, "mass": 1}
 UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "DISTRIBUTING COUPLING", "RIGID BODY",
-                        "MEMBRANE SECTION", "CONNECTOR SECTION", "TRANSFORM", "SYSTEM",
+                        "MEMBRANE SECTION", "TRANSFORM", "SYSTEM", "CONNECTOR PLASTICITY",
                         "NGEN", "NFILL", "NCOPY", "NMAP", "ELGEN", "ELCOPY", "BEAM ADDED INERTIA",
                         "NONSTRUCTURAL MASS")
 #: keywords this reader acts on (a near miss of one of these is taken as a typo)
@@ -58,7 +66,8 @@ HANDLED_KEYWORDS = ("NODE", "ELEMENT", "NSET", "ELSET", "SOLID SECTION", "SHELL 
                     "BEAM SECTION", "BEAM GENERAL SECTION", "MATERIAL", "ELASTIC", "DENSITY",
                     "MASS", "ROTARY INERTIA", "KINEMATIC COUPLING", "COUPLING",
                     "DISTRIBUTING", "KINEMATIC", "SURFACE", "SPRING", "INSTANCE", "STEP",
-                    "INCLUDE")
+                    "INCLUDE", "CONNECTOR SECTION", "CONNECTOR BEHAVIOR",
+                    "CONNECTOR ELASTICITY", "CONNECTOR DAMPING")
 #: keywords that do not change M or K (listed in ``Mesh.info["dropped"]``)
 IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY",
                     "END INSTANCE", "BOUNDARY", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
@@ -136,6 +145,9 @@ class _Deck:
         self.pending = None     # (ref node, surface, file, line) of an open *COUPLING
         self.couplings2 = []    # (KINEMATIC|DISTRIBUTING, ref, surface, file, line, dofs)
         self.springs = []       # (elset, rows, file, line)
+        self.connectors = []    # (elset, connection types, behavior, file, line)
+        self.behaviors: dict[str, dict] = {}
+        self.behavior = None
         self.dropped: dict[str, int] = {}
 
     def set_key(self, table: dict, name: str):
@@ -195,6 +207,11 @@ def _parse(path: Path) -> _Deck:
             raise MeshError(f"data line outside a keyword block: '{text[:40]}'", file=f, line=ln)
         kw = text[1:].split(",")[0].strip().upper()
         p = _params(text)
+        if deck.pending is not None and kw not in ("DISTRIBUTING", "KINEMATIC"):
+            raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
+                            file=deck.pending[2], line=deck.pending[3])
+        if kw not in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING"):
+            deck.behavior = None            # connector behaviour options end here
         if kw == "STEP":
             break
         if kw == "NODE":
@@ -347,6 +364,34 @@ def _parse(path: Path) -> _Deck:
                 dofs += "".join(str(d) for d in range(v[0], last + 1))
             deck.couplings2.append((kw, *deck.pending, "".join(sorted(set(dofs or "123456")))))
             deck.pending = None
+        elif kw == "CONNECTOR SECTION":
+            rows = _rows(lines, f, ln, "*CONNECTOR SECTION")
+            types = [t.strip().upper() for t in rows[0][2].split(",") if t.strip()]
+            if len(rows) > 1:
+                raise MeshError("*CONNECTOR SECTION with an orientation line is not supported "
+                                "(connector axes are the global axes)", file=rows[1][0],
+                                line=rows[1][1])
+            deck.connectors.append((p.get("ELSET"), types, p.get("BEHAVIOR", "").upper(), f,
+                                    ln))
+        elif kw == "CONNECTOR BEHAVIOR":
+            deck.behavior = p.get("NAME", "").upper()
+            deck.behaviors.setdefault(deck.behavior, {"K": {}, "B": {}})
+        elif kw in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING"):
+            if deck.behavior is None:
+                raise MeshError(f"*{kw} outside a *CONNECTOR BEHAVIOR", file=f, line=ln)
+            if "NONLINEAR" in p or "RIGID" in p or "COMPONENT" not in p:
+                raise MeshError(f"*{kw}: only linear, uncoupled COMPONENT=<1..6> data is "
+                                "supported", file=f, line=ln)
+            comp = p["COMPONENT"]
+            if not comp.isdigit() or not 1 <= int(comp) <= 6:
+                raise MeshError(f"*{kw}: COMPONENT={comp}; valid: 1..6", file=f, line=ln)
+            rows = _rows(lines, f, ln, f"*{kw}")
+            v = _values(*rows[0], f"*{kw}", count=1)[0]
+            if not (np.isfinite(v) and v >= 0):
+                raise MeshError(f"*{kw} {v:g}; valid: finite and >= 0", file=rows[0][0],
+                                line=rows[0][1])
+            key = "K" if kw == "CONNECTOR ELASTICITY" else "B"
+            deck.behaviors[deck.behavior][key][int(comp)] = v
         elif kw == "SPRING":
             if "ORIENTATION" in p or "NONLINEAR" in p:
                 raise MeshError("*SPRING with ORIENTATION= or NONLINEAR is not supported",
@@ -375,6 +420,9 @@ def _parse(path: Path) -> _Deck:
             deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
             for _ in lines.data():
                 pass
+    if deck.pending is not None:
+        raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
+                        file=deck.pending[2], line=deck.pending[3])
     return deck
 
 
@@ -464,11 +512,15 @@ def read_abaqus(path) -> Mesh:
     links = _couplings(deck, index)
     more_links, interp = _couplings2(deck, index)
     spring_k = _springs(deck, cells_of, blocks)
+    conn_data = _connectors(deck, cells_of, blocks, np.asarray(deck.coords, dtype=float),
+                            index)
     out_blocks, n1_nodes = [], np.zeros(0, dtype=np.int64)
     for t, conn, eids in blocks:
         data = {}
         if t in ("spring", "spring1"):
             data["K"] = spring_k[t]
+        if t == "connector":
+            data = conn_data
         if t == "line":
             ori = np.full((len(eids), 3), np.nan)
             for c, v in orient.items():
@@ -481,7 +533,8 @@ def read_abaqus(path) -> Mesh:
                 ori[k] = np.asarray(deck.coords)[g] - np.asarray(deck.coords)[conn[k, 0]]
                 n1_nodes = g
             data["orientation"] = ori
-        out_blocks.append(CellBlock(t, conn, eids, np.zeros(len(eids), np.int64), data))
+        out_blocks.append(CellBlock("spring" if t == "connector" else t, conn, eids,
+                                    np.zeros(len(eids), np.int64), data))
     mesh = Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
                 node_ids=gid, node_sets=node_sets, cell_sets=cell_sets, point_masses=masses,
                 rigid_links=links + more_links, sections=sections, source=str(path),

@@ -11,7 +11,7 @@ from __future__ import annotations
 NODES = ["1, 0., 0., 0.", "2, 1., 0., 0.", "3, 1., 1., 0.", "4, 0., 1., 0.",
          "5, 0., 0., 1.", "6, 1., 0., 1.", "7, 1., 1., 1.", "8, 0., 1., 1.",
          "9, 2., 0., 0.", "10, 2., 0., 1.", "11, 0., 1., 2.", "12, 3., 0., 0.",
-         "13, 0.5, 0.5, -0.5", "14, 0.5, 0.5, 1.5"]
+         "13, 0.5, 0.5, -0.5", "14, 0.5, 0.5, 1.5", "15, 3., 0., 0."]
 BASE = ["*HEADING", "flexpipe bad-input base deck", "*NODE", *NODES,
         "*ELEMENT, TYPE=C3D8, ELSET=SOLID", "1, 1, 2, 3, 4, 5, 6, 7, 8",
         "*ELEMENT, TYPE=C3D6, ELSET=SOLID", "2, 2, 9, 3, 6, 10, 7",
@@ -21,6 +21,8 @@ BASE = ["*HEADING", "flexpipe bad-input base deck", "*NODE", *NODES,
         "*ELEMENT, TYPE=MASS, ELSET=M1", "6, 11",
         "*ELEMENT, TYPE=MASS, ELSET=M2", "7, 12",
         "*ELEMENT, TYPE=MASS, ELSET=M3", "8, 14",
+        "*ELEMENT, TYPE=CONN3D2, ELSET=CONN", "9, 12, 15",
+        "*ELEMENT, TYPE=MASS, ELSET=M4", "10, 15",
         "*NSET, NSET=TOP", "5, 6, 7, 8", "*NSET, NSET=BOT, GENERATE", "1, 4, 1",
         "*SOLID SECTION, ELSET=SOLID, MATERIAL=STEEL",
         "*SHELL SECTION, ELSET=SHELL, MATERIAL=STEEL", "0.01",
@@ -28,6 +30,11 @@ BASE = ["*HEADING", "flexpipe bad-input base deck", "*NODE", *NODES,
         "0.05, 0.1, 0.05, 0.05, 0.005, 0.005, 0.004", "1., 0., 0.",
         "*SPRING, ELSET=SPR", "1, 1", "1.E6",
         "*MASS, ELSET=M1", "2.0", "*MASS, ELSET=M2", "3.0", "*MASS, ELSET=M3", "1.0",
+        "*MASS, ELSET=M4", "4.0",
+        "*CONNECTOR SECTION, ELSET=CONN, BEHAVIOR=BUSH", "BUSHING,",
+        "*CONNECTOR BEHAVIOR, NAME=BUSH", "*CONNECTOR ELASTICITY, COMPONENT=1", "1.E5,",
+        "*CONNECTOR ELASTICITY, COMPONENT=2", "2.E5,", "*CONNECTOR DAMPING, COMPONENT=1",
+        "10.,",
         "*KINEMATIC COUPLING, REF NODE=13", "BOT, 1, 3",
         "*SURFACE, TYPE=NODE, NAME=TOPS", "TOP, 1.0",
         "*COUPLING, REF NODE=14, SURFACE=TOPS", "*DISTRIBUTING", "1, 6",
@@ -170,6 +177,31 @@ def cases():
             ("ref_node_on_surface", "TOP, 1.0", ["TOP, 1.0", "14, 1.0"]),
             ("nset_with_elset", "*NSET, NSET=TOP", "*NSET, NSET=TOP, ELSET=SHELL")):
         yield name, f"{name}.inp", _deck(_replace(old, new)), "error"
+    # ---- connectors
+    for name, old, new in (
+            ("connector_undefined_behavior", "*CONNECTOR SECTION, ELSET=CONN, BEHAVIOR=BUSH",
+             "*CONNECTOR SECTION, ELSET=CONN, BEHAVIOR=NOPE"),
+            ("connector_unknown_type", "BUSHING,", "HINGE,"),
+            ("connector_orientation", "BUSHING,", ["BUSHING,", "ORI1,"]),
+            ("connector_nonlinear", "*CONNECTOR ELASTICITY, COMPONENT=1",
+             "*CONNECTOR ELASTICITY, COMPONENT=1, NONLINEAR"),
+            ("connector_component_7", "*CONNECTOR ELASTICITY, COMPONENT=1",
+             "*CONNECTOR ELASTICITY, COMPONENT=7"),
+            ("connector_negative_k", "1.E5,", "-1.E5,"),
+            ("connector_nan_damping", "10.,", "nan,"),
+            ("connector_component_not_available", "BUSHING,", "CARDAN,"),
+            ("connector_nodes_apart", "15, 3., 0., 0.", "15, 3., 1., 0."),
+            ("connector_no_elasticity_data", "1.E5,", None),
+            ("connector_outside_behavior", "*CONNECTOR BEHAVIOR, NAME=BUSH", None)):
+        yield name, f"{name}.inp", _deck(_replace(old, new)), "error"
+    yield "coupling_without_distributing", "nodist.inp", _deck([
+        ln for ln in BASE if ln not in ("*DISTRIBUTING", "1, 6")]), "error"
+    yield "connector_elasticity_after_material", "late.inp", _deck(_replace(
+        "*STEP", ["*CONNECTOR ELASTICITY, COMPONENT=3", "3.E5,", "*STEP"])), "error"
+    yield "connector_without_section", "noconn.inp", _deck([ln for ln in BASE if ln not in (
+        "*CONNECTOR SECTION, ELSET=CONN, BEHAVIOR=BUSH", "BUSHING,")]), "error"
+    yield "connector_cartesian_cardan", "cc.inp", _deck(_replace(
+        "BUSHING,", "CARTESIAN, CARDAN")), "ok"
     yield "spring_without_section", "nospring.inp", _deck([ln for ln in BASE if ln not in (
         "*SPRING, ELSET=SPR", "1, 1", "1.E6")]), "error"
     # ---- unknown, misspelt and unsupported keywords / element types
