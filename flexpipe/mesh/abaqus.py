@@ -5,19 +5,28 @@ Keywords read
 ``*NODE`` (``NSET=``), ``*ELEMENT`` (``TYPE=``, ``ELSET=``), ``*NSET``/``*ELSET``
 (lists, set names, ``GENERATE``), ``*SOLID SECTION``, ``*SHELL SECTION`` (thickness),
 ``*BEAM GENERAL SECTION`` (``SECTION=GENERAL``: A, I11, I12, I22, J; n1; E, G;
-``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``; n1),
-``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``, ``MASS``/``ROTARYI``
-elements with ``*MASS``/``*ROTARY INERTIA``, ``*KINEMATIC COUPLING`` (a rigid spider,
-like Nastran RBE2), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
-positioning.  Reading stops at the first ``*STEP``.
+``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``, ``BOX``, ``I``,
+``L``; n1), ``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``,
+``MASS``/``ROTARYI`` elements with ``*MASS``/``*ROTARY INERTIA``, ``*KINEMATIC
+COUPLING`` and ``*COUPLING`` + ``*KINEMATIC`` (rigid spiders, like Nastran RBE2),
+``*COUPLING`` + ``*DISTRIBUTING`` on a ``*SURFACE, TYPE=NODE`` (= Nastran RBE3, weights
+from the surface), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connectors with
+``*CONNECTOR SECTION`` / ``*CONNECTOR BEHAVIOR`` (linear uncoupled elasticity and
+damping: Nastran CBUSH), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
+positioning.  Reading stops at the first ``*STEP``; keywords that do not change M or K
+are listed in one warning and in ``Mesh.info["dropped"]``.  Helpers in
+:mod:`flexpipe.mesh._abaqus_extra`.
 
 Element types: ``C3D4*`` -> tetra, ``C3D10*`` -> tetra10, ``C3D8*`` -> hexahedron,
-``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad, ``B31*``/``B33*`` -> line (beam local
-1-axis = Abaqus n1 = flexpipe local y; an optional third beam node gives n1 and is
-dropped after use).  Every ``*ELSET`` is a cell set, every
-``*NSET`` a node set; sections are stored under their ``ELSET`` name.  Other element
-types and constraints (``*MPC``, ``*TIE``, ``*EQUATION``, ``*COUPLING``) raise
-:class:`~flexpipe.errors.MeshError`: dropping them would change the structure.
+``C3D6*`` -> wedge, ``C3D5*`` -> pyramid, ``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad,
+``B31*``/``B33*`` -> line (Euler-Bernoulli; beam local 1-axis = Abaqus n1 = flexpipe local
+y; an optional third beam node gives n1 and is dropped after use).  An element line that
+does not end with a comma ends its element: too few nodes is an error, never a silently
+shifted connectivity.  Every ``*ELSET`` is a cell set, every ``*NSET`` a node set;
+sections are stored under their ``ELSET`` name.  Other element types and constraints
+(``*MPC``, ``*TIE``, ``*EQUATION``, ``*TRANSFORM``, ``*NGEN`` ...) and near misses of the
+keywords read (``*ELEMNT``) raise :class:`~flexpipe.errors.MeshError`: dropping them
+would change the structure.
 """
 
 from __future__ import annotations

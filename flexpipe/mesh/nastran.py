@@ -11,7 +11,8 @@ of GA, end offsets ``WA``/``WB`` applied), ``CROD``/``CONROD``, ``CELAS1``/``CEL
 ``CBUSH``, ``CONM1``, ``CONM2``, ``RBE2``, ``RBE3``, ``RBAR``.
 Properties and materials: see :mod:`flexpipe.mesh._nastran_props` (``PSHELL``,
 ``PSOLID``, ``PBAR``, ``PBEAM``, ``PBARL``, ``PBEAML``, ``PROD``, ``PELAS``, ``PBUSH``,
-``MAT1``); ``SET1`` lists of grids become node sets ``"SET<sid>"``.  Constraints and
+``PCOMP``/``PCOMPG`` with ``MAT8``/``MAT1`` plies, ``MAT1``); ``SET1`` lists of grids
+become node sets ``"SET<sid>"``.  Constraints and
 set-up: see :mod:`flexpipe.mesh._nastran_extra` (``SPC``,
 ``SPC1``, ``SPCADD``, ``EIGRL``, case control ``SPC``/``METHOD``, ``PARAM WTMASS``,
 ``PARAM COUPMASS``).
@@ -25,8 +26,10 @@ Strictness and tolerance (as Nastran)
 * Cards this reader does not use are listed in **one** warning at the end (count and
   first line per name) and recorded in ``Mesh.info["dropped"]``; a name that looks like a
   misspelt element/property/material card (``CQAUD4``) is an error; elements this reader
-  cannot model (``CQUADR``, ``CGAP``, ...) and ``PCOMP``/``MAT8`` laminates raise
+  cannot model (``CQUADR``, ``CGAP``, ``MPC``, ...) raise
   :class:`~flexpipe.errors.MeshError`, because dropping them would change the structure.
+* A vectorized fast path parses plain small-field GRID/CQUAD4/CTRIA3 lines (most of a
+  body deck); anything it cannot convert exactly is parsed card by card.
 
 Every element gets the cell set ``"PID<n>"`` (``"CONROD<eid>"`` for CONRODs) and
 ``Mesh.sections`` holds the resolved section and material, in the units of the file (see
