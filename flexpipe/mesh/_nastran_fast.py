@@ -89,7 +89,8 @@ def shells(lines: list[str], seq, nodes: int) -> dict | None:
         return None
     if (g == 0).any():
         return None
-    return {"eid": eid, "pid": pid, "g": g, "zoffs": z, "seq": np.asarray(seq, np.int64)}
+    return {"eid": eid, "pid": pid, "g": g, "zoffs": z, "theta": A[:, 2 + nodes] != BLANK,
+            "seq": np.asarray(seq, np.int64)}
 
 
 class Lazy:

@@ -304,7 +304,7 @@ def read_nastran(path) -> Mesh:
     for cell_type in sorted(els, key=first_seq):
         items = els[cell_type]
         cols = cell_arrays(cell_type, items, fshell.get(cell_type), fast, gid, sorter)
-        eid, pid, conn, zoff, user_of = cols
+        eid, pid, conn, zoff, theta, user_of = cols
         data = {}
         if cell_type == "line":
             ori, w, g0 = line_data(items, X, conn, cd_frames, gid, sorter)
@@ -333,6 +333,11 @@ def read_nastran(path) -> Mesh:
             if card.name in UNSUPPORTED_PROPERTIES:
                 raise card.error(f"{card.name} is not supported; give an equivalent PSHELL "
                                  "or pass thickness and material to assemble() for this PID")
+            if card.name in ("PCOMP", "PCOMPG") and theta is not None and theta[members].any():
+                bad = user_of(int(members[np.argmax(theta[members])]))
+                raise bad.error(f"THETA/MCID material orientation on an element of {card.name} "
+                                f"{card.label()} is not supported; ply angles are taken from "
+                                "the element x axis (G1 -> G2 side)")
             if name not in sections:
                 sections[name] = (nprops.composite(card, deck.mats, wtmass)
                                   if card.name in ("PCOMP", "PCOMPG")

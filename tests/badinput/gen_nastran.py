@@ -204,6 +204,8 @@ def cases():
              "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.", "error"),
             ("symmetric_pcomp", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.,,8,0.005,90.\n"
              "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.", "ok"),
+            ("pcomp_with_element_theta", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
+             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.\nCQUAD4,90,2,5,6,7,8,30.", "error"),
             ("pcomp_ply_material_missing", "PCOMP,2,,,,,,,SYM,+\n+,9,0.005,0.", "error"),
             ("mat8_negative_e2", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
              "MAT8,8,140.+9,-10.+9,0.3,5.+9,,,1600.", "error"),
