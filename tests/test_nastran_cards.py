@@ -317,3 +317,15 @@ def test_abaqus_bushing_connector_equals_cbush(tmp_path):
     for X, Y in ((a.K, b.K), (a.M, b.M), (a.C, b.C), (a.T, b.T)):
         assert abs(X - Y).max() <= 1e-12 * abs(X).max()
     assert np.allclose(b.K.diagonal()[:6], ks) and np.allclose(b.C.diagonal()[:6], bs)
+
+
+def test_massless_deck_is_a_clear_error(tmp_path):
+    from flexpipe.errors import ModelError
+
+    p = _write(tmp_path, "norho.bdf", _deck(
+        "GRID,1,,0.,0.,0.", "GRID,2,,1.,0.,0.", "GRID,3,,0.,1.,0.", "GRID,4,,0.,0.,1.",
+        "CTETRA,1,1,1,2,3,4", "PSOLID,1,1", "MAT1,1,2.1+11,,0.3"))
+    with pytest.warns(MeshWarning, match="MAT1 1 has no RHO"):
+        fe = assemble(read_mesh(p))
+    with pytest.raises(ModelError, match=r"norho.bdf: the model has no mass"):
+        eigenmodes(fe, 3)

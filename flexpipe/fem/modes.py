@@ -123,7 +123,13 @@ def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol
         # M may be singular (massless DOF): solve M x = mu (K - sigma M) x, whose
         # B-matrix is positive definite, and map back with lambda = sigma + 1/mu
         A = Kd - sigma * Md
-        mu, X = sla.eigh(Md, A, subset_by_index=[ndof - n, ndof - 1])
+        try:
+            mu, X = sla.eigh(Md, A, subset_by_index=[ndof - n, ndof - 1])
+        except np.linalg.LinAlgError:
+            raise ModelError(
+                "K - sigma M is not positive definite: the shift is not below the lowest "
+                "eigenvalue, or DOF have neither stiffness nor mass (check materials, "
+                "densities and supports)") from None
         lam = sigma + 1.0 / mu[::-1]
         X = X[:, ::-1]
         mm = np.einsum("ij,ij->j", X, Md @ X)
@@ -251,6 +257,10 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
     if not isinstance(n, (int, np.integer)) or n < 1:
         raise InputError(f"n must be a positive integer, got {n!r}")
     Kr, Mr = fe.Kr, fe.Mr
+    where = f"{fe.mesh.source}: " if fe.mesh is not None and fe.mesh.source else ""
+    if not (Mr.diagonal() > 0).any():
+        raise ModelError(f"{where}the model has no mass (every density and point mass is "
+                         "zero, e.g. MAT1 without RHO); give densities to compute modes")
     keep = np.arange(Kr.shape[0])
     R = rigid_body_modes(fe) if deflate_rigid else None
     if fixed_dofs is not None and len(np.atleast_1d(fixed_dofs)):
