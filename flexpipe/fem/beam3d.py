@@ -139,12 +139,45 @@ def _offset(K, wa, wb):
     return np.matmul(T.transpose(0, 2, 1), np.matmul(K, T))
 
 
+def _release(K, M, mask):
+    """Condense released local DOF (pin flags) out of local K and M.
+
+    ``mask`` (ne,) bit ``d`` set: local DOF ``d`` (0-5 end A, 6-11 end B) is released, i.e.
+    an internal DOF of the element.  Static condensation ``T = [I; -Krr^-1 Krk]``:
+    ``K <- T^T K T`` (exact) and ``M <- T^T M T`` (Guyan); released rows stay zero.
+    """
+    for m in np.unique(mask[mask > 0]):
+        sel = np.flatnonzero(mask == m)
+        r = np.array([d for d in range(12) if int(m) >> d & 1])
+        k = np.setdiff1d(np.arange(12), r)
+        Ks, Ms = K[sel], M[sel]
+        Krr = Ks[:, r][:, :, r]
+        Krk = Ks[:, r][:, :, k]
+        try:
+            G = -np.linalg.solve(Krr, Krk)                   # released = G @ kept
+        except np.linalg.LinAlgError:
+            raise BadElements(sel, "released (pin flags) in components without stiffness "
+                              "(e.g. torsion with J = 0)") from None
+        T = np.zeros((len(sel), 12, len(k)))
+        T[:, k, np.arange(len(k))] = 1.0
+        T[:, r, :] = G
+        Kc = T.transpose(0, 2, 1) @ Ks @ T
+        Mc = T.transpose(0, 2, 1) @ Ms @ T
+        Kn, Mn = np.zeros_like(Ks), np.zeros_like(Ms)
+        Kn[:, k[:, None], k] = 0.5 * (Kc + Kc.transpose(0, 2, 1))
+        Mn[:, k[:, None], k] = 0.5 * (Mc + Mc.transpose(0, 2, 1))
+        K[sel], M[sel] = Kn, Mn
+    return K, M
+
+
 def matrices(X, *, E, nu, rho, A, Iy, Iz, J, orientation=None, k1=0.0, k2=0.0, theta=0.0,
-             offset_a=None, offset_b=None, **_):
+             offset_a=None, offset_b=None, release=None, **_):
     """Stiffness and consistent mass of 3D beams, see :mod:`flexpipe.fem._element`.
 
     ``offset_a``, ``offset_b`` (ne, 3): rigid offsets (Nastran CBAR WA, WB in basic) from
-    the nodes to the beam ends; the beam lies between the offset ends.
+    the nodes to the beam ends; the beam lies between the offset ends.  ``release`` (ne,)
+    bit masks of released end DOF in element axes (Nastran pin flags PA, PB), condensed
+    out by :func:`_release`.
     """
     X = np.asarray(X, dtype=float)
     offs = offset_a is not None and offset_b is not None and (np.any(offset_a)
@@ -190,6 +223,8 @@ def matrices(X, *, E, nu, rho, A, Iy, Iz, J, orientation=None, k1=0.0, k2=0.0, t
                                    p2[t])
     _place(M, m_b1, [1, 5, 7, 11])
     _place(M, m_b2, [2, 4, 8, 10], sign=[1, -1, 1, -1])
+    if release is not None and np.any(release):
+        K, M = _release(K, M, np.broadcast_to(np.asarray(release, dtype=np.int64), (ne,)))
     K5 = K.reshape(ne, 4, 3, 4, 3)
     M5 = M.reshape(ne, 4, 3, 4, 3)
     Kg = np.einsum("eji,eajbl,elk->eaibk", R, K5, R, optimize=True).reshape(ne, 12, 12)

@@ -223,4 +223,6 @@ def beam_props(mesh, bi, block, beam_section):
     for key in ("offset_a", "offset_b"):
         if key in block.data:
             props[key] = np.asarray(block.data[key], dtype=float)
+    if "release" in block.data:
+        props["release"] = np.asarray(block.data["release"], dtype=np.int64)
     return props

@@ -72,10 +72,11 @@ def element(card: Card, els: dict) -> None:
 
 
 def line_data(items, X, conn, cd_frames, gid, sorter):
-    """Orientation vectors and end offsets of CBAR/CBEAM/CROD cells."""
+    """Orientation vectors, end offsets and pin-flag masks of CBAR/CBEAM/CROD cells."""
     n = len(items)
     ori = np.full((n, 3), np.nan)
     w = np.zeros((n, 6))
+    rel = np.zeros(n, dtype=np.int64)
     g0_nodes = []
     for k, (c, _, _, _) in enumerate(items):
         if c.name not in ("CBAR", "CBEAM"):
@@ -88,9 +89,10 @@ def line_data(items, X, conn, cd_frames, gid, sorter):
             vals = [c.real(4 + j, f"X{j + 1}", None) for j in range(3)]
             if any(v is not None for v in vals):
                 ori[k] = cd_frames(conn[k, :1], c)[0] @ [v or 0.0 for v in vals]
-        if c.raw(8) or c.raw(9):
-            raise c.error("pin flags PA/PB are not supported (they release end DOF); model "
-                          "the release with a separate grid and an RBE2/CBUSH")
+        for end, fld in ((0, 8), (6, 9)):          # pin flags PA, PB: released end DOF
+            if c.raw(fld):
+                comps = extra.components(c, fld, "PA" if end == 0 else "PB")
+                rel[k] |= sum(1 << (end + int(ch) - 1) for ch in comps)
         off = [c.real(10 + j, "W", 0.0) for j in range(6)]
         if any(off):
             if c.raw(7).upper() not in ("", "GGG"):
@@ -98,7 +100,7 @@ def line_data(items, X, conn, cd_frames, gid, sorter):
                               "the grids' displacement systems)")
             w[k, :3] = cd_frames(conn[k, :1], c)[0] @ off[:3]
             w[k, 3:] = cd_frames(conn[k, 1:2], c)[0] @ off[3:]
-    return ori, w, g0_nodes
+    return ori, w, g0_nodes, rel
 
 
 def split_second_order(els: dict, X: np.ndarray, max_gid: int):

@@ -307,8 +307,10 @@ def read_nastran(path) -> Mesh:
         eid, pid, conn, zoff, theta, user_of = cols
         data = {}
         if cell_type == "line":
-            ori, w, g0 = line_data(items, X, conn, cd_frames, gid, sorter)
+            ori, w, g0, rel = line_data(items, X, conn, cd_frames, gid, sorter)
             data["orientation"] = ori
+            if rel.any():
+                data["release"] = rel
             g0_nodes += g0
             if np.any(w):
                 data["offset_a"], data["offset_b"] = w[:, :3], w[:, 3:]

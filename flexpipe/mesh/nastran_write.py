@@ -151,9 +151,12 @@ def nastran_text(mesh: Mesh) -> str:
             ori[miss] = default_orientation(mesh.points[b.cells[miss]])
             wa = np.asarray(b.data.get("offset_a", np.zeros((len(b), 3))), dtype=float)
             wb = np.asarray(b.data.get("offset_b", np.zeros((len(b), 3))), dtype=float)
+            rel = np.asarray(b.data.get("release", np.zeros(len(b))), dtype=np.int64)
             for k in range(len(b)):
-                off = ([None] * 3 + [*map(float, wa[k]), *map(float, wb[k])]
-                       if np.any(wa[k]) or np.any(wb[k]) else [])
+                pins = ["".join(str(d + 1) for d in range(6) if int(rel[k]) >> (e + d) & 1)
+                        or None for e in (0, 6)]
+                off = ([None, *pins, *map(float, wa[k]), *map(float, wb[k])]
+                       if np.any(wa[k]) or np.any(wb[k]) or rel[k] else [])
                 parts.append(card("CBAR", [int(e[k]), int(pids[bi][k]), *map(int, conn[k]),
                                            *map(float, ori[k]), *off]))
         elif b.type in ("spring", "spring1"):

@@ -182,7 +182,7 @@ def cases():
             ("rbe3_ref_is_independent", "RBE3", "RBE3,61,,14,123456,1.0,123,5,6,7,14"),
             ("rbe3_bad_components", "RBE3", "RBE3,61,,14,123789,1.0,123,5,6,7,8"),
             ("rbe3_collinear_rotation", "RBE3", "RBE3,61,,14,123456,1.0,123,5,6"),
-            ("bar_pin_flags", "CBAR", "CBAR,4,3,8,11,1.,0.,0.,,+\n+,456"),
+            ("bar_pin_flag_digit_7", "CBAR", "CBAR,4,3,8,11,1.,0.,0.,,+\n+,457"),
             ("rbar_unusual", "RBE2", "RBAR,60,13,1,123,123")):
         bulk = [x for ln in _replace(prefix, new) for x in ln.split("\n")]
         yield name, f"{name}.bdf", _deck(bulk), "error"
@@ -226,6 +226,8 @@ def cases():
             ("thru_inverted", "RBE2", "RBE2,60,13,123,4,THRU,1")):
         yield name, f"{name}.bdf", _deck(_replace(prefix, new)), "error"
     # ---- tolerated input: loads and still equal structures
+    yield "bar_pin_flags", "pins.bdf", _deck([x for ln in _replace(
+        "CBAR", "CBAR,4,3,8,11,1.,0.,0.,,+\n+,456") for x in ln.split("\n")]), "ok"
     yield "unreferenced_grid", "orphan.bdf", _deck(BULK + ["GRID,99,,9.,9.,9."]), "ok"
     yield "comments_and_blank", "comments.bdf", _deck(
         [x for ln in BULK for x in ("$ comment", ln, "")]), "ok"
