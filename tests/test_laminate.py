@@ -72,3 +72,30 @@ def test_unsymmetric_laminate_is_an_error(tmp_path):
                                         r"symmetric"):
         _plate(tmp_path, "uns.bdf", ["PCOMP,1,,,,,,,,+", "+,2,0.001,0.,,2,0.001,90."],
                [MAT8])
+
+
+def test_element_theta_and_mcid_orient_the_plies(tmp_path):
+    """THETA = 90 on the elements with plies [0/30]s = plies [90/120]s; an MCID system
+    whose x axis is global y = THETA 90 on these x-aligned elements; writing a laminate
+    back is refused (the writer has no PCOMP)."""
+    from flexpipe.errors import InputError
+    from flexpipe.mesh import write_mesh
+
+    def plate(name, plies, theta=""):
+        m = _plate(tmp_path, name, plies, [MAT8, "CORD2R,7,,0.,0.,0.,0.,0.,1.,+",
+                                            "+,0.,1.,0."])
+        if theta:
+            text = (tmp_path / name).read_text().splitlines()
+            text = [ln + f",{theta}" if ln.startswith("CQUAD4") else ln for ln in text]
+            (tmp_path / name).write_text("\n".join(text) + "\n")
+            m = read_mesh(tmp_path / name)
+        return m
+
+    ref = assemble(plate("r.bdf", ["PCOMP,1,,,,,,,SYM,+", "+,2,0.0005,90.,,2,0.0005,120."]))
+    ply0 = ["PCOMP,1,,,,,,,SYM,+", "+,2,0.0005,0.,,2,0.0005,30."]
+    for name, theta in (("t.bdf", "90."), ("m.bdf", "7")):
+        mesh = plate(name, ply0, theta)
+        fe = assemble(mesh)
+        assert abs(fe.K - ref.K).max() <= 1e-9 * abs(ref.K).max(), name
+        with pytest.raises(InputError, match="laminate"):
+            write_mesh(mesh, tmp_path / f"w{name}")

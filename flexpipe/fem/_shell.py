@@ -233,6 +233,34 @@ def rigidities(E, nu, t, bend, lam):
     return lam
 
 
+def material_angle(R: np.ndarray, ref: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """Angle (rad) of the material x axis from the element x axis ``e1``: ``theta`` plus,
+    where ``ref`` (ne, 3) is finite, the angle of ``ref`` projected onto the element
+    plane (global Z instead when ``ref`` is within 0.1 degree of the normal, as Abaqus)."""
+    phi = np.array(theta, dtype=float, copy=True)
+    has = np.isfinite(ref).all(axis=1)
+    if has.any():
+        v = np.einsum("eij,ej->ei", R[has], ref[has])
+        along_n = np.hypot(v[:, 0], v[:, 1]) < 1.75e-3 * np.linalg.norm(v, axis=1)
+        if along_n.any():
+            v[along_n] = R[has][along_n][:, :, 2]
+        phi[has] += np.arctan2(v[:, 1], v[:, 0])
+    return phi
+
+
+def oriented(lam, R):
+    """Laminate ``(A, D, Gt[, ref, theta])`` turned into each element's axes."""
+    if lam is None or len(lam) == 3:
+        return lam
+    from flexpipe.fem.laminate import rotate_batch
+
+    A, D, Gt, ref, theta = lam
+    phi = material_angle(R, ref, theta)
+    if not phi.any():
+        return A, D, Gt
+    return rotate_batch(A, phi), rotate_batch(D, phi), Gt
+
+
 def in_sub_batches(fn, geometry, E, nu, rho, t, *, bending=1.0, laminate=None,
                    size: int = SUB_BATCH):
     """Run ``fn(R, xy, h, E, nu, rho, t, bending, lam) -> (K, M)`` over sub-batches.

@@ -399,7 +399,8 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
             if "laminate_rows" in props:   # composite sections (PCOMP): A, D, Gt per cell
                 from flexpipe.fem.properties import laminate_arrays
 
-                lam = laminate_arrays(props.pop("laminate_rows"), E, nu, props["thickness"])
+                lam = laminate_arrays(props.pop("laminate_rows"), E, nu, props["thickness"],
+                                      props.pop("laminate_ref"), props.pop("laminate_theta"))
                 props["laminate"] = _Stacked(lam)
         elif block.type in BEAM_TYPES:
             props = beam_props(mesh, bi, block, beam_section)

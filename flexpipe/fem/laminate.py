@@ -56,3 +56,39 @@ def abd(plies, z0: float | None = None):
         D += Qb * (z1**3 - z**3) / 3
         z = z1
     return A, B, D, T
+
+
+def rotate_batch(C: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    """Stiffness matrices (n, 3, 3) given in axes turned by ``phi`` (n,) radians from the
+    element axes, expressed in element axes (``rotate_q`` for a batch)."""
+    c, s = np.cos(phi), np.sin(phi)
+    T = np.zeros((len(phi), 3, 3))
+    T[:, 0, 0], T[:, 0, 1], T[:, 0, 2] = c * c, s * s, 2 * c * s
+    T[:, 1, 0], T[:, 1, 1], T[:, 1, 2] = s * s, c * c, -2 * c * s
+    T[:, 2, 0], T[:, 2, 1], T[:, 2, 2] = -c * s, c * s, c * c - s * s
+    R = np.diag([1.0, 1.0, 2.0])
+    Ri = np.diag([1.0, 1.0, 0.5])
+    Ti = np.linalg.inv(T)
+    return Ti @ C @ R @ T @ Ri
+
+
+def section(plies, nsm: float = 0.0) -> dict:
+    """Section keys of a symmetric laminate: ``A11..A66``, ``D11..D66``, ``Gt``,
+    ``thickness``, mean ``rho`` and an equivalent ``E``, ``nu``.
+
+    ``plies``: [(Q, t, theta_deg, G_transverse, rho), ...] from the bottom up.  Raises
+    ValueError for an unsymmetric laminate (``B != 0``).
+    """
+    A, B, D, T = abd([(Q, t, th) for Q, t, th, _, _ in plies])
+    if np.abs(B).max() > 1e-9 * np.abs(A).max() * T:
+        raise ValueError("the laminate is not symmetric (coupling matrix B != 0); only "
+                         "symmetric laminates are supported")
+    out = {"thickness": T}
+    iu = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+    for (i, j), name in zip(iu, ("11", "12", "16", "22", "26", "66"), strict=True):
+        out["A" + name], out["D" + name] = float(A[i, j]), float(D[i, j])
+    out["Gt"] = float(sum(g * t for _, t, _, g, _ in plies))
+    out["rho"] = (sum(r * t for _, t, _, _, r in plies) + nsm) / T
+    nu = float(min(max(A[0, 1] / A[0, 0], 0.0), 0.49))
+    out["E"], out["nu"] = float(A[0, 0] / T * (1 - nu * nu)), nu
+    return out

@@ -158,15 +158,21 @@ def shell_props(mesh, bi, block, thickness):
     lams = per_cell(mesh, bi, len(block), None, "laminate", lam)
     if any(v is not None for v in lams):
         out["laminate_rows"] = lams
+        n = len(block)
+        out["laminate_ref"] = np.asarray(block.data.get("mat_ref", np.full((n, 3), np.nan)),
+                                         dtype=float)
+        out["laminate_theta"] = np.asarray(block.data.get("mat_theta", np.zeros(n)),
+                                           dtype=float)
     return out
 
 
 _IJ = ((0, 0, "11"), (0, 1, "12"), (0, 2, "16"), (1, 1, "22"), (1, 2, "26"), (2, 2, "66"))
 
 
-def laminate_arrays(rows, E, nu, t):
-    """``(A, D, Gt)`` arrays of a shell block: laminate sections (PCOMP) where given,
-    the isotropic plane-stress values elsewhere."""
+def laminate_arrays(rows, E, nu, t, ref=None, theta=None):
+    """``(A, D, Gt, ref, theta)`` arrays of a shell block: laminate sections (PCOMP) where
+    given, the isotropic plane-stress values elsewhere; ``ref``/``theta`` orient the
+    material axes per cell (see :func:`flexpipe.fem._shell.material_angle`)."""
     from flexpipe.fem import _shell
 
     n = len(rows)
@@ -181,7 +187,9 @@ def laminate_arrays(rows, E, nu, t):
             A[c, i, j] = A[c, j, i] = float(p["A" + ij])
             D[c, i, j] = D[c, j, i] = float(p["D" + ij])
         Gt[c] = float(p["Gt"])
-    return A, D, Gt
+    ref = np.full((n, 3), np.nan) if ref is None else ref
+    theta = np.zeros(n) if theta is None else theta
+    return A, D, Gt, ref, theta
 
 
 def beam_props(mesh, bi, block, beam_section):

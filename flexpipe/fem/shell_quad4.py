@@ -158,7 +158,7 @@ def _batch(R, xy, h, E, nu, rho, t, bend, lam=None):
     """Global (K, M) of elements whose geometry has been checked."""
     _, detG, invG = _jacobian(_DN_G, xy)
     dNdx = _grad(invG, _DN_G)
-    Cm, Db, Gt = _shell.rigidities(E, nu, t, bend, lam)
+    Cm, Db, Gt = _shell.rigidities(E, nu, t, bend, _shell.oriented(lam, R))
     Kp = _plate(xy, Db, _shell.SHEAR_FACTOR * Gt, detG, invG, dNdx)
     Km, omega = _membrane_allman(xy, Cm)
     k_drill = DRILL_ALPHA * Cm[:, 2, 2] * detG.sum(axis=1) / 4

@@ -109,7 +109,7 @@ def _batch(R, xy, h, E, nu, rho, t, bend, lam=None):
     two_area = b[:, 0] * c[:, 1] - b[:, 1] * c[:, 0]
     area = 0.5 * two_area
     gradL = np.stack([b, c], axis=-1) / two_area[:, None, None]      # (ne, 3, 2)
-    Cm, Db, Gt = _shell.rigidities(E, nu, t, bend, lam)
+    Cm, Db, Gt = _shell.rigidities(E, nu, t, bend, _shell.oriented(lam, R))
     # bending (DKT): curvature of the quadratic rotation field at 3 mid-side points
     dN6 = np.einsum("gki,eic->egkc", _DT6, gradL)                    # (ne, 3, 6, 2)
     Bq = np.zeros((len(xy), 3, 3, 12))

@@ -134,7 +134,7 @@ def split_second_order(els: dict, X: np.ndarray, max_gid: int):
 def cell_arrays(cell_type, items, fa, fast, gid, sorter):
     """``eid, pid, conn, zoffs, theta_given, card_of`` of one cell type: card-by-card
     ``items`` (node indices already resolved) and the fast-path arrays ``fa``, in file
-    order.  ``theta_given`` marks shells whose THETA/MCID field is not blank."""
+    order.  ``theta_given`` holds the THETA/MCID field of shells ('' when blank)."""
     k = len(items)
     eid = np.array([it[1] for it in items], dtype=np.int64)
     pid = np.array([it[2] for it in items], dtype=np.int64)
@@ -144,8 +144,8 @@ def cell_arrays(cell_type, items, fa, fast, gid, sorter):
         zi = 7 if cell_type == "quad" else 6
         zoff = np.array([it[0].real(zi, "ZOFFS", 0.0) if it[0].name in ("CQUAD4", "CTRIA3")
                          else 0.0 for it in items])
-        theta = np.array([bool(it[0].raw(zi - 1)) if it[0].name in ("CQUAD4", "CTRIA3")
-                          else False for it in items], dtype=bool)
+        theta = np.array([it[0].raw(zi - 1) if it[0].name in ("CQUAD4", "CTRIA3")
+                          else "" for it in items], dtype=object)
     if fa is None:
         return eid, pid, conn, zoff, theta, lambda j: items[j][0]
     name = "CQUAD4" if cell_type == "quad" else "CTRIA3"
@@ -161,7 +161,15 @@ def cell_arrays(cell_type, items, fa, fast, gid, sorter):
     return (np.concatenate([eid, fa["eid"]])[order], np.concatenate([pid, fa["pid"]])[order],
             np.concatenate([conn.reshape(k, fconn.shape[1]), fconn])[order],  # noqa: E501
             np.concatenate([zoff, fa["zoffs"]])[order],
-            np.concatenate([theta, fa["theta"]])[order], card_of)
+            np.concatenate([theta, _decoded(fa["theta"])])[order], card_of)
+
+
+def _decoded(col: np.ndarray) -> np.ndarray:
+    """Object array of stripped strings of an S8 column ('' for blank fields)."""
+    out = np.full(len(col), "", dtype=object)
+    for i in np.flatnonzero(col != _fast.BLANK):
+        out[i] = col[i].decode("latin-1").strip()
+    return out
 
 
 def conm2(c: Card, index, X, systems) -> PointMass:

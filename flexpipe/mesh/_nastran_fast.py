@@ -89,7 +89,7 @@ def shells(lines: list[str], seq, nodes: int) -> dict | None:
         return None
     if (g == 0).any():
         return None
-    return {"eid": eid, "pid": pid, "g": g, "zoffs": z, "theta": A[:, 2 + nodes] != BLANK,
+    return {"eid": eid, "pid": pid, "g": g, "zoffs": z, "theta": A[:, 2 + nodes],
             "seq": np.asarray(seq, np.int64)}
 
 

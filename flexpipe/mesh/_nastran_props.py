@@ -234,7 +234,7 @@ def composite(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
     material check, an equivalent ``E``, ``nu``.  ``LAM = SYM`` mirrors the plies; an
     unsymmetric laminate (``B != 0``) or an offset ``Z0`` raises an error.
     """
-    from flexpipe.fem.laminate import abd
+    from flexpipe.fem.laminate import section as lam_section
 
     g = card.name == "PCOMPG"
     lam = card.raw(7).upper()
@@ -265,17 +265,10 @@ def composite(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
     if abs(z0 + T / 2) > 1e-9 * T:
         raise card.error(f"Z0 = {z0:g} offsets the laminate (Z0 != -T/2 = {-T / 2:g}); "
                          "give the offset as ZOFFS on the elements instead")
-    A, B, D, T = abd([(mat[m][0], t, th) for m, t, th in plies])
-    if np.abs(B).max() > 1e-9 * np.abs(A).max() * T:
-        raise card.error("the laminate is not symmetric (coupling matrix B != 0); only "
-                         "symmetric laminates are supported")
-    out = {"thickness": T}
-    iu = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
-    for (i, j), name in zip(iu, ("11", "12", "16", "22", "26", "66"), strict=True):
-        out["A" + name], out["D" + name] = float(A[i, j]), float(D[i, j])
-    out["Gt"] = float(sum(mat[m][1] * t for m, t, _ in plies))
-    nsm = card.real(2, "NSM", 0.0)
-    out["rho"] = (sum(mat[m][2] * t for m, t, _ in plies) + nsm) / T * wtmass
-    out["E"] = float(A[0, 0] / T * (1 - min(max(A[0, 1] / A[0, 0], 0.0), 0.49) ** 2))
-    out["nu"] = float(min(max(A[0, 1] / A[0, 0], 0.0), 0.49))
+    try:
+        out = lam_section([(mat[m][0], t, th, mat[m][1], mat[m][2]) for m, t, th in plies],
+                          card.real(2, "NSM", 0.0))
+    except ValueError as exc:
+        raise card.error(str(exc)) from None
+    out["rho"] *= wtmass
     return out

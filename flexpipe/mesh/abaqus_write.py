@@ -72,8 +72,30 @@ def _section_groups(mesh: Mesh, eids_of_block):
     return groups
 
 
+def _not_written(mesh: Mesh) -> list[str]:
+    """Model data the .inp writer cannot carry (written to .bdf only)."""
+    lost = set()
+    for sec in mesh.sections.values():
+        if float(sec.get("bending", 1.0)) != 1.0:
+            lost.add("PSHELL bending ratio")
+        if sec.get("k1") or sec.get("k2"):
+            lost.add("beam shear factors (Timoshenko)")
+        if sec.get("theta"):
+            lost.add("beam principal-axis angle")
+    for b in mesh.blocks:
+        for key, what in (("zoffset", "shell offsets ZOFFS"), ("offset_a", "beam offsets"),
+                          ("release", "beam pin flags"), ("mat_theta", "material angles")):
+            if key in b.data and np.any(np.nan_to_num(b.data[key])):
+                lost.add(what)
+    return sorted(lost)
+
+
 def abaqus_text(mesh: Mesh) -> str:
     """Abaqus input text of ``mesh``."""
+    lost = _not_written(mesh)
+    if lost:
+        warnings.warn(MeshWarning(f"not written to .inp (write .bdf to keep them): "
+                                  f"{', '.join(lost)}"), stacklevel=3)
     out = ["*HEADING", f"written by flexpipe from {mesh.source or 'an in-memory mesh'}"]
     nid = unique_ids(mesh.node_ids)
     out.append("*NODE")
@@ -113,6 +135,12 @@ def abaqus_text(mesh: Mesh) -> str:
         mpar = f", MATERIAL={mat}" if mat else ""
         if kind == "solid":
             out.append(f"*SOLID SECTION, ELSET={_q(elset)}{mpar}")
+        elif kind == "shell" and "A11" in sec:
+            from flexpipe.errors import InputError
+
+            raise InputError(f"section {name} is a laminate (PCOMP); the .inp writer has no "
+                             "composite section - keep the original deck",
+                             file=mesh.source or None)
         elif kind == "shell" and "thickness" in sec:
             out.append(f"*SHELL SECTION, ELSET={_q(elset)}{mpar}")
             out.append(_r(sec["thickness"]))

@@ -314,8 +314,12 @@ def read_nastran(path) -> Mesh:
             g0_nodes += g0
             if np.any(w):
                 data["offset_a"], data["offset_b"] = w[:, :3], w[:, 3:]
-        elif zoff is not None and np.any(zoff):
-            data["zoffset"] = zoff
+        else:
+            if zoff is not None and np.any(zoff):
+                data["zoffset"] = zoff
+            if theta is not None and any(theta):
+                data["mat_theta"], data["mat_ref"] = _orientation(theta, conn, X, systems,
+                                                                  user_of)
         bi = len(blocks)
         blocks.append(CellBlock(cell_type, conn, eid, np.abs(pid), data))
         for p in np.unique(pid):
@@ -335,11 +339,6 @@ def read_nastran(path) -> Mesh:
             if card.name in UNSUPPORTED_PROPERTIES:
                 raise card.error(f"{card.name} is not supported; give an equivalent PSHELL "
                                  "or pass thickness and material to assemble() for this PID")
-            if card.name in ("PCOMP", "PCOMPG") and theta is not None and theta[members].any():
-                bad = user_of(int(members[np.argmax(theta[members])]))
-                raise bad.error(f"THETA/MCID material orientation on an element of {card.name} "
-                                f"{card.label()} is not supported; ply angles are taken from "
-                                "the element x axis (G1 -> G2 side)")
             if name not in sections:
                 sections[name] = (nprops.composite(card, deck.mats, wtmass)
                                   if card.name in ("PCOMP", "PCOMPG")
@@ -449,6 +448,27 @@ def read_nastran(path) -> Mesh:
         warnings.warn(MeshWarning(f"{path}: cards not used for M and K (loads, output, "
                                   f"other solutions or unknown): {listing}"), stacklevel=3)
     return mesh
+
+
+def _orientation(theta, conn, X, systems, user_of):
+    """Material orientation of shells: THETA (degrees from the element x axis) or MCID
+    (x axis of that coordinate system, projected onto the element)."""
+    n = len(theta)
+    ang = np.zeros(n)
+    ref = np.full((n, 3), np.nan)
+    for j in np.flatnonzero(np.array([bool(t) for t in theta])):
+        s = theta[j]
+        if s.lstrip("+-").isdigit():
+            c = user_of(int(j))
+            ref[j] = systems.frames(int(s), X[conn[j]].mean(axis=0)[None], c)[0][:, 0]
+        else:
+            from flexpipe.mesh._bulk import parse_real
+
+            v = parse_real(s)
+            if v is None or not np.isfinite(v):
+                raise user_of(int(j)).error(f"THETA = '{s}' is not a number (or MCID id)")
+            ang[j] = np.radians(v)
+    return ang, ref
 
 
 def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:

@@ -119,6 +119,20 @@ def _property_ids(mesh: Mesh):
     return out, section_of_pid, kind_of_pid
 
 
+def _theta_degrees(mesh: Mesh, b):
+    """Material angle (degrees from the element x axis) of shells that carry one."""
+    if b.type not in ("quad", "triangle") or not ("mat_theta" in b.data
+                                                  or "mat_ref" in b.data):
+        return None
+    from flexpipe.fem._shell import local_frame, material_angle
+
+    n = len(b)
+    R, _, _ = local_frame(mesh.points[b.cells])
+    phi = material_angle(R, np.asarray(b.data.get("mat_ref", np.full((n, 3), np.nan))),
+                         np.asarray(b.data.get("mat_theta", np.zeros(n))))
+    return np.degrees(phi)
+
+
 def nastran_text(mesh: Mesh) -> str:
     """Bulk-data text of ``mesh`` (values as stored: SI for a mesh read by flexpipe)."""
     from flexpipe.mesh._nastran_write_extra import header
@@ -166,8 +180,10 @@ def nastran_text(mesh: Mesh) -> str:
         else:
             name = CARD_OF[b.type]
             z = np.asarray(b.data.get("zoffset", np.zeros(len(b))), dtype=float)
+            th = _theta_degrees(mesh, b)
             for k in range(len(b)):
-                zo = [None, float(z[k])] if z[k] else []        # THETA, ZOFFS
+                t_k = None if th is None or th[k] == 0 else float(th[k])
+                zo = [t_k, float(z[k])] if z[k] else ([t_k] if t_k is not None else [])
                 parts.append(card(name, [int(e[k]), int(pids[bi][k]), *map(int, conn[k]),
                                          *zo]))
     mids: dict = {}
@@ -181,6 +197,12 @@ def nastran_text(mesh: Mesh) -> str:
         if kind == "solid":
             parts.append(card("PSOLID", [pid, mid]))
         elif kind == "shell":
+            if "A11" in sec:
+                from flexpipe.errors import InputError
+
+                raise InputError(f"section {section_of_pid[pid]} is a laminate (PCOMP); the "
+                                 "writer has no PCOMP card - keep the original deck",
+                                 file=mesh.source or None)
             t = sec.get("thickness")
             bend = float(sec.get("bending", 1.0))
             parts.append(card("PSHELL", [pid, mid, None if t is None else float(t),

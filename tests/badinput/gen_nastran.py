@@ -205,7 +205,11 @@ def cases():
             ("symmetric_pcomp", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.,,8,0.005,90.\n"
              "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.", "ok"),
             ("pcomp_with_element_theta", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
-             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.\nCQUAD4,90,2,5,6,7,8,30.", "error"),
+             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.\nCQUAD4,90,2,5,6,7,8,30.", "ok"),
+            ("pcomp_element_theta_text", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
+             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.\nCQUAD4,90,2,5,6,7,8,abc", "error"),
+            ("pcomp_element_mcid_undefined", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
+             "MAT8,8,140.+9,10.+9,0.3,5.+9,,,1600.\nCQUAD4,90,2,5,6,7,8,77", "error"),
             ("pcomp_ply_material_missing", "PCOMP,2,,,,,,,SYM,+\n+,9,0.005,0.", "error"),
             ("mat8_negative_e2", "PCOMP,2,,,,,,,SYM,+\n+,8,0.005,0.\n"
              "MAT8,8,140.+9,-10.+9,0.3,5.+9,,,1600.", "error"),
