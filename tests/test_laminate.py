@@ -99,3 +99,26 @@ def test_element_theta_and_mcid_orient_the_plies(tmp_path):
         assert abs(fe.K - ref.K).max() <= 1e-9 * abs(ref.K).max(), name
         with pytest.raises(InputError, match="laminate"):
             write_mesh(mesh, tmp_path / f"w{name}")
+
+
+def test_abaqus_composite_shell_equals_pcomp(tmp_path):
+    """*SHELL SECTION, COMPOSITE with *ELASTIC, TYPE=LAMINA plies (angles from the global X
+    axis, Abaqus' default on x-aligned elements) = the same PCOMP/MAT8 laminate."""
+    n = 6
+    nodes = [f"{j * (n + 1) + i + 1}, {0.05 * i}, {0.03 * j}, 0." for j in range(n + 1)
+             for i in range(n + 1)]
+    els = []
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            els.append(f"{j * n + i + 1}, {a}, {a + 1}, {a + n + 2}, {a + n + 1}")
+    inp = (["*NODE"] + nodes + ["*ELEMENT, TYPE=S4, ELSET=P"] + els
+           + ["*SHELL SECTION, ELSET=P, COMPOSITE, SYMMETRIC", "0.0005, 3, CF, 0.",
+              "0.0005, 3, CF, 30.", "*MATERIAL, NAME=CF",
+              "*ELASTIC, TYPE=LAMINA", "140.E9, 10.E9, 0.3, 5.E9, 5.E9, 4.E9",
+              "*DENSITY", "1600."])
+    a = assemble(read_mesh(_write(tmp_path, "c.inp", "\n".join(inp) + "\n")))
+    b = assemble(_plate(tmp_path, "c.bdf", ["PCOMP,1,,,,,,,SYM,+",
+                                            "+,2,0.0005,0.,,2,0.0005,30."], [MAT8]))
+    for X, Y in ((a.K, b.K), (a.M, b.M)):
+        assert abs(X - Y).max() <= 1e-9 * abs(X).max()

@@ -47,6 +47,7 @@ from flexpipe.mesh._abaqus_extra import (
     _springs,
 )
 from flexpipe.mesh._abaqus_extra import values as _values
+from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh.mesh import CellBlock, Mesh
 from flexpipe.mesh.nastran import drop_orientation_nodes
 from flexpipe.mesh.validate import MeshWarning
@@ -282,8 +283,9 @@ def _parse(path: Path) -> _Deck:
             props = {}
             if kw == "SHELL SECTION":
                 if "COMPOSITE" in p:
-                    raise MeshError("*SHELL SECTION, COMPOSITE is not supported; give an "
-                                    "equivalent homogeneous section", file=f, line=ln)
+                    deck.sections.append((p.get("ELSET"), {"composite": _plies(rows, p, f, ln)},
+                                          None, None, f, ln))
+                    continue
                 if not rows:
                     raise MeshError("*SHELL SECTION needs a data line with the thickness",
                                     file=f, line=ln)
@@ -298,10 +300,21 @@ def _parse(path: Path) -> _Deck:
         elif kw == "MATERIAL":
             material = p.get("NAME", "")
             deck.materials[material.upper()] = {}
+        elif kw == "ELASTIC" and p.get("TYPE", "").upper() == "LAMINA":
+            rows = _rows(lines, f, ln, "*ELASTIC, TYPE=LAMINA")
+            v = _values(*rows[0], "*ELASTIC, TYPE=LAMINA E1, E2, nu12, G12, G13, G23",
+                        count=4)
+            v = (v + [v[3], v[3]])[:6] if len(v) < 6 else v[:6]
+            if not all(np.isfinite(x) and 0 < x < 1e20 for x in (v[0], v[1], v[3], v[4])) \
+                    or not (np.isfinite(v[2]) and v[2] ** 2 * v[1] / v[0] < 1):
+                raise MeshError(f"*ELASTIC, TYPE=LAMINA of material '{material}': {v}; valid: "
+                                "E1, E2, G12, G13 > 0 and nu12^2 E2 / E1 < 1",
+                                file=rows[0][0], line=rows[0][1])
+            deck.materials.setdefault((material or "").upper(), {}).update(lamina=v)
         elif kw == "ELASTIC":
             if p.get("TYPE", "ISOTROPIC").upper() != "ISOTROPIC":
-                raise MeshError(f"*ELASTIC TYPE={p['TYPE']} is not supported (isotropic only)",
-                                file=f, line=ln)
+                raise MeshError(f"*ELASTIC TYPE={p['TYPE']} is not supported (ISOTROPIC or "
+                                "LAMINA)", file=f, line=ln)
             rows = _rows(lines, f, ln, "*ELASTIC")
             E, nu = _values(*rows[0], "*ELASTIC E, nu", count=2)[:2]
             mname = f"material '{material}'"
@@ -435,6 +448,53 @@ def _parse(path: Path) -> _Deck:
     return deck
 
 
+def _plies(rows, p, f, ln) -> list:
+    """Plies (thickness, material, angle) of a composite *SHELL SECTION."""
+    plies = []
+    for lf, lln, t in rows:
+        tok = [x.strip() for x in t.split(",")]
+        if len(tok) < 3 or not tok[2]:
+            raise MeshError("*SHELL SECTION, COMPOSITE ply line needs 'thickness, points, "
+                            "material[, angle]'", file=lf, line=lln)
+        th = parse_real(tok[0])
+        ang = parse_real(tok[3]) if len(tok) > 3 and tok[3] else 0.0
+        if ang is None:
+            raise MeshError(f"ply orientation '{tok[3]}' is not an angle; named *ORIENTATIONs "
+                            "are not supported", file=lf, line=lln)
+        if th is None or not (np.isfinite(th) and th > 0) or not np.isfinite(ang):
+            raise MeshError(f"ply thickness '{tok[0]}'; valid: > 0", file=lf, line=lln)
+        plies.append((th, tok[2], ang, lf, lln))
+    if not plies:
+        raise MeshError("*SHELL SECTION, COMPOSITE has no ply lines", file=f, line=ln)
+    if "SYMMETRIC" in p:
+        plies = plies + plies[::-1]
+    return plies
+
+
+def _composite(deck, plies, f, ln) -> dict:
+    """Section of a composite shell by classical lamination (see flexpipe.fem.laminate)."""
+    from flexpipe.fem.laminate import ply_q
+    from flexpipe.fem.laminate import section as lam_section
+
+    out = []
+    for th, name, ang, lf, lln in plies:
+        m = deck.materials.get(name.upper())
+        if m is None or not ("lamina" in m or "E" in m):
+            raise MeshError(f"ply material '{name}' is not defined (with *ELASTIC)", file=lf,
+                            line=lln)
+        if "lamina" in m:
+            E1, E2, nu12, G12, G13, _ = m["lamina"]
+            Q, Gz = ply_q(E1, E2, nu12, G12), G13
+        else:
+            G = m["E"] / (2 * (1 + m["nu"]))
+            Q, Gz = ply_q(m["E"], m["E"], m["nu"], G), G
+        out.append((Q, th, ang, Gz, m.get("rho", 0.0)))
+    try:
+        return lam_section(out)
+    except ValueError as exc:
+        raise MeshError(f"*SHELL SECTION, COMPOSITE: {exc}", file=f, line=ln) from None
+
+
 def _dup(ids, where, what):
     ids = np.asarray(ids, dtype=np.int64)
     order = np.argsort(ids, kind="stable")
@@ -502,7 +562,7 @@ def read_abaqus(path) -> Mesh:
             cell_sets[name] = members
     node_sets = {name: index(ids, lambda k: (str(path), None), f"NSET '{name}'")
                  for name, ids in deck.nsets.items()}
-    sections, orient = {}, {}
+    sections, orient, mat_ref = {}, {}, {}
     for elset, props, mat, n1, f, ln in deck.sections:
         key, members = cells_of(elset, f, ln, "section")
         sec = dict(props)
@@ -514,6 +574,11 @@ def read_abaqus(path) -> Mesh:
             if "E" not in m:
                 raise MeshError(f"material '{mat}' has no *ELASTIC data", file=f, line=ln)
             sec.update(E=m["E"], nu=m["nu"], rho=m.get("rho", 0.0))
+        if "composite" in sec:
+            sec = _composite(deck, sec.pop("composite"), f, ln)
+            for t in ("quad", "triangle"):
+                for c in members.get(t, []):
+                    mat_ref.setdefault(t, {})[c] = (1.0, 0.0, 0.0)   # Abaqus: global X
         sections[key] = sec
         if n1 is not None and "line" in members:
             orient.update({c: n1 for c in members["line"]})
@@ -530,6 +595,11 @@ def read_abaqus(path) -> Mesh:
             data["K"] = spring_k[t]
         if t == "connector":
             data = conn_data
+        if t in mat_ref:
+            ref = np.full((len(eids), 3), np.nan)
+            for c, v in mat_ref[t].items():
+                ref[c] = v
+            data["mat_ref"] = ref
         if t == "line":
             ori = np.full((len(eids), 3), np.nan)
             for c, v in orient.items():

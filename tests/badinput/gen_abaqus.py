@@ -260,3 +260,19 @@ def cases():
     yield "kinematic_coupling_keyword_pair", "kin.inp", _deck(_replace(
         "*DISTRIBUTING", "*KINEMATIC")), "ok"
     yield "no_step", "nostep.inp", _deck(BASE[:BASE.index("*STEP")]), "ok"
+    comp = ["*SHELL SECTION, ELSET=SHELL, COMPOSITE, SYMMETRIC", "0.001, 3, CF, 0.",
+            "0.001, 3, CF, 45."]
+    lamina = ["*MATERIAL, NAME=CF", "*ELASTIC, TYPE=LAMINA",
+              "140.E9, 10.E9, 0.3, 5.E9, 5.E9, 4.E9", "*DENSITY", "1600.", "*STEP"]
+    base = _replace("0.01", None, _replace("*SHELL SECTION, ELSET=SHELL, MATERIAL=STEEL", comp))
+    yield "composite_lamina", "comp.inp", _deck(_replace("*STEP", lamina, base)), "ok"
+    for name, old, new in (
+            ("composite_named_orientation", "0.001, 3, CF, 45.", "0.001, 3, CF, ORI1"),
+            ("composite_zero_ply", "0.001, 3, CF, 45.", "0., 3, CF, 45."),
+            ("composite_undefined_material", "0.001, 3, CF, 45.", "0.001, 3, GF, 45."),
+            ("lamina_negative_e2", "140.E9, 10.E9, 0.3, 5.E9, 5.E9, 4.E9",
+             "140.E9, -10.E9, 0.3, 5.E9, 5.E9, 4.E9"),
+            ("composite_unsymmetric", "*SHELL SECTION, ELSET=SHELL, COMPOSITE, SYMMETRIC",
+             "*SHELL SECTION, ELSET=SHELL, COMPOSITE")):
+        lines = _replace("*STEP", lamina, base)
+        yield name, f"{name}.inp", _deck(_replace(old, new, lines)), "error"
