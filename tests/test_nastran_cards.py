@@ -329,3 +329,43 @@ def test_massless_deck_is_a_clear_error(tmp_path):
         fe = assemble(read_mesh(p))
     with pytest.raises(ModelError, match=r"norho.bdf: the model has no mass"):
         eigenmodes(fe, 3)
+
+
+def _free_freqs(mesh, n=14):
+    return eigenmodes(assemble(mesh), n)[0][6:]
+
+
+def test_zoffs_and_beam_offsets_equal_rigid_links(tmp_path):
+    """A stiffened strip: CBAR along the node line, skin with ZOFFS = d (or the skin at the
+    nodes and the bar with WA = WB = (0, 0, -d)) vibrates exactly as the unoffset parts
+    joined by RBE2 rigid links across the distance d (an independent formulation)."""
+    d = 0.02
+    n = 10
+    base = [f"GRID,{j * 20 + i + 1},,{0.1 * i},{0.05 * j},0." for j in range(2)
+            for i in range(n)]
+    up = [f"GRID,{j * 20 + i + 101},,{0.1 * i},{0.05 * j},{d}" for j in range(2)
+          for i in range(n)]
+    props = ["PSHELL,1,1,0.003,1", "PBARL,2,1,,BAR", ",0.01,0.02", MAT]
+
+    def quads(off, first=1):
+        return [f"CQUAD4,{i + 1},1,{i + first},{i + first + 1},{i + first + 21},"
+                f"{i + first + 20}" + (f",,{off}" if off else "") for i in range(n - 1)]
+
+    def bars(first=1, w=None):
+        tail = f",,+\n+,,,0.,0.,{w},0.,0.,{w}" if w else ""
+        return "\n".join(f"CBAR,{100 + i},2,{i + first},{i + first + 1},0.,1.,0.{tail}"
+                         for i in range(n - 1)).split("\n")
+
+    links = [f"RBE2,{300 + k},{g},123456,{g + 100}" for k, g in enumerate(
+        [j * 20 + i + 1 for j in range(2) for i in range(n)])]
+    skin_off = read_mesh(_write(tmp_path, "a.bdf", _deck(*base, *quads(d), *bars(), *props)))
+    skin_rbe = read_mesh(_write(tmp_path, "b.bdf", _deck(*base, *up, *quads(None, 101),
+                                                         *bars(), *links, *props)))
+    f_off, f_rbe = _free_freqs(skin_off), _free_freqs(skin_rbe)
+    assert np.allclose(f_off, f_rbe, rtol=1e-8), (f_off, f_rbe)
+    bar_off = read_mesh(_write(tmp_path, "c.bdf", _deck(*up, *quads(None, 101),
+                                                        *bars(101, -d), *props)))
+    assert np.allclose(_free_freqs(bar_off), f_rbe, rtol=1e-8)
+    # the offsets matter: without them the strip is far softer in bending
+    plain = read_mesh(_write(tmp_path, "d.bdf", _deck(*base, *quads(None), *bars(), *props)))
+    assert _free_freqs(plain)[0] < 0.9 * f_rbe[0]
