@@ -369,3 +369,15 @@ def test_zoffs_and_beam_offsets_equal_rigid_links(tmp_path):
     # the offsets matter: without them the strip is far softer in bending
     plain = read_mesh(_write(tmp_path, "d.bdf", _deck(*base, *quads(None), *bars(), *props)))
     assert _free_freqs(plain)[0] < 0.9 * f_rbe[0]
+
+
+def test_surface_of_wedges_and_pyramids_is_the_block_boundary():
+    from flexpipe.flexbody.surface import surface_triangles
+
+    hexes = box(1.0, 1.0, 1.0, 2, 2, 2, cell="hexahedron")
+    for mesh in (_wedges(hexes), _pyramids(hexes)[0]):
+        t = surface_triangles(mesh)
+        X = mesh.points
+        nrm = np.cross(X[t[:, 1]] - X[t[:, 0]], X[t[:, 2]] - X[t[:, 0]])
+        assert np.isclose(0.5 * np.linalg.norm(nrm, axis=1).sum(), 6.0)   # cube area
+        assert (np.einsum("ij,ij->i", nrm, X[t].mean(axis=1) - 0.5) > 0).all()  # outward
