@@ -381,3 +381,19 @@ def test_surface_of_wedges_and_pyramids_is_the_block_boundary():
         nrm = np.cross(X[t[:, 1]] - X[t[:, 0]], X[t[:, 2]] - X[t[:, 0]])
         assert np.isclose(0.5 * np.linalg.norm(nrm, axis=1).sum(), 6.0)   # cube area
         assert (np.einsum("ij,ij->i", nrm, X[t].mean(axis=1) - 0.5) > 0).all()  # outward
+
+
+def test_second_order_solids_become_linear_with_a_warning(tmp_path):
+    corners = ["GRID,1,,0.,0.,0.", "GRID,2,,1.,0.,0.", "GRID,3,,1.,1.,0.", "GRID,4,,0.,1.,0.",
+               "GRID,5,,0.,0.,1.", "GRID,6,,1.,0.,1.", "GRID,7,,1.,1.,1.", "GRID,8,,0.,1.,1."]
+    mids = [f"GRID,{9 + k},,{x},{y},{z}" for k, (x, y, z) in enumerate(
+        [(.5, 0, 0), (1, .5, 0), (.5, 1, 0), (0, .5, 0), (0, 0, .5), (1, 0, .5), (1, 1, .5),
+         (0, 1, .5), (.5, 0, 1), (1, .5, 1), (.5, 1, 1), (0, .5, 1)])]
+    hex20 = ["CHEXA,1,1,1,2,3,4,5,6,+", "+,7,8,9,10,11,12,13,14,+", "+,15,16,17,18,19,20"]
+    with pytest.warns(MeshWarning, match=r"second-order solids converted .*CHEXA x1"):
+        a = read_mesh(_write(tmp_path, "h20.bdf", _deck(*corners, *mids, *hex20,
+                                                        "PSOLID,1,1", MAT)))
+    assert a.info["converted"]["CHEXA"].startswith("1 second-order")
+    b = read_mesh(_write(tmp_path, "h8.bdf", _deck(*corners, "CHEXA,1,1,1,2,3,4,5,6,+",
+                                                   "+,7,8", "PSOLID,1,1", MAT)))
+    assert abs(assemble(a).K - assemble(b).K).max() == 0

@@ -44,8 +44,12 @@ def index_of(grid_ids, sorter, wanted, cards, label):
     return idx.reshape(wanted.shape)
 
 
-def element(card: Card, els: dict) -> None:
-    """Append one element card to ``els[cell_type]`` = list of (card, eid, pid, grids)."""
+def element(card: Card, els: dict, converted: dict | None = None) -> None:
+    """Append one element card to ``els[cell_type]`` = list of (card, eid, pid, grids).
+
+    Second-order CHEXA (20), CPENTA (15) and CPYRAM (13; also with some mid-side grids
+    blank) become their linear forms on the corner grids; ``converted[name]`` counts them.
+    """
     types, first, nmax = ELEMENTS[card.name]
     eid = card.int(0, "EID")
     if card.name == "CONROD":
@@ -58,13 +62,17 @@ def element(card: Card, els: dict) -> None:
     except ValueError:
         g = [card.int(first + k, f"G{k + 1}", 0) for k in range(nmax)]
     g += [0] * (nmax - len(g))
+    if card.name in ("CHEXA", "CPENTA", "CPYRAM") and sum(1 for x in g if x) > min(types):
+        corners = g[:min(types)]
+        if 0 in corners:
+            raise card.error(f"{card.name}: a corner grid G1-G{min(types)} is blank")
+        if converted is not None:
+            converted[card.name] = converted.get(card.name, 0) + 1
+        g = corners
     if card.name in ("CTETRA", "CHEXA", "CPENTA", "CPYRAM"):
         g = [x for x in g if x]
     n = len(g)
     if n not in types or 0 in g:
-        if card.name in ("CHEXA", "CPENTA", "CPYRAM") and n > min(types):
-            raise card.error(f"{card.name} with {n} nodes (second order) is not supported; "
-                             f"use the {min(types)}-node form or 10-node CTETRA")
         why = "a blank or zero grid field" if 0 in g else "wrong count"
         raise card.error(f"{card.name} with {n} node(s) ({why}) is not supported; valid: "
                          f"{sorted(types)} node(s)")

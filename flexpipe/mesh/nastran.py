@@ -6,7 +6,8 @@ Grids and systems: ``GRID`` (``CP`` and ``CD`` in any ``CORD1R/1C/1S/2R/2C/2S``,
 Elements: ``CTETRA`` (4/10), ``CHEXA`` (8), ``CPENTA`` (6), ``CPYRAM`` (5), ``CQUAD4``,
 ``CTRIA3`` (``ZOFFS`` applied), ``CQUAD8``/``CTRIA6`` (converted: each split into four
 CQUAD4/CTRIA3 through its mid-side grids - a CQUAD8 gains a centre grid - conforming with
-split neighbours), ``CBAR``/``CBEAM`` (orientation ``X`` or ``G0`` in the ``CD`` system
+split neighbours; second-order CHEXA/CPENTA/CPYRAM become linear on their corner grids,
+with a warning), ``CBAR``/``CBEAM`` (orientation ``X`` or ``G0`` in the ``CD`` system
 of GA, end offsets ``WA``/``WB`` applied), ``CROD``/``CONROD``, ``CELAS1``/``CELAS2``,
 ``CBUSH``, ``CONM1``, ``CONM2``, ``RBE2``, ``RBE3``, ``RBAR``.
 Properties and materials: see :mod:`flexpipe.mesh._nastran_props` (``PSHELL``,
@@ -275,9 +276,16 @@ def read_nastran(path) -> Mesh:
 
     # ---- cells
     els: dict = defaultdict(list)
+    second: dict = {}
     for c in cards:               # file order: blocks appear in the order of the deck
         if c.name in ELEMENTS:
-            element(c, els)
+            element(c, els, second)
+    if second:
+        listing = ", ".join(f"{k} x{v}" for k, v in second.items())
+        warnings.warn(MeshWarning(f"{path}: second-order solids converted to their linear "
+                                  f"forms on the corner grids (mid-side grids dropped; "
+                                  f"curved edges become straight, bending is stiffer): "
+                                  f"{listing}"), stacklevel=3)
     for cell_type in list(els):   # grid ids -> node indices
         items = els[cell_type]
         conn = _index_of(gid, sorter, [it[3] for it in items], [it[0] for it in items],
@@ -285,6 +293,8 @@ def read_nastran(path) -> Mesh:
         els[cell_type] = [(it[0], it[1], it[2], list(row))
                           for it, row in zip(items, conn, strict=True)]
     new_pts, info["converted"] = split_second_order(els, X, int(gid.max()))
+    for k, v in second.items():
+        info["converted"][k] = f"{v} second-order -> linear (corner grids)"
     if new_pts:
         gid = np.concatenate([gid, [p[0] for p in new_pts]])
         X = np.vstack([X, [p[1] for p in new_pts]])

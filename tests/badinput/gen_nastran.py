@@ -147,17 +147,17 @@ def cases():
             ("bar_zero_length", "CBAR", "CBAR,4,3,8,8,1.,0.,0."),
             ("bar_orientation_parallel", "CBAR", "CBAR,4,3,8,11,0.,0.,1."),
             ("bush_no_orientation", "CBUSH", "CBUSH,40,41,9,12"),
-            ("hex_12_nodes", "CHEXA", "CHEXA,1,1,1,2,3,4,5,6,+"),
-            ("penta_15", "CPENTA", "CPENTA,2,1,2,9,3,6,10,7,+")):
+            ("hex_corner_blank", "CHEXA", "CHEXA,1,1,1,2,3,,5,6,+"),
+            ("penta_corner_zero", "CPENTA", "CPENTA,2,1,2,9,3,6,0,7,+")):
         bulk = [x for ln in _replace(prefix, new) for x in ln.split("\n")]
         if name == "hex_inverted":
             bulk = _replace("+,7,8", None, bulk)
-        if name == "hex_12_nodes":
+        if name == "hex_corner_blank":
             bulk = _replace("+,7,8", "+,7,8,9,10,11,12", bulk)
-        if name == "penta_15":
-            i = bulk.index("CPENTA,2,1,2,9,3,6,10,7,+")
+        if name == "penta_corner_zero":
+            i = bulk.index("CPENTA,2,1,2,9,3,6,0,7,+")
             bulk.insert(i + 1, "+,11,12,13,14,1,4,5,8,+")
-            bulk.insert(i + 2, "+,100")
+            bulk.insert(i + 2, "+,10")
         yield name, f"{name}.bdf", _deck(bulk), "error"
     # ---- duplicate ids
     for name, extra in (("dup_grid", "GRID,5,,0.,0.,3."), ("dup_element", "CQUAD4,1,2,5,6,7,8"),
