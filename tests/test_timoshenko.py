@@ -146,3 +146,20 @@ def test_pin_flags_turn_a_clamped_beam_into_a_pinned_one(tmp_path):
     # and the flags survive a round trip through the writer
     again = read_mesh(write_mesh(mesh, tmp_path / "again.bdf"))
     assert np.array_equal(again.blocks[0].data["release"], mesh.blocks[0].data["release"])
+
+
+def test_tapered_pbeaml_uses_the_mean_section_with_a_warning(tmp_path):
+    import warnings as _w
+
+    from flexpipe.mesh import MeshWarning, read_mesh
+
+    p = tmp_path / "tap.bdf"
+    p.write_text("BEGIN BULK\nMAT1,1,2.1+11,,0.3,7850.\nGRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\n"
+                 "CBEAM,1,4,1,2,0.,0.,1.\nPBEAML,4,1,,ROD\n,0.02,,YES,1.,0.04\nENDDATA\n")
+    with _w.catch_warnings(record=True) as rec:
+        _w.simplefilter("always")
+        mesh = read_mesh(p)
+    assert any(isinstance(r.message, MeshWarning) and "tapered" in str(r.message)
+               for r in rec)
+    assert np.isclose(mesh.sections["PID4"]["A"], np.pi * (0.02**2 + 0.04**2) / 2)
+    assert np.isclose(mesh.sections["PID4"]["Iz"], np.pi * (0.02**4 + 0.04**4) / 8)

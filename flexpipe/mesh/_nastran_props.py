@@ -74,6 +74,15 @@ def _beam(out: dict, A, I1, I2, I12, J, K1, K2, nsm, rho_mat):
     return out
 
 
+def _tapered(card: Card) -> None:
+    import warnings
+
+    from flexpipe.mesh.validate import MeshWarning
+    warnings.warn(MeshWarning(f"{card.file} line {card.line}: {card.name} {card.label()} is "
+                              "tapered; flexpipe uses the mean of the end A and end B "
+                              "section properties along each element"), stacklevel=5)
+
+
 def _dims(card: Card, start: int, n: int) -> list[float]:
     return [card.real(start + k, f"DIM{k + 1}") for k in range(n)]
 
@@ -132,9 +141,17 @@ def section(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
         A, I1, I2, I12, J = (card.real(k, n, 0.0) for k, n in
                              ((2, "A"), (3, "I1"), (4, "I2"), (5, "I12"), (6, "J")))
         _positive(card, {"A": A, "I1": I1, "I2": I2, "J": J}, allow_zero=("J",))
-        k = 16
+        k, last = 16, None
         while card.raw(k).upper() in ("YES", "YESA", "NO"):
+            last = k
             k += 16
+        if last is not None:    # end B (blank values: those of end A)
+            B = [card.real(last + 2 + j, n, v) for j, (n, v) in enumerate(
+                (("A", A), ("I1", I1), ("I2", I2), ("I12", I12), ("J", J)))]
+            if not np.allclose(B, [A, I1, I2, I12, J], rtol=1e-9, atol=0):
+                _tapered(card)
+                A, I1, I2, I12, J = ((a + b) / 2 for a, b in zip((A, I1, I2, I12, J), B,
+                                                                strict=True))
         K1, K2 = card.real(k, "K1", 1.0), card.real(k + 1, "K2", 1.0)
         _positive(card, {"K1": K1, "K2": K2}, allow_zero=("K1", "K2"))
         _beam(out, A, I1, I2, I12, J, K1, K2, card.real(7, "NSM", 0.0) * wtmass, out["rho"])
@@ -147,6 +164,17 @@ def section(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
         dims = _dims(card, 8, n)
         try:
             s = standard_section(shape, dims, out["nu"])
+            k, last = 9 + n, None          # PBEAML stations: SO, X/XB, DIM1..n, NSM
+            while name == "PBEAML" and card.raw(k).upper() in ("YES", "YESA", "NO"):
+                last = k
+                k += n + 3
+            if last is not None:
+                dims_b = [card.real(last + 2 + j, f"DIM{j + 1}(B)", dims[j])
+                          for j in range(n)]
+                if not np.allclose(dims_b, dims, rtol=1e-9, atol=0):
+                    _tapered(card)
+                    sb = standard_section(shape, dims_b, out["nu"])
+                    s = {key: (s[key] + sb[key]) / 2 for key in s}
         except ValueError as exc:
             raise card.error(str(exc)) from None
         _beam(out, s["A"], s["I1"], s["I2"], s["I12"], s["J"], s["K1"], s["K2"],
