@@ -5,12 +5,15 @@ fast-path cells in file order), CONM1/CONM2 and RBE2."""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from flexpipe.mesh import _nastran_extra as extra
 from flexpipe.mesh import _nastran_fast as _fast
 from flexpipe.mesh._bulk import Card
 from flexpipe.mesh.mesh import PointMass, RigidLink
+from flexpipe.mesh.validate import MeshWarning
 
 #: element card -> (meshio type by node count, index of first node field, max nodes)
 ELEMENTS = {
@@ -77,6 +80,14 @@ def element(card: Card, els: dict, converted: dict | None = None) -> None:
         raise card.error(f"{card.name} with {n} node(s) ({why}) is not supported; valid: "
                          f"{sorted(types)} node(s)")
     els[types[n]].append((card, eid, pid, g))
+    tcols = {"CQUAD4": range(10, 14), "CTRIA3": range(11, 14)}.get(card.name, ())
+    if any(card.raw(k) for k in tcols):
+        warnings.warn(MeshWarning(f"{card.file} line {card.line}: {card.name} {eid} corner "
+                                  "thicknesses T1.. are ignored; the PSHELL T applies"),
+                      stacklevel=4)
+    if card.name == "CBEAM" and (card.raw(16) or card.raw(17)):
+        warnings.warn(MeshWarning(f"{card.file} line {card.line}: CBEAM {eid} warping grids "
+                                  "SA/SB are ignored (no warping DOF)"), stacklevel=4)
 
 
 def line_data(items, X, conn, cd_frames, gid, sorter):

@@ -112,6 +112,9 @@ def section(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
                          "MAT1 is supported")
     out.update(material(mcard, wtmass))
     if name == "PSHELL":
+        if card.raw(10):
+            raise card.error("MID4 (membrane-bending coupling) is not supported; leave it "
+                             "blank or use a symmetric PCOMP")
         t = card.real(2, "T", None)
         if t is not None:
             _positive(card, {"T": t})
