@@ -144,5 +144,10 @@ def convert(mesh, system: UnitSystem, *, materials: bool):
                   * (mass_f if materials else 1.0))
         for pm in mesh.point_masses
     )
+    solution = dict(mesh.solution)
+    if materials:   # EIGRL frequency range in 1 / (file time unit)
+        for key in ("f_min", "f_max"):
+            if solution.get(key) is not None:
+                solution[key] = float(solution[key]) / system.time
     return replace(mesh, points=mesh.points * L, blocks=tuple(blocks), sections=sections,
-                   point_masses=masses)
+                   point_masses=masses, solution=solution)
