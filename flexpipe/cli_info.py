@@ -1,4 +1,4 @@
-"""``flexpipe info FILE``: summary of a FlexBody (.npz) or a mesh file.
+"""``flexpipe info FILE``: summary of a FlexBody (.npz), a car file (.toml) or a mesh file.
 
 For a FlexBody it prints the reduced-vs-full frequency table, the MAC matrix and mass
 properties (see :func:`flexpipe.cli_reduce.info_text`) and can write the mode shapes as
@@ -67,6 +67,12 @@ def run(args) -> int:
         from flexpipe.cli_reduce import run_info
 
         return run_info(args)
+    if path.suffix.lower() == ".toml":
+        from flexpipe.vehicle.describe import car_text
+        from flexpipe.vehicle.spec import load_car
+
+        print(car_text(load_car(path)))
+        return 0
     from flexpipe.mesh import read_mesh
 
     print(mesh_text(read_mesh(path, args.scale)))

@@ -54,3 +54,20 @@ def test_parked_linkage_car_does_not_creep(parked):
     for c in CORNERS:
         for k in "xyz":
             assert np.ptp(r[f"hub_{c}_{k}"][late]) < 0.5  # N
+
+
+def test_flexpipe_info_summarises_a_car_file(capsys):
+    from flexpipe.cli import main
+
+    car = fp.load_car(CAR)
+    assert main(["info", str(CAR)]) == 0
+    out = capsys.readouterr().out
+    assert "double_wishbone" in out and "multi_link" in out
+    mounts = car.suspension.mounts()
+    for name in mounts:
+        assert name in out
+    rb = bodymodel.rigid_properties(car)
+    weight = 9.81 * (rb.mass + sum(c.unsprung_mass for c in car.corners))
+    line = next(ln for ln in out.splitlines() if "static wheel loads" in ln)
+    loads = [float(w.split()[1]) for w in line.split(":")[1].split(";")[0].split(",")]
+    assert sum(loads) == pytest.approx(weight, rel=1e-3)
