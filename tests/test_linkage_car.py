@@ -67,7 +67,9 @@ def test_flexpipe_info_summarises_a_car_file(capsys):
     for name in mounts:
         assert name in out
     rb = bodymodel.rigid_properties(car)
-    weight = 9.81 * (rb.mass + sum(c.unsprung_mass for c in car.corners))
+    n_arb = sum(a.anti_roll_bar is not None for a in car.suspension.axles.values())
+    weight = 9.81 * (rb.mass + sum(c.unsprung_mass for c in car.corners) + RACK_MASS
+                     + 2 * n_arb * ARB_ARM_MASS)
     line = next(ln for ln in out.splitlines() if "static wheel loads" in ln)
     loads = [float(w.split()[1]) for w in line.split(":")[1].split(";")[0].split(",")]
     assert sum(loads) == pytest.approx(weight, rel=1e-3)

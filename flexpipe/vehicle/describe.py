@@ -8,8 +8,6 @@ the design position, and every body-side mount with its interface DOF.
 
 from __future__ import annotations
 
-import numpy as np
-
 from flexpipe.vehicle.spec import CORNERS, Car
 
 
@@ -36,7 +34,7 @@ def car_text(car: Car) -> str:
         lines.append("  suspension: prismatic corners (hardpoint_m, spring/damper along body z)")
     else:
         from flexpipe.vehicle.simulation import linkage_statics
-        from flexpipe.vehicle.suspension.statics import wheel_rate
+        from flexpipe.vehicle.suspension.statics import point_masses, wheel_rate
 
         susp, N = linkage_statics(car, rb)
         lines.append(f"  suspension: linkage templates, time runs in {susp.mode} mode")
@@ -60,7 +58,9 @@ def car_text(car: Car) -> str:
                      "and moments):")
         for m, p in mounts.items():
             lines.append(f"    {m:<30} {_p(p)} m  dofs {dofs[m]}")
-    W = 9.81 * (rb.mass + sum(unsprung))
+    extra = 0.0 if car.suspension is None else sum(m for m, _ in point_masses(susp)) \
+        - sum(unsprung)  # rack and anti-roll-bar arms
+    W = 9.81 * (rb.mass + sum(unsprung) + extra)
     lines.append("  static wheel loads (N): " + ", ".join(
         f"{n} {v:.1f}" for n, v in zip(CORNERS, N, strict=True))
         + f"; sum {N.sum():.1f} (car weight {W:.1f})")
