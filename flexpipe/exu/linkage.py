@@ -78,6 +78,7 @@ class LinkageModel:
         self.kinematic = getattr(suspension, "mode", "compliant") == "kinematic"
         self.corners = suspension.corners()
         self.knuckle_node, self.part_nodes, self.forces = [], [], []
+        self._kc = {}  # connector -> (stiffness, damping) last set
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
         self._pos_markers = {}
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
@@ -317,9 +318,14 @@ class LinkageModel:
                 P = f.static_force(L)
                 PL = (f.static_force(L + e) - f.static_force(L - e)) / (2 * e)
                 k, c, force = -PL, 0.0, -P
-            so(co, "referenceLength", L)
-            so(co, "stiffness", k)
-            so(co, "damping", c)
+            # F = k (L - L_ref) + c dL/dt + force with L_ref fixed at the design length:
+            # only the force changes every step; k and c only when the tangent changes
+            force += k * (f.design_length - L)
+            last = self._kc.get(co)
+            if last != (k, c):
+                so(co, "stiffness", k)
+                so(co, "damping", c)
+                self._kc[co] = (k, c)
             so(co, "force", force)
 
     def mount_forces(self) -> dict:
