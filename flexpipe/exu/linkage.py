@@ -79,6 +79,7 @@ class LinkageModel:
         self.corners = suspension.corners()
         self.knuckle_node, self.part_nodes, self.forces = [], [], []
         self._kc = {}  # connector -> (stiffness, damping) last set
+        self._rate = {}  # damper connector -> extension rate at the last step
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
         self._pos_markers = {}
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
@@ -298,8 +299,15 @@ class LinkageModel:
             visualization=eii.VObjectConnectorTorsionalSpringDamper(show=False)))
 
     # ------------------------------------------------------------------ per step
-    def update_forces(self) -> None:
-        """Linearize every spring, damper and stop at the current state (implicit step)."""
+    def update_forces(self, h: float) -> None:
+        """Linearize every spring, damper and stop for the coming step of length ``h``.
+
+        The slope is the secant between the current state and the one predicted for the
+        end of the step (length ``L + h dL/dt``, rate extrapolated from the last step), so
+        a kink of a table (stop contact, the dual-rate damper's change at zero velocity)
+        crossed during the step is met at its end, where the implicit integrator balances
+        the forces; away from kinks the secant is the tangent.
+        """
         gm = self.mbs.GetMarkerOutput
         so = self.mbs.SetObjectParameter
         for _i, f, co, mb, ma in self.forces:
@@ -309,14 +317,24 @@ class LinkageModel:
             L = float(np.sqrt(d @ d))
             Ld = float(d @ (va - vb)) / L
             if f.kind == "damper":
-                e = 1e-4
+                Ld_prev = self._rate.get(co, Ld)
+                self._rate[co] = Ld
+                v1 = 2.0 * Ld - Ld_prev  # rate predicted for the end of the step
                 P = -f.damper_force(Ld)
-                Pv = -(f.damper_force(Ld + e) - f.damper_force(Ld - e)) / (2 * e)
+                if abs(v1 - Ld) > 1e-6:
+                    Pv = -(f.damper_force(v1) - f.damper_force(Ld)) / (v1 - Ld)
+                else:
+                    e = 1e-4
+                    Pv = -(f.damper_force(Ld + e) - f.damper_force(Ld - e)) / (2 * e)
                 k, c, force = 0.0, -Pv, -P + Pv * Ld
             else:
-                e = 1e-5
+                L1 = L + h * Ld  # length predicted for the end of the step
                 P = f.static_force(L)
-                PL = (f.static_force(L + e) - f.static_force(L - e)) / (2 * e)
+                if abs(L1 - L) > 1e-7:
+                    PL = (f.static_force(L1) - P) / (L1 - L)
+                else:
+                    e = 1e-5
+                    PL = (f.static_force(L + e) - f.static_force(L - e)) / (2 * e)
                 k, c, force = -PL, 0.0, -P
             # F = k (L - L_ref) + c dL/dt + force with L_ref fixed at the design length:
             # only the force changes every step; k and c only when the tangent changes

@@ -137,6 +137,12 @@ class LinkageCarSystem(CarSystem):
                         jounce=jounce, jounce_rate=vrel[:, 2], joint_force=None,
                         mount_R=np.repeat(body_R[None], 4, axis=0), wheel_q=wq, wheel_qt=wqt)
 
+    _h = 2e-3  # step length, set by run()
+
+    def run(self, step, *, t_end: float, h: float, **kw):  # noqa: D102 - as CarSystem.run
+        self._h = float(h)
+        return super().run(step, t_end=t_end, h=h, **kw)
+
     def apply(self, loads, mount_R, st) -> None:
         """Tyre coupling, tyre moments, spin torques, rack travel; linearize the springs."""
         mbs = self.mbs
@@ -151,7 +157,7 @@ class LinkageCarSystem(CarSystem):
             so(self.tire_elem[i], "forceVector", f[i])
         if loads.rack_travel is not None:
             self.linkage.set_rack_travel(loads.rack_travel)
-        self.linkage.update_forces()
+        self.linkage.update_forces(self._h)
 
     def joint_forces(self):  # the hub force comes from hub_forces for linkage cars
         return np.zeros((4, 3))

@@ -123,6 +123,7 @@ class CarController:
         self.preview_time = float(preview_time)
         self.r0 = np.array([t.unloaded_radius for t in tires])
         self._tire_lin = None
+        self._prev_rate = None
         self.body_com = np.zeros(3) if body_com is None else np.asarray(body_com, dtype=float)
         groups = {}
         for i, t in enumerate(tires):
@@ -292,7 +293,19 @@ class CarController:
         j_end = st.jounce + self.h * st.jounce_rate
         F_arb = self.c.force(j_end, st.jounce_rate) - self.c.force(j_end, st.jounce_rate,
                                                                     anti_roll=False)
-        c_step = np.where(st.jounce_rate > 0.0, self.c.c_jounce, self.c.c_rebound)
+        # damping: the secant of the dual-rate law between the rate now and the one
+        # predicted for the end of the step, so a change of sign within the step is met
+        # where the integrator balances the forces
+        r0 = st.jounce_rate
+        r1 = 2.0 * r0 - (r0 if self._prev_rate is None else self._prev_rate)
+        self._prev_rate = r0.copy()
+
+        def fd(r):
+            return np.where(r > 0.0, self.c.c_jounce, self.c.c_rebound) * r
+
+        dr = r1 - r0
+        c_step = np.where(np.abs(dr) > 1e-9, (fd(r1) - fd(r0)) / np.where(
+            np.abs(dr) > 1e-9, dr, 1.0), np.where(r0 > 0.0, self.c.c_jounce, self.c.c_rebound))
         Fs_own = self.c.force(st.jounce, st.jounce_rate, anti_roll=False)
         k_t = self.c.stiffness(st.jounce)
         f0 = Fs_own - k_t * st.jounce - c_step * st.jounce_rate
