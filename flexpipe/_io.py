@@ -102,3 +102,84 @@ def read_numeric_rows(path, *, kind: str, columns: str):
                              "number", file=path, line=k)
         rows.append((k, text, values))
     return rows
+
+
+# --------------------------------------------------------------------------- staged folders
+_RUN_SUFFIXES = {".csv", ".png", ".json", ".vtu", ".pvd", ".txt", ".npz"}
+
+
+def stage_directory(out) -> Path:
+    """A fresh, empty staging folder ``.NAME.staging-PID`` next to the output folder ``out``.
+
+    Checks first that ``out`` is absent, empty or a previous run's folder (it holds a
+    ``summary.json`` and only result files), so that :func:`commit_directory` never
+    replaces a folder of the user's other files.  Staging folders left by processes that
+    no longer exist are removed.
+
+    Raises
+    ------
+    InputError
+        ``out`` is a file, or a folder holding files that are not a flexpipe run.
+    """
+    import shutil
+
+    from flexpipe.errors import InputError
+
+    out = Path(out)
+    if out.exists():
+        if not out.is_dir():
+            raise InputError("the output folder is an existing file; choose another --out",
+                             file=out)
+        entries = list(out.iterdir())
+        foreign = [e.name for e in entries
+                   if not (e.is_file() and e.suffix.lower() in _RUN_SUFFIXES)]
+        if entries and ("summary.json" not in {e.name for e in entries} or foreign):
+            raise InputError(
+                "the output folder exists and is not a previous flexpipe run (no summary.json"
+                + (f", or it holds {foreign[:3]}" if foreign else "")
+                + "); a run replaces its output folder as a whole: choose a new or empty "
+                "folder", file=out)
+    parent = out.resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    for old in parent.glob(f".{out.name}.staging-*"):
+        pid = old.name.rsplit("-", 1)[-1]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(old, ignore_errors=True)
+    stage = parent / f".{out.name}.staging-{os.getpid()}"
+    shutil.rmtree(stage, ignore_errors=True)
+    stage.mkdir()
+    return stage
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def commit_directory(stage, out) -> Path:
+    """Put the staging folder ``stage`` in place of ``out`` (the old folder is removed).
+
+    The swap is two renames on the same file system with SIGINT/SIGTERM blocked, so
+    ``out`` never holds files of two runs.
+    """
+    import shutil
+    import signal
+
+    stage, out = Path(stage), Path(out)
+    old = out.resolve().parent / f".{out.name}.old-{os.getpid()}"
+    shutil.rmtree(old, ignore_errors=True)
+    blocked = {signal.SIGINT, signal.SIGTERM}
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
+    try:
+        if out.exists():
+            os.replace(out, old)
+        os.replace(stage, out)
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+    shutil.rmtree(old, ignore_errors=True)
+    return out

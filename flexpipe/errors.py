@@ -54,3 +54,29 @@ class SolverError(FlexpipeError, RuntimeError):
             message = f"at simulated time t = {time:.6g} s: {message}"
         super().__init__(message)
         self.time = time
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) or SIGTERM received: the work stopped cleanly.
+
+    A subclass of :class:`KeyboardInterrupt`, so it is never mistaken for a failure of
+    the input or of a solver.  ``exit_code`` is the shell convention ``128 + signum``
+    (130 for SIGINT, 143 for SIGTERM); ``t`` is the simulated time reached, seconds,
+    when the interrupt stopped a time integration (else None).
+    """
+
+    def __init__(self, signum: int = 2, *, t: float | None = None):
+        import signal
+
+        self.signum = int(signum)
+        self.t = t
+        try:
+            name = signal.Signals(self.signum).name
+        except ValueError:
+            name = f"signal {self.signum}"
+        super().__init__(name)
+
+    @property
+    def exit_code(self) -> int:
+        """128 + the signal number."""
+        return 128 + self.signum

@@ -341,7 +341,14 @@ class CarSystem:
             self.apply(loads, st.mount_R)
             return True
 
-        mbs.SetPreStepUserFunction(prestep)
+        def guarded(mbs_, t):  # flexpipe#14: Ctrl-C/SIGTERM stop the run, re-raised below
+            try:
+                return prestep(mbs_, t)
+            except KeyboardInterrupt as exc:
+                last["interrupt"] = exc
+                return False
+
+        mbs.SetPreStepUserFunction(guarded)
         s = exu.SimulationSettings()
         ti = s.timeIntegration
         ti.numberOfSteps = n_steps
@@ -370,6 +377,9 @@ class CarSystem:
             message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
         finally:
             exu.config.printToConsole = printing
+        if "interrupt" in last:  # flexpipe#14: an interrupt, not a solver failure
+            last["interrupt"].t = last["t"]
+            raise last["interrupt"]
         cpu = time.process_time() - cpu0
         wall = time.perf_counter() - wall0
         completed = ok and last["t"] >= t_end - 1.5 * h

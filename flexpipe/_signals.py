@@ -1,0 +1,55 @@
+"""Ctrl-C and SIGTERM as exceptions, so that every command stops cleanly.
+
+:func:`interrupts_as_exceptions` makes SIGINT and SIGTERM raise
+:class:`~flexpipe.errors.Interrupted` (a ``KeyboardInterrupt``) in the main thread; the
+commands catch it, record an "interrupted at t = ..." status and exit with 130 / 143.
+:func:`interrupt_info` turns any ``KeyboardInterrupt`` into ``(exit_code, t)``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+
+from flexpipe.errors import Interrupted
+
+
+def _raise(signum, frame):
+    raise Interrupted(signum)
+
+
+@contextlib.contextmanager
+def interrupts_as_exceptions():
+    """Context: SIGINT and SIGTERM raise :class:`Interrupted`; previous handlers restored.
+
+    Outside the main thread (where Python cannot install handlers) it does nothing.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    saved = {}
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        try:
+            saved[sig] = signal.signal(sig, _raise)
+        except (ValueError, OSError):  # pragma: no cover - exotic embeddings
+            pass
+    try:
+        yield
+    finally:
+        for sig, handler in saved.items():
+            signal.signal(sig, handler)
+
+
+def interrupt_info(exc: BaseException) -> tuple[int, float | None]:
+    """``(exit_code, simulated time or None)`` of a KeyboardInterrupt."""
+    code = exc.exit_code if isinstance(exc, Interrupted) else 130
+    t = getattr(exc, "t", None)
+    return code, t
+
+
+def interrupt_text(exc: BaseException) -> str:
+    """"interrupted (SIGTERM) at t = 1.234 s" or "interrupted (SIGINT)"."""
+    name = str(exc) if isinstance(exc, Interrupted) else "SIGINT"
+    t = getattr(exc, "t", None)
+    return f"interrupted ({name})" + (f" at t = {t:.4f} s" if t is not None else "")
