@@ -26,6 +26,8 @@ def read_surface(path) -> Mesh:
     """Read a triangulated surface as a shell mesh (units of the file)."""
     import trimesh
 
+    if str(path).lower().endswith(".stl"):
+        _check_stl_layout(path)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -48,7 +50,10 @@ def read_surface(path) -> Mesh:
         counts.append(len(g.faces))
     if not faces:
         raise MeshError("no triangles found in the file", file=str(path))
-    merged = trimesh.Trimesh(np.vstack(verts), np.vstack(faces), process=False)
+    allv = np.vstack(verts)
+    if not np.all(np.isfinite(allv)):
+        _non_finite(path, int(np.flatnonzero(~np.isfinite(allv).all(axis=1))[0]))
+    merged = trimesh.Trimesh(allv, np.vstack(faces), process=False)
     merged.merge_vertices(merge_tex=True, merge_norm=True)
     F = np.asarray(merged.faces, dtype=np.int64)
     P = np.asarray(merged.vertices, dtype=float)
@@ -71,3 +76,68 @@ def read_surface(path) -> Mesh:
             cell_sets.setdefault(n, {0: np.flatnonzero(group == k)})
     return Mesh(points=P[used], blocks=(CellBlock("triangle", new_of[F], ids),),
                 cell_sets=cell_sets, source=str(path))
+
+
+def _check_stl_layout(path) -> None:
+    """Reject an STL that is neither a complete binary STL nor ASCII text, by its bytes.
+
+    (trimesh would try to guess a text encoding, which needs an optional package, and
+    report that instead of the real problem.)
+    """
+    from pathlib import Path
+
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise MeshError(f"cannot read the file ({exc.strerror})", file=str(path)) from None
+    if not raw.strip():
+        raise MeshError("the file is empty", file=str(path))
+    if len(raw) >= 84:
+        n = int.from_bytes(raw[80:84], "little")
+        if len(raw) == 84 + 50 * n:
+            if n == 0:
+                raise MeshError("binary STL with 0 triangles", file=str(path))
+            return  # a binary STL of consistent size
+    if raw.lstrip()[:5].lower() == b"solid":
+        try:
+            raw.decode("ascii")
+        except UnicodeDecodeError as exc:
+            line = raw[: exc.start].count(b"\n") + 1
+            raise MeshError(f"ASCII STL with a non-ASCII byte 0x{raw[exc.start]:02x}; an "
+                            "ASCII STL holds 'facet normal', 'outer loop', 'vertex x y z' "
+                            "lines only", file=str(path), line=line) from None
+        return
+    expected = 84 + 50 * int.from_bytes(raw[80:84], "little") if len(raw) >= 84 else None
+    raise MeshError(
+        "neither an ASCII STL (text starting with 'solid') nor a complete binary STL ("
+        + (f"its header announces {int.from_bytes(raw[80:84], 'little')} triangles, i.e. "
+           f"{expected} bytes, but the file has {len(raw)}" if expected is not None else
+           f"{len(raw)} bytes, shorter than the 84-byte binary header") + ")", file=str(path))
+
+
+def _non_finite(path, vertex: int) -> None:
+    """Raise for a NaN/inf coordinate: text files by line, binary STL by facet."""
+    from pathlib import Path
+
+    raw = Path(path).read_bytes()
+    line = None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        text = None
+    if text is not None:
+        for k, ln in enumerate(text.splitlines(), start=1):
+            for tok in ln.replace(",", " ").split():
+                try:
+                    v = float(tok)
+                except ValueError:
+                    continue
+                if not np.isfinite(v):
+                    line = k
+                    break
+            if line is not None:
+                break
+    where = (f"vertex {vertex + 1}" if line is not None else
+             f"vertex {vertex % 3 + 1} of facet {vertex // 3 + 1}")
+    raise MeshError(f"non-finite coordinate (NaN or inf) at {where}; every vertex coordinate "
+                    "must be a finite number", file=str(path), line=line)
