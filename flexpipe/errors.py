@@ -7,9 +7,22 @@ node id, interface name, simulated time) and *what would be valid*.  Catch
 
 from __future__ import annotations
 
+import re
+
+
+_NUMPY_SCALAR = re.compile(r"\bnp\.(?:float|int|uint|bool_?|complex|str_)\d*\(([^()]*)\)")
+
+
+def plain_numbers(text: str) -> str:
+    """``"got np.float64(0.2)"`` -> ``"got 0.2"``: numpy 2 scalar reprs read as plain numbers."""
+    return _NUMPY_SCALAR.sub(r"\1", text)
+
 
 class FlexpipeError(Exception):
-    """Base class of all errors raised by flexpipe."""
+    """Base class of all errors raised by flexpipe (messages show numbers plainly)."""
+
+    def __init__(self, *args):
+        super().__init__(*(plain_numbers(a) if isinstance(a, str) else a for a in args))
 
 
 class InputError(FlexpipeError, ValueError):
