@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import re
 
-
 _NUMPY_SCALAR = re.compile(r"\bnp\.(?:float|int|uint|bool_?|complex|str_)\d*\(([^()]*)\)")
 
 

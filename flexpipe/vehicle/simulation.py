@@ -354,6 +354,11 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     else:
         status, message = 0, f"reached t_end = {t_end:g} s"
     ch = ctrl.rec.channels()
+    if status != 0:  # flexpipe#14 (robust): say what diverged and which input is implausible
+        from flexpipe.vehicle.diagnose import explain
+
+        message = explain(message, car=car, body_mass=rb.mass, body_cg=rb.center_of_mass,
+                          t=ctrl.rec.t[: ctrl.rec.rows], channels=ch)
     info = {
         "car": car.name, "car_file": str(car.file), "body": body, "h": h,
         "output_step": every * h, "speed": speed, "t_end": t_end,
