@@ -26,12 +26,21 @@ def read_surface(path) -> Mesh:
     """Read a triangulated surface as a shell mesh (units of the file)."""
     import trimesh
 
-    if str(path).lower().endswith(".stl"):
+    suffix = str(path).lower().rsplit(".", 1)[-1]
+    source = str(path)
+    if suffix == "stl":
         _check_stl_layout(path)
+    elif suffix in ("obj", "off"):  # text formats: decoded here, not by trimesh's guesser
+        import io
+
+        source = io.BytesIO(_utf8_text(path).encode("utf-8"))
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            scene = trimesh.load_scene(str(path), process=False)
+            if isinstance(source, str):
+                scene = trimesh.load_scene(source, process=False)
+            else:
+                scene = trimesh.load_scene(source, file_type=suffix, process=False)
     except Exception as exc:  # trimesh raises many types on corrupt input
         raise MeshError(f"cannot read surface mesh ({str(exc).strip() or type(exc).__name__})",
                         file=str(path)) from None
@@ -141,3 +150,26 @@ def _non_finite(path, vertex: int) -> None:
              f"vertex {vertex % 3 + 1} of facet {vertex // 3 + 1}")
     raise MeshError(f"non-finite coordinate (NaN or inf) at {where}; every vertex coordinate "
                     "must be a finite number", file=str(path), line=line)
+
+
+def _utf8_text(path) -> str:
+    """The file as UTF-8 text; bytes that are not UTF-8 are allowed in ``#`` comments only."""
+    from pathlib import Path
+
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise MeshError(f"cannot read the file ({exc.strerror})", file=str(path)) from None
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        pass
+    for k, line in enumerate(raw.split(b"\n"), start=1):
+        try:
+            line.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            if not line.lstrip().startswith(b"#"):
+                raise MeshError(f"not a text file: byte 0x{line[exc.start]:02x} is not UTF-8 "
+                                "text; OBJ and OFF files are text (v x y z / f i j k lines)",
+                                file=str(path), line=k) from None
+    return raw.decode("utf-8", errors="replace")
