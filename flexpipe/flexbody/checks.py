@@ -9,7 +9,9 @@ no reduction can produce, each error naming the file and the entry:
 * frequencies non-negative and ascending, ``M = I`` and ``K = diag((2 pi f)^2)`` (the
   modal normalisation :class:`~flexpipe.flexbody.FlexBody` documents) -- a scaled or
   NaN-corrupted ``K`` fails; damping ratios >= 0;
-* triangle and interface node indices inside ``[0, n_nodes)``, interface shapes 6 x m.
+* triangle and interface node indices inside ``[0, n_nodes)``, interface shapes 6 x m,
+  and the tied nodes of each interface moving rigidly with its hardpoint in every mode
+  (``u = u_h + theta_h x (x - x_h)``, the RBE2 constraint) -- scaled modes fail.
 """
 
 from __future__ import annotations
@@ -99,3 +101,21 @@ def check_body_arrays(path, header: dict, arrays: dict, inv, interfaces) -> None
                   f"6 x {m} finite numbers")
         if not np.all(np.isfinite(itf.point)):
             _fail(path, f"interface.{j}.point", "non-finite hardpoint")
+        _check_spider(path, j, itf, arrays["nodes"], arrays["modes"])
+
+
+def _check_spider(path, j, itf, nodes, modes) -> None:
+    """The tied nodes move rigidly with the hardpoint: ``u = u_h + theta_h x (x - x_h)``
+    in every mode (exact for the RBE2 elimination; a scaled ``modes`` or ``shapes`` fails)."""
+    if not itf.nodes.size:
+        return
+    S = itf.shapes  # (6, m)
+    r = nodes[itf.nodes] - itf.point  # (k, 3)
+    rigid = S[None, :3, :] + np.cross(np.broadcast_to(S[3:].T[None], (len(r), S.shape[1], 3)),
+                                      r[:, None, :]).transpose(0, 2, 1)
+    U = modes[itf.nodes]  # (k, 3, m)
+    scale = max(float(np.abs(U).max()), float(np.abs(rigid).max()), 1e-300)
+    if np.abs(U - rigid).max() > 1e-6 * scale:
+        _fail(path, f"interface.{j}.shapes", f"interface '{itf.name}': the mode shapes at its "
+              "tied nodes do not follow the hardpoint's rigid motion (modes or interface "
+              "shapes were changed or scaled)")
