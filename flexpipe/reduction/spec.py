@@ -87,7 +87,8 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"not valid TOML: {exc}", file=path) from None
     except RecursionError:
-        raise InputError("not valid TOML: nested too deeply", file=path) from None
+        raise InputError("not valid TOML: arrays or tables nested too deeply (hundreds of "
+                         "levels); an interface spec needs two", file=path, line=1) from None
     lines = text.splitlines()
     unknown = set(doc) - {"interface", "radius"}
     if unknown:

@@ -145,6 +145,9 @@ class Table:
             return v
         if not isinstance(v, str):
             raise self.error(key, f"expected a string, got {v!r}")
+        if not v.strip():
+            raise self.error(key, "must not be empty"
+                             + (f"; valid: {', '.join(map(repr, choices))}" if choices else ""))
         if choices is not None and v not in choices:
             raise self.error(key, f"got {v!r}; valid: {', '.join(map(repr, choices))}")
         return v
