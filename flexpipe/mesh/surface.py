@@ -12,11 +12,13 @@ that name (trimesh's OBJ loader usually merges ``o``/``g`` groups into one geome
 from __future__ import annotations
 
 import warnings
+from pathlib import Path
 
 import numpy as np
 
 from flexpipe.errors import MeshError
 from flexpipe.mesh.mesh import CellBlock, Mesh
+from flexpipe.mesh.text_checks import check_obj, check_off, check_stl_ascii
 from flexpipe.mesh.validate import MeshWarning
 
 SURFACE_SUFFIXES = (".stl", ".obj", ".ply", ".off")
@@ -29,11 +31,14 @@ def read_surface(path) -> Mesh:
     suffix = str(path).lower().rsplit(".", 1)[-1]
     source = str(path)
     if suffix == "stl":
-        _check_stl_layout(path)
+        if _check_stl_layout(path) == "ascii":
+            check_stl_ascii(path, Path(path).read_bytes().decode("ascii"))
     elif suffix in ("obj", "off"):  # text formats: decoded here, not by trimesh's guesser
         import io
 
-        source = io.BytesIO(_utf8_text(path).encode("utf-8"))
+        text = _utf8_text(path)
+        (check_obj if suffix == "obj" else check_off)(path, text)
+        source = io.BytesIO(text.encode("utf-8"))
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
@@ -71,6 +76,10 @@ def read_surface(path) -> Mesh:
     area = np.linalg.norm(np.cross(P[F[:, 1]] - P[F[:, 0]], P[F[:, 2]] - P[F[:, 0]]), axis=1)
     degenerate = ~(area > 1e-12 * max(float(np.ptp(P, axis=0).max()), 1e-300) ** 2)
     degenerate |= (F[:, 0] == F[:, 1]) | (F[:, 1] == F[:, 2]) | (F[:, 0] == F[:, 2])
+    if degenerate.all():
+        raise MeshError(f"all {len(F)} triangles have zero area (coincident or collinear "
+                        "vertices, e.g. facet 1); the surface has no shell to model",
+                        file=str(path))
     if degenerate.any():
         warnings.warn(MeshWarning(
             f"{path}: dropped {int(degenerate.sum())} zero-area triangle(s), e.g. ids "
@@ -87,14 +96,12 @@ def read_surface(path) -> Mesh:
                 cell_sets=cell_sets, source=str(path))
 
 
-def _check_stl_layout(path) -> None:
+def _check_stl_layout(path) -> str:
     """Reject an STL that is neither a complete binary STL nor ASCII text, by its bytes.
 
     (trimesh would try to guess a text encoding, which needs an optional package, and
     report that instead of the real problem.)
     """
-    from pathlib import Path
-
     try:
         raw = Path(path).read_bytes()
     except OSError as exc:
@@ -106,7 +113,7 @@ def _check_stl_layout(path) -> None:
         if len(raw) == 84 + 50 * n:
             if n == 0:
                 raise MeshError("binary STL with 0 triangles", file=str(path))
-            return  # a binary STL of consistent size
+            return "binary"  # a binary STL of consistent size
     if raw.lstrip()[:5].lower() == b"solid":
         try:
             raw.decode("ascii")
@@ -115,7 +122,7 @@ def _check_stl_layout(path) -> None:
             raise MeshError(f"ASCII STL with a non-ASCII byte 0x{raw[exc.start]:02x}; an "
                             "ASCII STL holds 'facet normal', 'outer loop', 'vertex x y z' "
                             "lines only", file=str(path), line=line) from None
-        return
+        return "ascii"
     expected = 84 + 50 * int.from_bytes(raw[80:84], "little") if len(raw) >= 84 else None
     raise MeshError(
         "neither an ASCII STL (text starting with 'solid') nor a complete binary STL ("
@@ -126,8 +133,6 @@ def _check_stl_layout(path) -> None:
 
 def _non_finite(path, vertex: int) -> None:
     """Raise for a NaN/inf coordinate: text files by line, binary STL by facet."""
-    from pathlib import Path
-
     raw = Path(path).read_bytes()
     line = None
     try:
@@ -154,8 +159,6 @@ def _non_finite(path, vertex: int) -> None:
 
 def _utf8_text(path) -> str:
     """The file as UTF-8 text; bytes that are not UTF-8 are allowed in ``#`` comments only."""
-    from pathlib import Path
-
     try:
         raw = Path(path).read_bytes()
     except OSError as exc:
