@@ -77,6 +77,12 @@ def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     commands = _available()
     top = _top_parser(commands)
+    if argv and argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version"):
+        top.print_usage(sys.stderr)
+        print(f"flexpipe: error: unknown option {argv[0]}; give a COMMAND first: "
+              f"{', '.join(c[0] for c in commands)} (options follow the command)",
+              file=sys.stderr)
+        return EXIT_ERROR
     try:
         ns = top.parse_args(argv[:1] if argv and not argv[0].startswith("-") else argv)
     except SystemExit as exc:

@@ -126,6 +126,12 @@ def read_mesh(path, scale: float = 1.0, *, units: str | None = None, thickness=N
     system, materials = resolve(scale, units)
     if isinstance(keep, str):
         keep = (keep,)
+    from flexpipe.mesh.mesh import NODES_PER_CELL
+
+    unknown = [k for k in keep if k not in NODES_PER_CELL]
+    if unknown:
+        raise MeshError(f"keep: unknown cell type(s) {unknown}; valid: "
+                        f"{sorted(NODES_PER_CELL)}", file=str(path), key="keep")
     mesh = _read_raw(path, fmt, tuple(keep))
     mesh = convert(mesh, system, materials=materials)
     mesh = replace(mesh, source=str(path))
