@@ -102,7 +102,7 @@ def test_signal_during_integration(tmp_path, cache, sig):
     _no_temp_left(tmp_path)
 
 
-@pytest.mark.parametrize("sig", [signal.SIGTERM])
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_signal_during_reduction(tmp_path, sig):
     out = tmp_path / "run"
     cache = tmp_path / "fresh-cache"
