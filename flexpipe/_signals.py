@@ -14,6 +14,9 @@ import threading
 
 from flexpipe.errors import Interrupted
 
+__all__ = ["Interrupted", "deferred_interrupts", "interrupt_info", "interrupt_text",
+           "interrupts_as_exceptions"]
+
 
 def _raise(signum, frame):
     raise Interrupted(signum)
@@ -53,3 +56,38 @@ def interrupt_text(exc: BaseException) -> str:
     name = str(exc) if isinstance(exc, Interrupted) else "SIGINT"
     t = getattr(exc, "t", None)
     return f"interrupted ({name})" + (f" at t = {t:.4f} s" if t is not None else "")
+
+
+class _Pending:
+    signum: int | None = None
+
+
+@contextlib.contextmanager
+def deferred_interrupts():
+    """Context for native solver loops: SIGINT/SIGTERM only set ``state.signum``.
+
+    A handler that raises can fire at any Python instruction a native loop calls back
+    into - also outside the callback's own ``try`` - and the native code then reports a
+    failure of its own.  Inside this context the signals are recorded instead; the
+    callback polls ``state.signum`` and stops the loop, and the caller raises
+    :class:`Interrupted` afterwards.  Signals whose handler is the system default (e.g.
+    SIGTERM in a plain Python session) keep it; outside the main thread nothing changes.
+    """
+    state = _Pending()
+    if threading.current_thread() is not threading.main_thread():
+        yield state
+        return
+
+    def record(signum, frame):
+        state.signum = signum
+
+    saved = {}
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        current = signal.getsignal(sig)
+        if callable(current):  # Python-level handler (default_int_handler or ours)
+            saved[sig] = signal.signal(sig, record)
+    try:
+        yield state
+    finally:
+        for sig, handler in saved.items():
+            signal.signal(sig, handler)

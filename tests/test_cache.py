@@ -142,8 +142,8 @@ def test_rigid_properties_rebuild_a_corrupt_entry(tmp_path, monkeypatch):
 
     monkeypatch.setenv("FLEXPIPE_CACHE", str(tmp_path))
     car = load_car(ROOT / "cars" / "sedan.toml")
-    ref = bodymodel.rigid_properties(car, cache=False)
-    first = bodymodel.rigid_properties(car)
+    ref = bodymodel.rigid_properties(car)  # computed from the FE model (empty cache)
+    first = bodymodel.rigid_properties(car)  # from the cache
     (entry,) = tmp_path.glob("massprops-*.json")
     entry.write_text('{"mass": 1.0, "cg": [0, 0, 0], "inertia": "garbage"}')
     with pytest.warns(_cache.CacheWarning, match=entry.name):

@@ -87,7 +87,7 @@ def test_signal_during_integration(tmp_path, cache, sig):
                   "--t-end", "60", "--body", "rigid", "--out", str(out)],
                  env=_env(cache), cwd=tmp_path)
     proc.wait_for("step")  # the tqdm bar of the time integration
-    time.sleep(1.0)
+    time.sleep(0.5)
     proc.p.send_signal(sig)
     code = proc.finish()
     assert code == CODE[sig], proc.text[-2000:]
@@ -109,7 +109,7 @@ def test_signal_during_reduction(tmp_path, sig):
     proc = _Proc([sys.executable, "-m", "flexpipe.scenarios", "straight", "--out", str(out),
                   "--t-end", "0.2"], env=_env(cache), cwd=tmp_path)
     proc.wait_for("reducing body")
-    time.sleep(1.5)
+    time.sleep(1.0)
     proc.p.send_signal(sig)
     code = proc.finish()
     assert code == CODE[sig], proc.text[-2000:]
