@@ -124,7 +124,7 @@ def _merge_by_type(pieces):
 
 def read_gmsh(path, *, keep=()) -> Mesh:
     """Read a Gmsh ``.msh`` file (see module docstring for what is kept)."""
-    from flexpipe.mesh.text_checks import check_gmsh
+    from flexpipe.mesh.check_gmsh import check_gmsh
 
     check_gmsh(path)  # ASCII files: damaged lines named before meshio sees them
     m, tags = _read_gmsh_with_tags(path)
@@ -219,7 +219,7 @@ def read_vtk(path, file_format: str) -> Mesh:
     """Read a ``.vtu``/``.vtk`` file; ``node_id``/``element_id``/``property_id`` arrays
     (written by flexpipe) restore ids and tags."""
     if file_format == "vtu":
-        from flexpipe.mesh.text_checks import check_vtu
+        from flexpipe.mesh.check_vtu import check_vtu
 
         check_vtu(path)  # ASCII files: damaged arrays named before meshio sees them
     m = _meshio_read(path, file_format)

@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import MeshError
+from flexpipe.mesh.check_surface import check_obj, check_off, check_stl_ascii
 from flexpipe.mesh.mesh import CellBlock, Mesh
-from flexpipe.mesh.text_checks import check_obj, check_off, check_stl_ascii
 from flexpipe.mesh.validate import MeshWarning
 
 SURFACE_SUFFIXES = (".stl", ".obj", ".ply", ".off")
