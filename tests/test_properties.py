@@ -35,7 +35,7 @@ def _valid():
     files = gen_meshes.valid_files()
     out = {"interfaces.toml": SPEC, "car.toml": gen_cars.base_text().encode(),
            "body.npz": gen_body.npz(gen_body.valid())}
-    for name in ("msh22", "msh41", "vtu", "stl", "stl-bin", "obj", "off"):
+    for name in ("msh22", "msh41", "vtu", "vtk", "stl", "stl-bin", "obj", "off"):
         fname, data = files[name]
         out[f"{name}:{fname}"] = data
     return out

@@ -7,7 +7,7 @@ import re
 
 import numpy as np
 
-from flexpipe.mesh.text_checks import _err, _lines
+from flexpipe.mesh.text_checks import _err, _is_int, _lines
 
 _ARRAY = re.compile(r"<DataArray\b([^>]*)>(.*?)</DataArray>", re.S)
 _ATTR = re.compile(r'(\w+)\s*=\s*"([^"]*)"')
@@ -166,3 +166,144 @@ def _vtu_array(path, line, name, vtype, content, fmt, rattrs) -> np.ndarray:
     if len(raw) % dtype.itemsize:
         raise bad
     return np.frombuffer(raw, dtype).astype(float if dtype.kind == "f" else np.int64)
+
+
+# --------------------------------------------------------------------------- legacy .vtk
+def _tokens(lines, start):
+    for k in range(start, len(lines)):
+        for tok in lines[k].split():
+            yield tok, k + 1
+
+
+class _Stream:
+    def __init__(self, path, lines, start):
+        self.path, self.it, self.line = path, _tokens(lines, start), start
+
+    def next(self, what):
+        try:
+            tok, self.line = next(self.it)
+        except StopIteration:
+            raise _err(self.path, self.line, f"the file ends inside {what} (truncated?)"
+                       ) from None
+        return tok
+
+    def ints(self, n, what):
+        out = []
+        for _ in range(n):
+            tok = self.next(what)
+            if not _is_int(tok):
+                raise _err(self.path, self.line, f"{what}: {tok!r} is not an integer")
+            out.append(int(tok))
+        return out
+
+    def numbers(self, n, what):
+        for _ in range(n):
+            tok = self.next(what)
+            try:
+                float(tok)
+            except ValueError:
+                raise _err(self.path, self.line, f"{what}: {tok!r} is not a number") from None
+
+
+_LEGACY_TYPES = {"bit", "unsigned_char", "char", "unsigned_short", "short", "unsigned_int",
+                 "int", "unsigned_long", "long", "float", "double", "vtkidtype", "vtktypeint8",
+                 "vtktypeuint8", "vtktypeint16", "vtktypeuint16", "vtktypeint32",
+                 "vtktypeuint32", "vtktypeint64", "vtktypeuint64", "vtktypefloat32",
+                 "vtktypefloat64"}
+
+
+def _type(s, what) -> None:
+    tok = s.next(what)
+    if tok.lower() not in _LEGACY_TYPES:
+        raise _err(s.path, s.line, f"{what}: {tok!r} is not a VTK data type; valid: "
+                                   f"{', '.join(sorted(_LEGACY_TYPES))}")
+
+
+def check_vtk(path) -> None:
+    """Check a legacy ASCII ``.vtk`` UNSTRUCTURED_GRID (versions 2-5.1); binary files and
+    other datasets are left to meshio."""
+    lines = _lines(path)
+    if lines is None or not any(ln.strip() for ln in lines):
+        return
+    if not lines[0].lower().startswith("# vtk datafile version"):
+        raise _err(path, 1, "a legacy VTK file starts with '# vtk DataFile Version x.x'")
+    if len(lines) < 4:
+        raise _err(path, len(lines), "the header needs 4 lines (version, title, ASCII|BINARY, "
+                                     "DATASET ...)")
+    kind = lines[2].strip().upper()
+    if kind == "BINARY":
+        return
+    if kind != "ASCII":
+        raise _err(path, 3, f"line 3 must be ASCII or BINARY, got {lines[2].strip()[:40]!r}")
+    s = _Stream(path, lines, 3)
+    if s.next("DATASET").upper() != "DATASET":
+        raise _err(path, s.line, "expected 'DATASET UNSTRUCTURED_GRID'")
+    if s.next("DATASET").upper() != "UNSTRUCTURED_GRID":
+        return
+    n_points = n_cells = None
+    while True:
+        try:
+            tok, s.line = next(s.it)
+        except StopIteration:
+            break
+        key = tok.upper()
+        if key == "POINTS":
+            (n_points,) = s.ints(1, "POINTS count")
+            _type(s, "POINTS type")
+            s.numbers(3 * n_points, f"POINTS ({n_points} points, {3 * n_points} numbers)")
+        elif key == "CELLS":
+            a, b = s.ints(2, "CELLS counts")
+            if s.line and lines[s.line - 1].split()[:1] and _peek(lines, s) == "OFFSETS":
+                s.next("OFFSETS")
+                _type(s, "OFFSETS type")
+                offs = s.ints(a, f"OFFSETS ({a} values)")
+                s.next("CONNECTIVITY")
+                _type(s, "CONNECTIVITY type")
+                conn = s.ints(b, f"CONNECTIVITY ({b} values)")
+                if offs and (offs[0] != 0 or offs[-1] != b or any(
+                        y < x for x, y in zip(offs, offs[1:], strict=False))):
+                    raise _err(path, s.line, f"OFFSETS must rise from 0 to {b}")
+                n_cells = a - 1
+            else:
+                flat = s.ints(b, f"CELLS ({a} cells in {b} numbers)")
+                conn, k = [], 0
+                for _ in range(a):
+                    if k >= len(flat) or flat[k] < 1 or k + flat[k] >= len(flat) + 0 and \
+                            k + 1 + flat[k] > len(flat):
+                        raise _err(path, s.line, f"CELLS: the size {b} does not hold {a} "
+                                                 "cells of 'n i1 .. in'")
+                    conn += flat[k + 1:k + 1 + flat[k]]
+                    k += 1 + flat[k]
+                if k != len(flat):
+                    raise _err(path, s.line, f"CELLS: {a} cells use {k} numbers, size says {b}")
+                n_cells = a
+            if n_points is not None:
+                bad = [c for c in conn if not 0 <= c < n_points]
+                if bad:
+                    raise _err(path, s.line, f"cell connectivity refers to point {bad[0]}; "
+                                             f"valid 0 .. {n_points - 1}")
+        elif key == "CELL_TYPES":
+            (n,) = s.ints(1, "CELL_TYPES count")
+            if n_cells is not None and n != n_cells:
+                raise _err(path, s.line, f"CELL_TYPES announces {n} cells, CELLS has "
+                                         f"{n_cells}")
+            types = s.ints(n, f"CELL_TYPES ({n} values)")
+            bad = [t for t in types if not 1 <= t <= 83]
+            if bad:
+                raise _err(path, s.line, f"cell type {bad[0]} is not a VTK cell type")
+        elif key in ("POINT_DATA", "CELL_DATA", "FIELD", "METADATA"):
+            return  # data sections are left to meshio
+        else:
+            raise _err(path, s.line, f"unexpected {tok[:30]!r}; expected POINTS, CELLS, "
+                                     "CELL_TYPES, POINT_DATA or CELL_DATA")
+    if n_points is None or n_cells is None:
+        raise _err(path, s.line, "an UNSTRUCTURED_GRID needs POINTS, CELLS and CELL_TYPES")
+
+
+def _peek(lines, s) -> str:
+    """First token of the line after the current one (the OFFSETS keyword of VTK 5.1)."""
+    for k in range(s.line, len(lines)):
+        parts = lines[k].split()
+        if parts:
+            return parts[0].upper()
+    return ""

@@ -218,10 +218,10 @@ def read_gmsh(path, *, keep=()) -> Mesh:
 def read_vtk(path, file_format: str) -> Mesh:
     """Read a ``.vtu``/``.vtk`` file; ``node_id``/``element_id``/``property_id`` arrays
     (written by flexpipe) restore ids and tags."""
-    if file_format == "vtu":
-        from flexpipe.mesh.check_vtu import check_vtu
+    from flexpipe.mesh.check_vtu import check_vtk, check_vtu
 
-        check_vtu(path)  # ASCII files: damaged arrays named before meshio sees them
+    # damaged arrays and lines named before meshio sees them
+    (check_vtu if file_format == "vtu" else check_vtk)(path)
     m = _meshio_read(path, file_format)
     pieces, start = [], 0
     eid = m.cell_data.get("element_id")

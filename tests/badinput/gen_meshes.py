@@ -19,6 +19,9 @@ import numpy as np
 @lru_cache(maxsize=1)
 def valid_files() -> dict:
     """{name: (filename, bytes)} of valid meshes."""
+    import warnings
+
+    warnings.filterwarnings("ignore", message="VTK ASCII files are only meant for debugging")
     from flexpipe.mesh import write_mesh
     from flexpipe.mesh.generate import box, plate
 
@@ -36,6 +39,12 @@ def valid_files() -> dict:
             p = d / f"{name}-{fname}"
             write_mesh(mesh, p, **kw)
             out[name] = (fname, p.read_bytes())
+        import meshio
+
+        p = d / "legacy.vtk"
+        meshio.write(p, meshio.Mesh(solid.points, [("hexahedron", solid.blocks[0].cells)]),
+                     binary=False)
+        out["vtk"] = ("mesh.vtk", p.read_bytes())
     out["stl"] = ("mesh.stl", ascii_stl(_square()).encode())
     out["stl-bin"] = ("mesh.stl", binary_stl(_square()))
     out["obj"] = ("mesh.obj", b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\n"
@@ -107,7 +116,7 @@ def cases():
         yield f"{name}-valid", fname, data, "ok"
     markers = {"msh22": "$Nodes", "msh41": "$Nodes", "msh22-shell": "$Nodes",
                "vtu": "<Points", "vtu-shell": "<Points", "stl": "vertex", "obj": "v ",
-               "off": "\n5 4 0"}
+               "off": "\n5 4 0", "vtk": "POINTS"}
     for name, marker in markers.items():
         fname, data = files[name]
         for mid, content in _text_mutations(data.decode(), marker):
