@@ -78,9 +78,15 @@ def read_numeric_rows(path, *, kind: str, columns: str):
 
     path = Path(path)
     try:
-        lines = path.read_text().splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
+        raw = path.read_bytes()
+    except OSError as exc:
         raise InputError(f"cannot read the {kind} file ({exc})", file=path) from None
+    try:
+        lines = raw.decode("utf-8").splitlines()
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); a {kind} file is a "
+                         f"text table of {columns}", file=path,
+                         line=raw[: exc.start].count(b"\n") + 1) from None
     rows = []
     header_allowed = True
     for k, raw in enumerate(lines, start=1):
@@ -105,14 +111,11 @@ def read_numeric_rows(path, *, kind: str, columns: str):
 
 
 # --------------------------------------------------------------------------- staged folders
-_RUN_SUFFIXES = {".csv", ".png", ".json", ".vtu", ".pvd", ".txt", ".npz"}
-
-
 def stage_directory(out) -> Path:
     """A fresh, empty staging folder ``.NAME.staging-PID`` next to the output folder ``out``.
 
     Checks first that ``out`` is absent, empty or a previous run's folder (it holds a
-    ``summary.json`` and only result files), so that :func:`commit_directory` never
+    ``summary.json``), so that :func:`commit_directory` never
     replaces a folder of the user's other files.  Staging folders left by processes that
     no longer exist are removed.
 
@@ -130,15 +133,12 @@ def stage_directory(out) -> Path:
         if not out.is_dir():
             raise InputError("the output folder is an existing file; choose another --out",
                              file=out)
-        entries = list(out.iterdir())
-        foreign = [e.name for e in entries
-                   if not (e.is_file() and e.suffix.lower() in _RUN_SUFFIXES)]
-        if entries and ("summary.json" not in {e.name for e in entries} or foreign):
+        entries = [e.name for e in out.iterdir()]
+        if entries and "summary.json" not in entries:
             raise InputError(
-                "the output folder exists and is not a previous flexpipe run (no summary.json"
-                + (f", or it holds {foreign[:3]}" if foreign else "")
-                + "); a run replaces its output folder as a whole: choose a new or empty "
-                "folder", file=out)
+                f"the output folder exists and is not a previous flexpipe run (no summary.json;"
+                f" it holds {sorted(entries)[:3]}); a run replaces its output folder as a "
+                "whole: choose a new or empty folder", file=out)
     parent = out.resolve().parent
     parent.mkdir(parents=True, exist_ok=True)
     for old in parent.glob(f".{out.name}.staging-*"):

@@ -30,6 +30,9 @@ COMMANDS = (
     ("info", "flexpipe.cli_info", "summary of a mesh, body or car model file"),
     ("reduce", "flexpipe.cli_reduce", "component mode synthesis of a mesh into a flexible body"),
     ("run", "flexpipe.cli_run", "simulate a car scenario"),
+    ("kc", "flexpipe.cli_kc", "kinematics and compliance rig of a car's suspension"),
+    ("stress", "flexpipe.cli_stress", "stress recovery, hot spots and fatigue of a run"),
+    ("animate", "flexpipe.cli_animate", "ParaView animation (.pvd) of a run's flexible body"),
 )
 EXIT_ERROR = 2
 

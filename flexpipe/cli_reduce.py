@@ -46,6 +46,9 @@ def add_arguments(p) -> None:
     p.add_argument("--units", help="unit system of a solver deck, e.g. mm-t-s")
     p.add_argument("--no-check", action="store_true",
                    help="skip the full-model eigen-solve (frequency table, MAC)")
+    p.add_argument("--stress", default="none", metavar="all|none|SET",
+                   help="store stress modes for durability: all elements, none (default) or "
+                        "the elements of a named cell set")
     p.add_argument("--vtu", help="also write the mode shapes to this .vtu file")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
 
@@ -80,7 +83,8 @@ def run(args) -> int:
     with _step(f"reducing ({args.method}, {fe.Kr.shape[0]} DOF, {len(interfaces)} "
                "interfaces)", args.quiet):
         body = reduce(fe, interfaces, method=args.method, n_modes=args.n_modes,
-                      f_max=args.f_max, damping=args.damping, check=not args.no_check)
+                      f_max=args.f_max, damping=args.damping, check=not args.no_check,
+                      stress=args.stress)
     body.save(out)
     print(info_text(body, path=out))
     if args.vtu:
@@ -111,6 +115,10 @@ def info_text(body, *, path="", mac_size: int = 12) -> str:
                                            f"{_p(i.point)})" for i in body.interfaces),
              f"  source mesh sha256 {body.source_hash[:16]}...  flexpipe "
              f"{meta.get('flexpipe_version', '?')}  reduced in {meta.get('total_s', '?')} s"]
+    if body.stress is not None:
+        kinds = ", ".join(f"{len(b)} {b.cell_type}" for b in body.stress.blocks)
+        lines.append(f"  stress modes ({body.stress.selection}): {kinds} elements, "
+                     f"{body.stress.nbytes / 1e6:.1f} MB")
     ck = body.checks
     if "rigid_mass_matrix_full" in ck:
         full = rigid_mass_properties(ck["rigid_mass_matrix_full"])

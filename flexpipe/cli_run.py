@@ -22,7 +22,8 @@ def add_arguments(parser) -> None:
     parser.add_argument("--road", default=None,
                         help="road file (.toml spec, .crg, .csv); default: flat")
     parser.add_argument("--path", default=None,
-                        help="path file (.csv x,y or .toml [path]); default: straight along x")
+                        help="path file (.csv x,y or .toml [path]), or 'road' to follow the "
+                             "road's reference line; default: straight along x")
     parser.add_argument("--speed", type=float, required=True,
                         help="constant target speed in km/h")
     parser.add_argument("--t-end", type=float, default=10.0, help="simulated time, s (10)")
@@ -33,6 +34,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--out", default=None,
                         help="output directory (default: out/<car>-<road>-<speed>kmh)")
     parser.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
+    parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
+                        help="channel files: csv (units in the header), hdf5 (h5py) or mat "
+                             "(MATLAB); default csv")
     parser.add_argument("-q", "--quiet", action="store_true",
                         help="no progress messages (errors and warnings only)")
 
@@ -63,7 +67,7 @@ def run(args) -> int:
     summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed / 3.6,
                        t_end=args.t_end, out=out, title=title,
                        plots=("hub_force_fl", "trajectory"), bodies=bodies,
-                       cache=not args.no_cache, h=args.h, name="run",
+                       cache=not args.no_cache, h=args.h, name="run", format=args.format,
                        log=(lambda *a: None) if args.quiet else print,
                        progress=not args.quiet)
     return 0 if summary["status"] == 0 else 1

@@ -38,7 +38,8 @@ def test_generator(name, tmp_path, monkeypatch):
         folder = tmp_path / f"c{k}"
         folder.mkdir()
         monkeypatch.chdir(folder)
-        outcomes.append(runner.run_case(name, case, folder))
+        outcomes.append(runner.run_case(name, case, folder,
+                                        getattr(GENERATORS[name], "load", None)))
     RESULTS[name] = outcomes
     bad = [o for o in outcomes if o.category in FAILING]
     assert not bad, "\n".join(f"{o.category}: {o.case_id} ({o.filename}): {o.message}"

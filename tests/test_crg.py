@@ -211,3 +211,23 @@ def test_curved_reference_line_from_heading_channel(tmp_path):
     # segment i runs from point i-1 to i along heading phi[i] (OpenCRG convention)
     assert X[-1] == pytest.approx(sum(np.cos(phi[1:])))
     assert Y[-1] == pytest.approx(sum(np.sin(phi[1:])))
+
+
+def test_issue_cases_infinite_end_and_text_data_declared_binary(tmp_path):
+    """Issue 14: END_U = inf raised OverflowError; KRBI over text data read ~1e-10 m heights."""
+    rows = [" 0.0100000 0.0200000 0.0300000"] * 3
+    f = _text_crg(tmp_path, rows)
+    f.write_text(f.read_text().replace("END_U = 1.0", "END_U = inf"))
+    with pytest.raises(InputError, match="REFERENCE_LINE_END_U must be a finite number") as e:
+        read_crg(f)
+    assert "line 6" in str(e.value)
+    f = _text_crg(tmp_path, rows, fmt="KRBI")
+    with pytest.raises(InputError, match="binary format KRBI but the data block is text"):
+        read_crg(f)
+
+
+def test_misspelt_header_key_is_an_error(tmp_path):
+    f = _text_crg(tmp_path, [" 0.0000000 0.0000000 0.0000000"] * 3,
+                  extra="REFERENCE_LINE_STRAT_B = 0.05")
+    with pytest.raises(InputError, match="did you mean REFERENCE_LINE_START_B"):
+        read_crg(f)

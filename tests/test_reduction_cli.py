@@ -95,3 +95,14 @@ def test_spec_node_ids_are_file_ids(files):
     assert itf[0].nodes == (0, 1, 4)
     with pytest.raises(InputError, match="not in the mesh"):
         read_interfaces(spec, node_ids=np.array([7, 8]))
+
+
+def test_reduce_stores_stress_modes_on_request(files, capsys):
+    out = files / "stress.npz"
+    assert main(["reduce", str(files / "bar.msh"), "--interfaces", str(files / "spec.toml"),
+                 "-o", str(out), "--material", "steel", "--n-modes", "4", "--stress", "all",
+                 "--no-check", "-q"]) == 0
+    body = load_body(out)
+    assert body.stress.n_elements == 12 * 3 * 2 * 6  # every tetra of the Kuhn split
+    assert body.stress.blocks[0].modes.shape[1:] == (6, body.n_elastic)
+    assert "stress modes (all)" in capsys.readouterr().out

@@ -204,3 +204,34 @@ def test_unreadable_file_and_wrong_model(tmp_path):
         tire_from_file(SAMPLE, model="pac89")
     with pytest.raises(InputError, match="no \\[SECTION\\]"):
         read_tir(_write(tmp_path, "$ only a comment\n"))
+
+
+# ---------------------------------------------------------------- physical range checks
+@pytest.mark.parametrize("key, value, valid", [
+    ("FNOMIN", "0", "> 0"), ("LFZO", "0", "> 0"), ("PCX1", "0", "non-zero"),
+    ("PDX1", "0", "non-zero"), ("UNLOADED_RADIUS", "-0.316", "> 0"), ("FNOMIN", "-4000", "> 0"),
+    ("FZMAX", "-10000", "> 0"), ("KPUMIN", "2.0", "[-inf, 0]")])
+def test_physical_range_errors_name_line_key_and_range(tmp_path, key, value, valid):
+    """The issue's cases: each used to give NaN or plausible but wrong forces."""
+    text = SAMPLE.read_text()
+    line_no = next(i for i, t in enumerate(text.splitlines(), 1) if t.startswith(key))
+    f = tmp_path / "bad.tir"
+    f.write_text(re.sub(rf"^({key}\s*=\s*)\S+", rf"\g<1>{value}", text, count=1, flags=re.M))
+    with pytest.raises(InputError) as exc:
+        tire_from_file(f)
+    msg = str(exc.value)
+    assert "bad.tir" in msg and f"line {line_no}" in msg and key in msg and valid in msg
+
+
+def test_stiffness_and_load_curve_disagreeing_says_which_is_used(tmp_path):
+    text = re.sub(r"^(VERTICAL_STIFFNESS\s*=\s*)\S+", r"\g<1>400000", SAMPLE.read_text(),
+                  count=1, flags=re.M)
+    f = tmp_path / "disagree.tir"
+    f.write_text(text)
+    with pytest.warns(UserWarning, match="DEFLECTION_LOAD_CURVE.*is used.*400000.*not used"):
+        tire = tire_from_file(f)
+    # the model is the table's: least squares of the table read straight from the text
+    rows = re.search(r"\{pen\s+fz\}\n((?:\s*[\d.]+\s+[\d.]+\n)+)", text).group(1)
+    pen, fz = np.array([r.split() for r in rows.strip().splitlines()], dtype=float).T
+    k, k3 = np.linalg.lstsq(np.column_stack([pen, pen ** 3]), fz, rcond=None)[0]
+    assert tire.vertical.k == pytest.approx(k) and tire.vertical.k3 == pytest.approx(k3)

@@ -181,7 +181,10 @@ def test_divergence_gives_status_and_time(tmp_path):
 def test_result_csv_round_trip(car, prep, tmp_path):
     r = simulate(car, speed=5.0, t_end=0.2, body="rigid", prepared=prep)
     out = r.to_csv(tmp_path / "run.csv")
-    data = np.genfromtxt(out, delimiter=",", names=True)
-    np.testing.assert_allclose(data["t"], r.t, rtol=1e-5, atol=1e-9)
-    np.testing.assert_allclose(data["hub_fl_z"], r["hub_fl_z"], rtol=1e-5)
+    header = out.read_text().splitlines()[0].split(",")
+    assert header[0] == "t [s]" and "hub_fl_z [N]" in header and "roll [rad]" in header
+    values = np.loadtxt(out, delimiter=",", skiprows=1)
+    data = {h.split(" [")[0]: values[:, i] for i, h in enumerate(header)}
+    np.testing.assert_allclose(data["t"], r.t, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(data["hub_fl_z"], r["hub_fl_z"], rtol=1e-6)
     assert not list(tmp_path.glob(".*"))  # no temporary file left behind

@@ -236,7 +236,11 @@ def path_from_spec(table: dict, *, file=None, name: str = "path") -> Path:
             xs, ys = t.float_list("x_m"), t.float_list("y_m")
             if len(xs) != len(ys):
                 raise t.error("y_m", f"{len(ys)} values but x_m has {len(xs)}")
-            p = Path.from_xy(xs, ys, name=name, source=str(file) if file else "")
+            try:
+                p = Path.from_xy(xs, ys, name=name, source=str(file) if file else "")
+            except InputError as exc:
+                msg = str(exc).split(": ", 1)[-1] if file else str(exc)
+                raise t.error("x_m", f"{msg} (points are x_m[i], y_m[i])") from None
         else:
             base = pathlib.Path(file).parent if file is not None else pathlib.Path.cwd()
             target = (base / t.str("file")).resolve()

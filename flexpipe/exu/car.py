@@ -59,6 +59,8 @@ class CarState:
     jounce_rate: np.ndarray
     joint_force: np.ndarray | None  # (4, 3) joint force in the hardpoint frame, if read
     mount_R: np.ndarray  # (4, 3, 3) hardpoint marker frames
+    wheel_q: np.ndarray = None  # (4, 7) carrier node coordinates (position, EP), displacement
+    wheel_qt: np.ndarray = None  # (4, 7) their time derivatives
 
 
 @dataclass
@@ -67,11 +69,13 @@ class CarLoads:
 
     suspension: np.ndarray  # (4,) explicit part, along the chassis z axis at the hardpoint
     damper_c: np.ndarray  # (4,) damping coefficient of the implicit damper for the step
-    tire_force: np.ndarray  # (4, 3) global, on the wheel carrier at the wheel centre
+    tire: object  # flexpipe.vehicle.tire_coupling.TireStep: contact force, linearized
     tire_moment: np.ndarray  # (4, 3) global, non-spin part on the carrier
     spin_torque: np.ndarray  # (4,) about the spin axis, on the wheel spin coordinate
     steer: np.ndarray  # (4,) steering angle offsets (rad), used on steered corners
-    tire_ref_z: np.ndarray  # (4,) wheel-centre height at which the implicit tyre spring is 0
+    suspension_k: np.ndarray = None  # (4,) tangent stiffness of the suspension connector
+    suspension_f0: np.ndarray = None  # (4,) its force at zero travel and rate (linearized)
+    rack_travel: float | None = None  # linkage cars: steering rack travel (m, toward +y)
 
 
 @dataclass
@@ -107,6 +111,7 @@ class CarBuild:
     gravity: float = 9.81
     point_nodes: dict = field(default_factory=dict)  # name -> mesh node index
     point_local: dict = field(default_factory=dict)  # name -> body coordinates
+    suspension: object = None  # linkage cars: Suspension with preloaded springs
 
 
 class CarSystem:
@@ -124,6 +129,14 @@ class CarSystem:
         vb = v0 + R0 @ np.array([0.0, 0.0, rates[0]])
         wb = R0 @ np.array([rates[1], rates[2], 0.0])
         names = ("fl", "fr", "rl", "rr")
+        if spec.chassis == "flexible" and spec.n_modes == 0:
+            # every elastic mode switched off: the floating frame without elastic
+            # coordinates is a rigid body with the FE body's own mass properties (Exudyn's
+            # ObjectFFRFreducedOrder needs at least one modal coordinate)
+            fb = spec.flexbody
+            spec.mass, spec.center_of_mass = fb.mass, fb.center_of_mass
+            spec.inertia_origin = fb.inertia_origin
+            spec.chassis = "rigid"
         if spec.chassis == "flexible":
             h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=vb,
                                   angular_velocity=wb, gravity=g, n_modes=spec.n_modes,
@@ -157,13 +170,10 @@ class CarSystem:
         self.mount = mount
         self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
         self.wheel_node, self.wheel_obj, self.joint, self.torsion = [], [], [], []
-        ground = mbs.AddObject(eii.ObjectGround())
-        m_ground = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground,
-                                                        localPosition=[0.0, 0.0, 0.0]))
-        self.tire_spring = []
+        self.tire_elem = []
         self.susp_spring = []
         self.spin_node, self.load_body, self.load_carrier = [], [], []
-        self.load_tire_f, self.load_tire_m, self.load_spin = [], [], []
+        self.load_tire_m, self.load_spin = [], []
         self.travel0 = np.zeros(4)
         self.slide_local = np.zeros((4, 3))
         for i in range(4):
@@ -212,19 +222,17 @@ class CarSystem:
                 stiffness=float(spec.spring_k[i]), damping=float(spec.damper_c[i]),
                 force=-float(spec.spring_preload[i]),
                 visualization=eii.VObjectConnectorSpringDamper(show=False))))
-            # linear part of the vertical tyre spring, implicit (its offset follows the road
-            # under the wheel each step); the tyre model supplies the rest explicitly
-            self.tire_spring.append(mbs.AddObject(eii.ObjectConnectorCartesianSpringDamper(
-                markerNumbers=[m_ground, m_center], stiffness=[0.0, 0.0, float(spec.tire_k[i])],
-                damping=[0.0, 0.0, float(spec.tire_c[i]) if spec.tire_c is not None else 0.0],
-                offset=[0.0, 0.0, float((p0 + R0 @ W)[2])],
-                visualization=eii.VObjectConnectorCartesianSpringDamper(show=False))))
+            # tyre force at the contact point, linearized per step and solved implicitly:
+            # a linear ODE2 element on the carrier node and the spin coordinate whose
+            # damping, stiffness and force are set every step (flexpipe.vehicle.tire_coupling)
+            self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
+                nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
+                stiffnessMatrix=np.zeros((8, 8)), dampingMatrix=np.zeros((8, 8)),
+                forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
             self.load_body.append(mbs.AddLoad(eii.LoadForceVector(
                 markerNumber=load_at[i], loadVector=[0.0, 0.0, 0.0], bodyFixed=False)))
             self.load_carrier.append(mbs.AddLoad(eii.LoadForceVector(
                 markerNumber=m_slide, loadVector=[0.0, 0.0, 0.0], bodyFixed=True)))
-            self.load_tire_f.append(mbs.AddLoad(eii.LoadForceVector(
-                markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
             self.load_tire_m.append(mbs.AddLoad(eii.LoadTorqueVector(
                 markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
             self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
@@ -237,6 +245,8 @@ class CarSystem:
             self.travel0[i] = W[2] - H[2]
             self.slide_local[i] = [H[0] - W[0], H[1] - W[1], 0.0]
         mbs.Assemble()
+        self.wheel_ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
+                                   for n in self.wheel_node], dtype=float)
         self.newton_rtol = 1e-3
         self.newton_atol = 1e-4
         self.points = {}
@@ -257,6 +267,8 @@ class CarSystem:
         wR = np.array([g(n, OV.RotationMatrix) for n in self.wheel_node]).reshape(4, 3, 3)
         ww = np.array([g(n, OV.AngularVelocity) for n in self.wheel_node])
         spin = np.array([g(n, OV.Coordinates_t) for n in self.spin_node], dtype=float).ravel()
+        wq = np.array([g(n, OV.Coordinates) for n in self.wheel_node], dtype=float)
+        wqt = np.array([g(n, OV.Coordinates_t) for n in self.wheel_node], dtype=float)
         mp = np.array([gm(m, OV.Position) for m in self.mount])
         mv = np.array([gm(m, OV.Velocity) for m in self.mount])
         mR = np.array([gm(m, OV.RotationMatrix) for m in self.mount]).reshape(4, 3, 3)
@@ -270,7 +282,18 @@ class CarSystem:
             body_R=np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3),
             body_v=np.asarray(g(bn, OV.Velocity)), body_w=np.asarray(g(bn, OV.AngularVelocity)),
             wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
-            jounce=jounce, jounce_rate=rate, joint_force=None, mount_R=mR)
+            jounce=jounce, jounce_rate=rate, joint_force=None, mount_R=mR,
+            wheel_q=wq, wheel_qt=wqt)
+
+    # --- durability (feat/durability): pose and elastic modal coordinates for BodyMotion
+    def body_motion_sample(self):
+        """``(q, p, R)``: elastic modal coordinates (empty for a rigid body), global position
+        of the body-frame origin and body-to-global rotation matrix, now."""
+        g = self.mbs.GetNodeOutput
+        q = np.zeros(0) if self.modal_node is None else \
+            np.asarray(g(self.modal_node, OV.Coordinates), dtype=float)
+        return (q, np.asarray(g(self.body_node, OV.Position), dtype=float),
+                np.asarray(g(self.body_node, OV.RotationMatrix), dtype=float).reshape(3, 3))
 
     def joint_forces(self) -> np.ndarray:
         """Constraint force of every suspension joint in its hardpoint frame (4, 3)."""
@@ -291,23 +314,65 @@ class CarSystem:
             out[name] = np.asarray(a, dtype=float)
         return out
 
-    def apply(self, loads: CarLoads, mount_R: np.ndarray) -> None:
+    def apply(self, loads: CarLoads, mount_R: np.ndarray, st: CarState) -> None:
         """Set the loads for the coming step (``mount_R``: hardpoint frames, for the
-        direction of the suspension force on the body)."""
+        direction of the suspension force on the body; ``st``: the state at its start)."""
         mbs = self.mbs
         setp = mbs.SetLoadParameter
+        so = mbs.SetObjectParameter
+        D, K, f = self.tire_matrices(loads.tire, st)
         for i in range(4):
             F = float(loads.suspension[i])
             setp(self.load_body[i], "loadVector", (F * mount_R[i][:, 2]).tolist())
             setp(self.load_carrier[i], "loadVector", [0.0, 0.0, -F])
-            setp(self.load_tire_f[i], "loadVector", loads.tire_force[i].tolist())
             setp(self.load_tire_m[i], "loadVector", loads.tire_moment[i].tolist())
             setp(self.load_spin[i], "load", float(loads.spin_torque[i]))
             if self.torsion[i] is not None:
-                mbs.SetObjectParameter(self.torsion[i], "offset", float(loads.steer[i]))
-            mbs.SetObjectParameter(self.tire_spring[i], "offset",
-                                   [0.0, 0.0, float(loads.tire_ref_z[i])])
-            mbs.SetObjectParameter(self.susp_spring[i], "damping", float(loads.damper_c[i]))
+                so(self.torsion[i], "offset", float(loads.steer[i]))
+            so(self.tire_elem[i], "dampingMatrix", D[i])
+            so(self.tire_elem[i], "stiffnessMatrix", K[i])
+            so(self.tire_elem[i], "forceVector", f[i])
+            so(self.susp_spring[i], "damping", float(loads.damper_c[i]))
+            if loads.suspension_k is not None:
+                so(self.susp_spring[i], "stiffness", float(loads.suspension_k[i]))
+                so(self.susp_spring[i], "force", -float(loads.suspension_f0[i]))
+
+    def tire_matrices(self, ts, st: CarState):
+        """Linear ODE2 elements (damping D, stiffness K, force f on each carrier's 7 node
+        coordinates and its spin coordinate; arrays over the wheels) that apply the
+        linearized tyre force ``F0 + Dv (v_P - v_P,n) + dw (omega - omega_n) + A (z - z_n)``
+        at the contact point (Exudyn's convention: ``D q_t + K q = f``)."""
+        n = len(self.wheel_node)
+        ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
+        e0, e1, e2, e3 = ep.T
+        G = 2.0 * np.stack([np.stack([-e1, e0, -e3, e2], 1), np.stack([-e2, e3, e0, -e1], 1),
+                            np.stack([-e3, -e2, e1, e0], 1)], 1)  # (n, 3, 4)
+        r, s = ts.r, ts.spin_axis
+        z = np.zeros(n)
+        rx = np.stack([np.stack([z, -r[:, 2], r[:, 1]], 1), np.stack([r[:, 2], z, -r[:, 0]], 1),
+                       np.stack([-r[:, 1], r[:, 0], z], 1)], 1)  # (n, 3, 3)
+        P = np.eye(3) - s[:, :, None] * s[:, None, :]
+        J = np.zeros((n, 3, 8))  # contact-point velocity of the wheel (spin included)
+        J[:, :, :3] = np.eye(3)
+        J[:, :, 3:7] = -rx @ G
+        J[:, :, 7] = -(rx @ s[:, :, None])[:, :, 0]  # s x r
+        Jc = J.copy()  # contact-point velocity of the carrier (no spin)
+        Jc[:, :, 3:7] = -rx @ P @ G
+        Jc[:, :, 7] = 0.0
+        Jw = np.zeros((n, 8))  # absolute spin rate about s
+        Jw[:, 3:7] = (s[:, None, :] @ G)[:, 0]
+        Jw[:, 7] = 1.0
+        qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
+        vP = (Jc @ qt[:, :, None])[:, :, 0]
+        om = (Jw * qt).sum(axis=1)
+        JT = J.transpose(0, 2, 1)
+        D = -JT @ (ts.Dv @ Jc + ts.dw[:, :, None] * Jw[:, None, :])
+        K = np.zeros((n, 8, 8))
+        K[:, :, 2] = -(JT @ ts.A[:, :, None])[:, :, 0]
+        rhs = ts.F0 - (ts.Dv @ vP[:, :, None])[:, :, 0] - ts.dw * om[:, None] \
+            - ts.A * st.wheel_q[:, 2:3]
+        f = (JT @ rhs[:, :, None])[:, :, 0]
+        return D, K, f
 
     # ------------------------------------------------------------------ time loop
     def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.7,
@@ -323,7 +388,7 @@ class CarSystem:
         loads = step(st)
         if loads is None:
             return False, 0.0, 0.0, 0.0, "stopped at the initial state"
-        self.apply(loads, st.mount_R)
+        self.apply(loads, st.mount_R, st)
         last = {"t": 0.0, "n": 0}
 
         def prestep(mbs_, t):
@@ -338,7 +403,7 @@ class CarSystem:
                 progress(100)
             if loads is None:
                 return False
-            self.apply(loads, st.mount_R)
+            self.apply(loads, st.mount_R, st)
             return True
 
         from flexpipe._signals import Interrupted, deferred_interrupts  # flexpipe#14

@@ -388,4 +388,7 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
     K.eliminate_zeros()
     M.eliminate_zeros()
     T = _constraint_map(mesh, dpn, n_dof, K, M)
-    return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh)
+    # the property arguments, so that stresses (flexpipe.fem.stress) use the same values
+    info = {"material": material, "thickness": thickness, "beam_section": beam_section}
+    return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh,
+                   info=info)

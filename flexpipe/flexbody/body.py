@@ -25,6 +25,7 @@ import numpy as np
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
 from flexpipe.flexbody.invariants import FFRFInvariants
+from flexpipe.flexbody.stress import StressModes
 
 FORMAT = "flexpipe-modal-neutral-file"
 VERSION = 1
@@ -110,6 +111,9 @@ class FlexBody:
     checks : mapping of str to ndarray
         Optional verification data written by ``reduce(..., check=True)``: full-model
         frequencies, MAC matrix, mesh mass properties.
+    stress : StressModes or None
+        Element stresses per elastic mode (``reduce(..., stress=...)``), for modal stress
+        recovery (:mod:`flexpipe.flexbody.stress`).
     """
 
     nodes: np.ndarray
@@ -131,6 +135,7 @@ class FlexBody:
     source_hash: str = ""
     meta: Mapping[str, object] = field(default_factory=dict)
     checks: Mapping[str, np.ndarray] = field(default_factory=dict)
+    stress: StressModes | None = None
 
     def __post_init__(self):
         for name in _ARRAYS:
@@ -226,6 +231,9 @@ def _to_arrays(body: FlexBody, *, with_hash: bool = False) -> dict:
         "interfaces": [{"name": i.name, "kind": i.kind} for i in body.interfaces],
         "checks": sorted(body.checks),
     }
+    stress_arrays = {}
+    if body.stress is not None:  # optional entries: files without them load as before
+        header["stress"], stress_arrays = body.stress.to_arrays()
     out = {}
     for name in _ARRAYS:
         out[name] = getattr(body, name)
@@ -237,6 +245,7 @@ def _to_arrays(body: FlexBody, *, with_hash: bool = False) -> dict:
         out[f"interface.{j}.shapes"] = itf.shapes
     for k, v in body.checks.items():
         out[f"checks.{k}"] = v
+    out.update(stress_arrays)
     if with_hash:
         header["content_sha256"] = content_hash(header, out)
     out["header"] = np.array(json.dumps(header, sort_keys=True))
@@ -349,6 +358,9 @@ def _load(path: Path) -> FlexBody:
                          key="content_sha256")
 
     def get2(key):
+        if key not in stored:
+            raise InputError("entry missing (file truncated or written by another tool)",
+                             file=path, key=key)
         return stored[key]
 
     arrays = {name: get2(name) for name in _ARRAYS}
@@ -364,15 +376,30 @@ def _load(path: Path) -> FlexBody:
             raise InputError(f"malformed interface ({exc})", file=path,
                              key=f"interface.{j}") from None
     checks = {k: get2(f"checks.{k}") for k in header["checks"]}
+    stress = _stress(path, header, get2)
     from flexpipe.flexbody.checks import check_body_arrays
 
     check_body_arrays(path, header, arrays, inv, interfaces)
     try:
         return FlexBody(**arrays, n_rigid=header["n_rigid"], mass=header["mass"],
                         invariants=inv, interfaces=interfaces, method=header["method"],
-                        source_hash=header["source_hash"], meta=header["meta"], checks=checks)
+                        source_hash=header["source_hash"], meta=header["meta"], checks=checks,
+                        stress=stress)
     except (ValueError, TypeError) as exc:
         raise InputError(f"inconsistent body: {exc}", file=path, key="header") from None
+
+
+def _stress(path, header, get):
+    """The optional stress modes (None for files without them)."""
+    if not header.get("stress"):
+        return None
+    try:
+        return StressModes.from_arrays(header["stress"], get)
+    except InputError:
+        raise
+    except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
+        raise InputError(f"malformed stress modes ({type(exc).__name__}: {exc})", file=path,
+                         key="stress") from None
 
 
 def _check_header(path, header) -> None:

@@ -81,7 +81,7 @@ def _damping_ratios(damping, f_hz, n_rigid):
 def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int | None = None,
            f_max: float | None = None, *, damping=None, check: bool = False,
            backend: str | None = None, tol: float | None = None,
-           cb_factor: float = CB_FACTOR) -> FlexBody:
+           cb_factor: float = CB_FACTOR, stress: str | None = None) -> FlexBody:
     """Reduce an FE model to a :class:`FlexBody` by component mode synthesis.
 
     Parameters
@@ -108,6 +108,9 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     cb_factor : float
         Craig-Bampton with ``f_max``: keep fixed-interface modes up to
         ``cb_factor * f_max`` (default :data:`CB_FACTOR`).
+    stress : {None, "none", "all"} or str
+        Stress modes to store with the body (:mod:`flexpipe.flexbody.stress`): none
+        (default), every element, or the elements of the named cell set of the mesh.
 
     Returns
     -------
@@ -115,11 +118,11 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     """
     with dense_single_threaded():
         return _reduce(fe, interfaces, method, n_modes, f_max, damping=damping, check=check,
-                       backend=backend, tol=tol, cb_factor=cb_factor)
+                       backend=backend, tol=tol, cb_factor=cb_factor, stress=stress)
 
 
 def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, tol,
-            cb_factor):
+            cb_factor, stress=None):
     t0 = time.perf_counter()
     timings = {}
     if not isinstance(fe, FEModel):
@@ -172,6 +175,14 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         checks.update(_full_model_checks(fe, system, U, len(f_hz), backend=backend))
         timings["check_s"] = time.perf_counter() - t
 
+    smodes = None
+    if stress is not None and str(stress).lower() != "none":
+        from flexpipe.flexbody.stress import stress_modes
+
+        t = time.perf_counter()
+        smodes = stress_modes(fe, np.asarray(system.E @ Psi[:, n_rigid:]),
+                              np.arange(n_rigid, Psi.shape[1]), selection=stress)
+        timings["stress_s"] = time.perf_counter() - t
     zeta = _damping_ratios(damping, f_hz, n_rigid)
     m = len(f_hz)
     mesh = fe.mesh
@@ -193,7 +204,7 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         interfaces=tuple(BodyInterface(name=r.name, point=r.point, nodes=r.nodes, shapes=s,
                                        kind=r.kind) for r, s in zip(resolved, shapes, strict=True)),
         method=method, source_hash=mesh_hash(mesh) if mesh is not None else "",
-        meta=meta, checks=checks,
+        meta=meta, checks=checks, stress=smodes,
     )
 
 

@@ -37,10 +37,15 @@ def read_toml(path) -> dict:
     try:
         return tomllib.loads(text.decode("utf-8"))
     except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text ({exc.reason})", file=path) from None
+        raise InputError(f"not UTF-8 text ({exc.reason} at byte {exc.start}); TOML files are "
+                         "UTF-8", file=path, line=text[:exc.start].count(b"\n") + 1) from None
     except tomllib.TOMLDecodeError as exc:
         line = getattr(exc, "lineno", None)
         raise InputError(f"TOML syntax error: {exc}", file=path, line=line) from None
+    except RecursionError:
+        raise InputError("TOML nesting too deep to parse (arrays or tables nested thousands "
+                         "of levels); a road, path or driver file is a few flat tables",
+                         file=path) from None
 
 
 class TableReader:

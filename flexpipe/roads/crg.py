@@ -6,13 +6,15 @@ line of ``$$$$``, followed by the data block.  The parts used here:
 
 * ``$ROAD_CRG``: ``REFERENCE_LINE_START_U / END_U / INCREMENT`` (the distance grid ``u``),
   ``LONG_SECTION_V_RIGHT / LEFT / INCREMENT`` (the lateral grid ``v``, positive left),
-  ``REFERENCE_LINE_START_Z / START_S / END_S / START_B / END_B`` (elevation, slope and
-  banking of the reference line; slope and banking vary linearly from start to end unless
-  given as data channels), ``REFERENCE_LINE_START_PHI`` (heading).
-* ``$KD_DEFINITION``: ``#:FMT`` and the channels ``D:long section <i>,m`` (by index, the
+  ``REFERENCE_LINE_START_X / START_Y / START_PHI`` (plan position and heading of the
+  reference line; ``END_X / END_Y`` close a heading channel's integration),
+  ``REFERENCE_LINE_START_Z / START_S / START_B`` (elevation, slope and banking; without a
+  data channel the start value holds along the whole road, as in OpenCRG, and a different
+  ``END_S`` / ``END_B`` / ``END_PHI`` gives a warning).  Any other key is an error.
+* ``$KD_DEFINITION``: ``#:FMT``, ``U:reference line u,m,<start>,<increment>`` (used
+  when ``$ROAD_CRG`` gives no increment) and the channels ``D:long section <i>,m`` (by index, the
   lateral position is ``v_right + (i-1) v_increment``) or ``D:long section at v = <v>,m``
-  and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.  ``U:`` lines
-  describe the implicit ``u`` channel and hold no data.
+  and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.
 * The data block, one row per ``u`` sample with one value per ``D:`` channel.  ``FMT`` is
   four letters: ``K``ompact (rows run on without alignment) or ``L``ong (every row starts a
   new 80-byte/80-character record); ``R``eal (single) or ``D``ouble precision;
@@ -21,14 +23,20 @@ line of ``$$$$``, followed by the data block.  The parts used here:
   ``../shared/reference/roads`` are ``KRBI`` (compact single-precision binary).
 
 The height at ``(u, v)`` is ``z_grid(u, v) + z_ref(u) + b(u) v``, with ``z_ref`` the
-integral of the slope.  NaNs at the lateral borders of a cross section are replaced by the
-nearest valid value of that cross section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last");
-NaNs between valid values, or cross sections without any valid value, are errors.
-``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS`` sections are not applied (a warning says so).
+integral of the slope (``v`` held at the outermost long section beyond it).  The road is
+placed in the global plane by its reference line (:class:`~flexpipe.roads.refline.ReferenceLine`,
+the OpenCRG ``(x, y) <-> (u, v)`` map); :meth:`Road.height_xy` evaluates it at global
+positions, :meth:`Road.height` at ``(u, v)``. Heights equal pyopencrg's (tested at 10,000
+random points of a curved, sloped, banked road and of the reference files). NaNs at the
+lateral borders of a cross section are replaced by the nearest valid value of that cross
+section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last"); NaNs between valid values, or cross
+sections without any valid value, are errors. ``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS``
+sections are not applied (a warning says so).
 """
 
 from __future__ import annotations
 
+import difflib
 import math
 import pathlib
 import re
@@ -36,12 +44,18 @@ import warnings
 
 import numpy as np
 
-from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
+from flexpipe.roads.crg_data import (
+    fill_border_nans,
+    parse_binary_values,
+    parse_text_values,
+    reject_text_as_binary,
+)
+from flexpipe.roads.crg_write import write_crg  # noqa: F401 (re-exported)
+from flexpipe.roads.refline import ReferenceLine
 from flexpipe.roads.road import Road
 
-_LONG_SECTION = re.compile(r"long\s+section\s+(at\s+v\s*=\s*)?([-+0-9.eEdD]+)\s*,\s*m",
-                           re.IGNORECASE)
+_LONG_SECTION = re.compile(r"long\s+section\s+(at\s+v\s*=\s*)?([-+0-9.eEdD]+)", re.IGNORECASE)
 
 
 def _header_lines(raw: bytes, path):
@@ -80,6 +94,15 @@ def _parse_header(lines, path):
     return sections
 
 
+#: Keys of the ``$ROAD_CRG`` section (OpenCRG 1.2); any other key is an error.
+ROAD_CRG_KEYS = tuple(f"REFERENCE_LINE_{k}" for k in (
+    "START_U", "END_U", "INCREMENT", "START_S", "END_S", "START_B", "END_B", "START_X",
+    "START_Y", "END_X", "END_Y", "OFFSET_X", "OFFSET_Y", "START_PHI", "END_PHI", "OFFSET_PHI",
+    "START_Z", "END_Z", "OFFSET_Z", "START_LON", "START_LAT", "END_LON", "END_LAT",
+    "START_ALT", "END_ALT")) + ("LONG_SECTION_V_RIGHT", "LONG_SECTION_V_LEFT",
+                                "LONG_SECTION_V_INCREMENT")
+
+
 def _road_params(section, path):
     params = {}
     for k, body in section["_items"]:
@@ -87,12 +110,48 @@ def _road_params(section, path):
             raise InputError(f"expected 'KEY = value' in $ROAD_CRG, got {body!r}", file=path,
                              line=k)
         key, value = (t.strip() for t in body.split("=", 1))
+        key = key.upper()
+        if key not in ROAD_CRG_KEYS:
+            close = difflib.get_close_matches(key, ROAD_CRG_KEYS, n=2, cutoff=0.7)
+            hint = f" (did you mean {' or '.join(close)}?)" if close else ""
+            raise InputError(f"unknown $ROAD_CRG key {key}{hint}; valid: "
+                             f"{', '.join(ROAD_CRG_KEYS)}", file=path, line=k, key=key)
+        if key in params:
+            raise InputError(f"{key} is given twice (first on line {params[key][1]})",
+                             file=path, line=k, key=key)
         try:
-            params[key.upper()] = (float(value.replace("D", "E").replace("d", "e")), k)
+            number = float(value.replace("D", "E").replace("d", "e"))
         except ValueError:
             raise InputError(f"value of {key} is not a number: {value!r}", file=path,
-                             line=k) from None
+                             line=k, key=key) from None
+        if not math.isfinite(number):
+            raise InputError(f"value of {key} must be a finite number, got {value!r}",
+                             file=path, line=k, key=key)
+        params[key] = (number, k)
     return params
+
+
+def _u_channel(section, path):
+    """``(start, increment)`` from a ``U:reference line u,m,<start>,<increment>`` line, or None.
+
+    OpenCRG takes the ``$ROAD_CRG`` values first; this fills in a missing increment.
+    """
+    for k, body in section["_items"]:
+        if body[:2].upper() != "U:":
+            continue
+        items = [t.strip() for t in body[2:].split(",")]
+        if items[0].lower() != "reference line u" or len(items) < 4 or not items[3]:
+            continue
+        try:
+            start, inc = float(items[2] or 0.0), float(items[3])
+        except ValueError:
+            raise InputError(f"channel {body!r}: start and increment must be numbers",
+                             file=path, line=k) from None
+        if not (math.isfinite(start) and math.isfinite(inc)):
+            raise InputError(f"channel {body!r}: start and increment must be finite",
+                             file=path, line=k)
+        return start, inc
+    return None
 
 
 def _channels(section, path):
@@ -108,83 +167,41 @@ def _channels(section, path):
                                  line=k)
         elif head == "D:":
             desc = body[2:].strip()
-            m = _LONG_SECTION.search(desc)
-            low = desc.lower()
+            items = [t.strip() for t in desc.split(",")]
+            label, unit = items[0], (items[1] if len(items) > 1 else "")
+            m = _LONG_SECTION.fullmatch(label)
+            low = label.lower()
             if m:
-                pos = float(m.group(2).replace("D", "E").replace("d", "e"))
+                if unit != "m":
+                    raise InputError(f"channel {desc!r} has unit {unit!r}; long sections are "
+                                     "in 'm'", file=path, line=k)
+                try:
+                    pos = float(m.group(2).replace("D", "E").replace("d", "e"))
+                except ValueError:
+                    raise InputError(f"channel {desc!r}: {m.group(2)!r} is not a number",
+                                     file=path, line=k) from None
                 channels.append(("v" if m.group(1) else "index", pos, k))
             elif low.startswith("reference line"):
-                what = low[len("reference line"):].split(",")[0].strip()
-                if what not in ("phi", "slope", "banking"):
+                what = " ".join(low[len("reference line"):].split())
+                units = {"phi": "rad", "slope": "m/m", "banking": "m/m"}
+                if what not in units:
                     raise InputError(f"reference line channel {what!r} is not supported; "
                                      "supported: phi, slope, banking", file=path, line=k)
+                if unit != units[what]:
+                    raise InputError(f"channel {desc!r} has unit {unit!r}; 'reference line "
+                                     f"{what}' is in '{units[what]}'", file=path, line=k)
+                if what in [c[0] for c in channels]:
+                    raise InputError(f"channel 'reference line {what}' is given twice",
+                                     file=path, line=k)
                 channels.append((what, 0.0, k))
             else:
                 raise InputError(f"unknown data channel {desc!r}; expected 'long section "
                                  "<i>,m', 'long section at v = <v>,m' or 'reference line "
-                                 "phi/slope/banking'", file=path, line=k)
+                                 "phi,rad / slope,m/m / banking,m/m'", file=path, line=k)
     if fmt is None:
         raise InputError("$KD_DEFINITION has no '#:' data format line", file=path,
                          line=section["_line"])
     return fmt, channels
-
-
-def _parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int, first_line: int, path):
-    """Values of a formatted data block, shape (n_u, n_ch), and each row's first line."""
-    width = 10 if fmt[1] == "R" else 20
-    lines = raw.decode("latin-1").splitlines()
-    values, rows_line, row = [], [], []
-    per_line = 80 // width
-    for offset, text in enumerate(lines):
-        k = first_line + offset
-        fields = [text[i:i + width] for i in range(0, min(len(text), per_line * width), width)]
-        if fmt[0] == "K":
-            while fields and not fields[-1].strip():
-                fields.pop()
-        for f in fields:
-            if fmt[0] == "L" and len(row) == n_ch:
-                break
-            s = f.strip()
-            if s.startswith("*"):
-                v = math.nan
-            else:
-                try:
-                    v = float(s.replace("D", "E").replace("d", "e"))
-                except ValueError:
-                    raise InputError(f"data value {f!r} is not a number (fields are {width} "
-                                     f"characters wide in format {fmt})", file=path,
-                                     line=k) from None
-            if not row:
-                rows_line.append(k)
-            row.append(v)
-            if len(row) == n_ch:
-                values.append(row)
-                row = []
-                if len(values) == n_u:
-                    return np.array(values), np.array(rows_line)
-        if fmt[0] == "L" and row and len(row) < n_ch and len(fields) < per_line:
-            raise InputError(f"data row has {len(row)} values, expected {n_ch}", file=path,
-                             line=k)
-    raise InputError(f"data block holds {len(values)} complete rows, expected {n_u} "
-                     f"(from REFERENCE_LINE_START_U/END_U/INCREMENT)", file=path)
-
-
-def _parse_binary_values(raw: bytes, fmt: str, n_ch: int, n_u: int, path):
-    dtype = np.dtype(">f4") if fmt[1] == "R" else np.dtype(">f8")
-    row_bytes = n_ch * dtype.itemsize
-    if fmt[0] == "L":
-        row_bytes = -(-row_bytes // 80) * 80
-    need = row_bytes * n_u
-    if len(raw) < need:
-        raise InputError(f"binary data block has {len(raw)} bytes, expected at least {need} "
-                         f"({n_u} rows x {n_ch} channels, format {fmt})", file=path)
-    if fmt[0] == "K":
-        vals = np.frombuffer(raw, dtype=dtype, count=n_u * n_ch).reshape(n_u, n_ch)
-    else:
-        per_row = row_bytes // dtype.itemsize
-        vals = np.frombuffer(raw, dtype=dtype, count=n_u * per_row).reshape(n_u, per_row)
-        vals = vals[:, :n_ch]
-    return vals.astype(float)
 
 
 def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road:
@@ -214,7 +231,10 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     sections = _parse_header(lines, path)
     for missing in ("ROAD_CRG", "KD_DEFINITION"):
         if missing not in sections:
-            raise InputError(f"no ${missing} section", file=path)
+            close = difflib.get_close_matches(missing, list(sections), n=1, cutoff=0.7)
+            hint = (f"; ${close[0]} on line {sections[close[0]]['_line']} is misspelt?"
+                    if close else f"; sections found: {', '.join(sections) or 'none'}")
+            raise InputError(f"no ${missing} section{hint}", file=path)
     for ignored in ("ROAD_CRG_MODS", "ROAD_CRG_OPTS", "ROAD_CRG_FILE"):
         if ignored in sections and sections[ignored]["_items"]:
             warnings.warn(f"{path}: ${ignored} is not applied by flexpipe", stacklevel=2)
@@ -228,16 +248,23 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
                              line=sections["ROAD_CRG"]["_line"])
         return default
 
-    u0, u1, du = get("REFERENCE_LINE_START_U", 0.0), get("REFERENCE_LINE_END_U"), \
-        get("REFERENCE_LINE_INCREMENT")
+    u_channel = _u_channel(sections["KD_DEFINITION"], path)
+    u0 = get("REFERENCE_LINE_START_U", u_channel[0] if u_channel else 0.0)
+    u1 = get("REFERENCE_LINE_END_U")
+    du = get("REFERENCE_LINE_INCREMENT", u_channel[1] if u_channel else None)
     if not (du > 0.0 and u1 > u0):
         raise InputError(f"need REFERENCE_LINE_END_U > START_U and INCREMENT > 0, got "
                          f"{u0:g}, {u1:g}, {du:g}", file=path, line=p.get(
                              "REFERENCE_LINE_INCREMENT", (0, None))[1])
+    if (u1 - u0) / du > 1e8:
+        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m in steps of {du:g} m "
+                         "gives more than 1e8 cross sections; check both values", file=path,
+                         line=p.get("REFERENCE_LINE_END_U", (0, None))[1])
     n_u = int(round((u1 - u0) / du)) + 1
     if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
         raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
-                         f"of the increment {du:g} m", file=path)
+                         f"of the increment {du:g} m", file=path,
+                         line=p.get("REFERENCE_LINE_END_U", (0, None))[1])
     fmt, channels = _channels(sections["KD_DEFINITION"], path)
     kinds = [c[0] for c in channels]
     sec_idx = [i for i, c in enumerate(channels) if c[0] in ("index", "v")]
@@ -263,136 +290,91 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         v = np.array([channels[i][1] for i in sec_idx])
     order = np.argsort(v)
     if np.any(np.diff(v[order]) <= 0.0):
-        raise InputError("two long sections share the same lateral position", file=path)
+        raise InputError(f"two long sections share the same lateral position (v = "
+                         f"{np.sort(v)[np.flatnonzero(np.diff(np.sort(v)) <= 0.0)[0]]:g} m)",
+                         file=path, line=sections["KD_DEFINITION"]["_line"])
 
     data = raw[data_offset:]
     if fmt[2] == "F":
-        vals, row_line = _parse_text_values(data, fmt, len(channels), n_u, sep_line + 1, path)
+        vals, row_line = parse_text_values(data, fmt, len(channels), n_u, sep_line + 1, path)
     else:
-        vals = _parse_binary_values(data, fmt, len(channels), n_u, path)
+        reject_text_as_binary(data, fmt, sep_line + 1, path)
+        vals = parse_binary_values(data, fmt, len(channels), n_u, path)
         row_line = None
-    z = vals[:, sec_idx][:, order]
-    z = _fill_border_nans(z, u0 + du * np.arange(n_u), row_line, path)
     u = u0 + du * np.arange(n_u)
+    z = vals[:, sec_idx][:, order]
+    z = fill_border_nans(z, u, row_line, path)
     v = v[order]
-
-    def channel(kind, start_key, end_key):
-        if kind in kinds:
-            c = vals[:, kinds.index(kind)]
-            if not np.all(np.isfinite(c[1:])):
-                raise InputError(f"reference line {kind} channel has NaN values", file=path)
-            return c
-        a = get(start_key, 0.0)
-        b = get(end_key, a)
-        return a + (b - a) * (u - u0) / (u1 - u0)
-
-    slope = channel("slope", "REFERENCE_LINE_START_S", "REFERENCE_LINE_END_S")
-    bank = channel("banking", "REFERENCE_LINE_START_B", "REFERENCE_LINE_END_B")
-    z_ref = get("REFERENCE_LINE_START_Z", 0.0) + np.concatenate(
-        [[0.0], np.cumsum(0.5 * (slope[1:] + slope[:-1]) * du)])
+    plan, z_ref, bank = _reference_line(p, kinds, vals, u, path, get)
     z = z + z_ref[:, None] + bank[:, None] * v[None, :]
     heading = None
-    if "phi" in kinds:
-        heading = vals[:, kinds.index("phi")].copy()
-        heading[0] = heading[1] if n_u > 1 else get("REFERENCE_LINE_START_PHI", 0.0)
-    elif get("REFERENCE_LINE_START_PHI", 0.0) != 0.0:
-        heading = np.full(n_u, get("REFERENCE_LINE_START_PHI", 0.0))
-    return Road.from_grid(u, v, z, track_width=track_width, heading=heading,
+    if not plan.straight or plan.phi_start != 0.0:
+        heading = np.concatenate([[plan.phi[0]], plan.phi])
+    return Road.from_grid(u, v, z, track_width=track_width, heading=heading, plan=plan,
                           name=path.stem if name is None else name, source=str(path))
 
 
-def _fill_border_nans(z, u, row_line, path):
-    bad = ~np.isfinite(z)
-    if not bad.any():
-        return z
-    z = z.copy()
-    for i in np.flatnonzero(bad.any(axis=1)):
-        good = np.flatnonzero(~bad[i])
-        where = dict(file=path, line=None if row_line is None else int(row_line[i]))
-        if good.size == 0:
-            raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has no valid "
-                             "height; every cross section needs at least one", **where)
-        lo, hi = good[0], good[-1]
-        if hi - lo + 1 != good.size:
-            raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has a NaN "
-                             "between valid heights; NaN is only allowed at the borders",
-                             **where)
-        z[i, :lo] = z[i, lo]
-        z[i, hi + 1:] = z[i, hi]
-    return z
+def _reference_line(p, kinds, vals, u, path, get):
+    """Plan position, elevation and banking of the reference line (OpenCRG definitions).
 
-
-def _fmt_text(v: float, width: int) -> str:
-    if not math.isfinite(v):
-        return "*missing*".ljust(width)[:width]
-    for prec in range(width - 3, 0, -1):
-        s = f"{v:{width}.{prec}f}"
-        if len(s) <= width:
-            return s
-    s = f"{v:{width}.{width - 7}E}"
-    if len(s) > width:
-        raise InputError(f"value {v!r} does not fit a {width}-character CRG field")
-    return s
-
-
-def write_crg(road: Road, path, *, fmt: str = "KRBI", comment: str = "") -> None:
-    """Write ``road`` as an OpenCRG file (atomically).
-
-    Parameters
-    ----------
-    road : Road
-        Must have uniform ``x`` spacing.  A road without a lateral grid is written with two
-        long sections at ``-track_width/2`` (right) and ``+track_width/2`` (left).
-    path : str or pathlib.Path
-        Output file.
-    fmt : {'KRBI', 'KDBI', 'LRFI', 'LDFI'}
-        Data format (binary single/double, text single/double).
-    comment : str
-        Text for the ``$CT`` block.
+    ``phi`` and ``slope`` channels hold one value per interval (the value of record ``i``
+    belongs to the interval from ``i-1`` to ``i``; the first is not used); ``banking`` one
+    value per record.  Without a channel the start value holds for the whole road (the
+    OpenCRG reference behaviour; a different end value gives a warning).
     """
-    fmt = fmt.upper()
-    if fmt not in ("KRBI", "KDBI", "LRFI", "LDFI"):
-        raise InputError(f"CRG format {fmt!r} not writable; valid: KRBI, KDBI, LRFI, LDFI")
-    if not road._dx:
-        raise InputError(f"road '{road.name}' has non-uniform distance samples; OpenCRG needs "
-                         "a constant REFERENCE_LINE_INCREMENT")
-    if road.z is None:
-        v = np.array([-0.5, 0.5]) * road.track_width
-        z = np.column_stack([road.right, road.left])
+    n_u, du = u.size, u[1] - u[0]
+    length = u[-1] - u[0]
+    tol = max(1e-6 * length, 1e-4)
+
+    def column(kind, first):
+        c = vals[first:, kinds.index(kind)]
+        bad = np.flatnonzero(~np.isfinite(c))
+        if bad.size:
+            raise InputError(f"reference line {kind} channel value of record "
+                             f"{bad[0] + first + 1} is {c[bad[0]]}; all values must be finite",
+                             file=path)
+        return c
+
+    def constant(start_key, end_key, what):
+        a = get(start_key, 0.0)
+        b = get(end_key, a)
+        if abs(b - a) > 1e-6 * max(1.0, abs(a)):
+            warnings.warn(f"{path}: no {what} channel and {end_key} = {b:g} differs from "
+                          f"{start_key} = {a:g}; OpenCRG uses the start value for the whole "
+                          f"road (add a 'reference line {what}' channel for a varying one)",
+                          UserWarning, stacklevel=4)
+        return a
+
+    x0, y0 = get("REFERENCE_LINE_START_X", 0.0), get("REFERENCE_LINE_START_Y", 0.0)
+    xe, ye = p.get("REFERENCE_LINE_END_X", (None,))[0], p.get("REFERENCE_LINE_END_Y", (None,))[0]
+    if "phi" in kinds:
+        phi = column("phi", 1)
+        plan = ReferenceLine.from_heading(u[0], du, phi, x0=x0, y0=y0)
+        if xe is not None and ye is not None:
+            err = math.hypot(plan.x[-1] - xe, plan.y[-1] - ye)
+            if err > tol:
+                warnings.warn(f"{path}: the integrated headings end {err:.4g} m away from "
+                              "REFERENCE_LINE_END_X/Y; the difference is spread along the "
+                              "line", UserWarning, stacklevel=3)
+            plan = ReferenceLine.from_heading(u[0], du, phi, x0=x0, y0=y0, x_end=xe, y_end=ye)
     else:
-        v, z = road.y, road.z
-    dv = np.diff(v)
-    if np.any(np.abs(dv - dv[0]) > 1e-9 * max(1.0, abs(v[-1]))):
-        raise InputError("the lateral grid is not uniform; write_crg needs a uniform grid")
-    du = road._dx
-    head = ["$CT", *(comment.splitlines() or [road.name or "flexpipe road"]), "$",
-            "$ROAD_CRG"]
-    for key, value in (("REFERENCE_LINE_START_U", road.x[0]),
-                       ("REFERENCE_LINE_END_U", road.x[-1]),
-                       ("REFERENCE_LINE_INCREMENT", du),
-                       ("LONG_SECTION_V_RIGHT", v[0]), ("LONG_SECTION_V_LEFT", v[-1]),
-                       ("LONG_SECTION_V_INCREMENT", dv[0])):
-        head.append(f"{key:<26}= {value:.16e}")
-    head += ["$", "$KD_DEFINITION", f"#:{fmt}", f"U:reference line u,m,{road.x[0]:.3f},{du:.3f}"]
-    head += [f"D:long section {j + 1},m" for j in range(v.size)]
-    head += ["$", "$" * 72]
-    body = "\n".join(line[:72] for line in head) + "\n"
-    with atomic_path(path) as tmp:
-        with open(tmp, "wb") as fh:
-            fh.write(body.encode("ascii"))
-            if fmt[2] == "B":
-                dtype = ">f4" if fmt[1] == "R" else ">f8"
-                flat = np.asarray(z, dtype=float).ravel()
-                per_record = 80 // np.dtype(dtype).itemsize
-                pad = (-flat.size) % per_record
-                block = np.concatenate([flat, np.full(pad, np.nan)]).astype(dtype)
-                fh.write(block.tobytes())
-            else:
-                width = 10 if fmt[1] == "R" else 20
-                per_line = 80 // width
-                out = []
-                for row in z:
-                    fields = [_fmt_text(float(val), width) for val in row]
-                    out += ["".join(fields[i:i + per_line])
-                            for i in range(0, len(fields), per_line)]
-                fh.write(("\n".join(out) + "\n").encode("ascii"))
+        phi0 = constant("REFERENCE_LINE_START_PHI", "REFERENCE_LINE_END_PHI", "phi")
+        plan = ReferenceLine.from_heading(u[0], du, np.full(n_u - 1, phi0), x0=x0, y0=y0)
+        if xe is not None and ye is not None:
+            err = math.hypot(plan.x[-1] - xe, plan.y[-1] - ye)
+            if err > tol:
+                warnings.warn(f"{path}: REFERENCE_LINE_END_X/Y lie {err:.4g} m from the end of "
+                              "the straight line given by the start position and heading; "
+                              "the end position is not used", UserWarning, stacklevel=3)
+    z0 = get("REFERENCE_LINE_START_Z", 0.0)
+    slope = column("slope", 1) if "slope" in kinds else np.full(
+        n_u - 1, constant("REFERENCE_LINE_START_S", "REFERENCE_LINE_END_S", "slope"))
+    z_ref = np.empty(n_u)
+    z_ref[0] = z0
+    z_ref[1:] = z0 + np.cumsum(du * slope)
+    ze = p.get("REFERENCE_LINE_END_Z", (None,))[0]
+    if "slope" in kinds and ze is not None:
+        z_ref += np.linspace(0.0, 1.0, n_u) * (ze - z_ref[-1])
+    bank = column("banking", 0) if "banking" in kinds else np.full(
+        n_u, constant("REFERENCE_LINE_START_B", "REFERENCE_LINE_END_B", "banking"))
+    return plan, z_ref, bank

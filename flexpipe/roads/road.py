@@ -1,9 +1,13 @@
 """The :class:`Road` data object and its CSV form.
 
-A road is described in path coordinates: ``s`` is the distance along the driven path (m)
-and ``lateral`` the offset from the path centre line, positive to the left (m).  The height
-is given either by two wheel tracks (``left`` at ``+track_width/2``, ``right`` at
-``-track_width/2``) or, for OpenCRG roads, by a full grid ``z[i, j]`` at ``(x[i], y[j])``.
+A road is described in road coordinates: ``s`` (OpenCRG ``u``) is the distance along its
+reference line (m) and ``lateral`` (``v``) the offset from it, positive to the left (m).
+The height is given either by two wheel tracks (``left`` at ``+track_width/2``, ``right``
+at ``-track_width/2``) or, for OpenCRG roads, by a full grid ``z[i, j]`` at
+``(x[i], y[j])``.  :meth:`Road.height` takes road coordinates; :meth:`Road.height_xy`
+takes global plane positions: a road with a :attr:`Road.plan` (OpenCRG) lies where its
+reference line puts it (curved or straight), any other road along the global x axis
+(``s = x``, ``lateral = y``).  :meth:`Road.reference_path` gives the line as a driver path.
 
 Evaluation rules (:meth:`Road.height`)
 -------------------------------------
@@ -28,6 +32,7 @@ import numpy as np
 from flexpipe._arrays import readonly_floats
 from flexpipe._io import atomic_path, read_numeric_rows
 from flexpipe.errors import InputError
+from flexpipe.roads.refline import ReferenceLine
 
 _SCALARS = (float, int, np.float64, np.float32, np.int64)
 
@@ -50,7 +55,13 @@ class Road:
     z : ndarray, shape (n, n_y), optional
         Heights on the grid ``(x, y)`` (m).  When given, :meth:`height` interpolates it.
     heading : ndarray, shape (n,), optional
-        Heading of the reference line at each ``x`` (rad), for curved OpenCRG roads.
+        Heading of the reference line at each ``x`` (rad), for curved OpenCRG roads:
+        ``heading[i]`` is the direction from sample ``i-1`` to ``i`` (``heading[0]`` is
+        not used).  Needs uniform ``x`` spacing; gives ``plan`` when that is not given.
+    plan : ReferenceLine, optional
+        Position of the reference line in the global plane (OpenCRG roads).  Without it
+        (and without ``heading``) the road lies along the global x axis with ``s = x``
+        and ``lateral = y``; see :meth:`height_xy`.
     name : str
         Short name.
     source : str
@@ -66,6 +77,7 @@ class Road:
     heading: np.ndarray | None = None
     name: str = ""
     source: str = ""
+    plan: ReferenceLine | None = None
 
     def __post_init__(self):
         where = self.source or self.name or None
@@ -122,11 +134,25 @@ class Road:
         dx = (x[-1] - x[0]) / (x.size - 1)
         uniform = bool(np.all(np.abs(step - dx) <= 1e-9 * max(1.0, abs(x[-1]))))
         object.__setattr__(self, "_dx", dx if uniform else 0.0)
+        if self.plan is None and self.heading is not None:
+            if not uniform:
+                raise InputError("a road with a heading needs uniform distance samples",
+                                 file=where)
+            object.__setattr__(self, "plan", ReferenceLine.from_heading(
+                x[0], dx, self.heading[1:]))
+        if self.plan is not None:
+            if not isinstance(self.plan, ReferenceLine):
+                raise InputError(f"plan must be a ReferenceLine, got {type(self.plan).__name__}",
+                                 file=where)
+            if self.plan.n != x.size or abs(self.plan.u0 - x[0]) > 1e-9 * max(1.0, abs(x[0])) \
+                    or not uniform or abs(self.plan.du - dx) > 1e-9 * max(1.0, dx):
+                raise InputError("the reference line (plan) must have one point per uniform "
+                                 "distance sample, starting at x[0]", file=where)
 
     # ----------------------------------------------------------------- constructors
     @classmethod
     def from_grid(cls, x, y, z, *, track_width: float = 1.5, heading=None, name: str = "",
-                  source: str = "") -> Road:
+                  source: str = "", plan: ReferenceLine | None = None) -> Road:
         """A road from a height grid; the tracks are read at ``±track_width/2``."""
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
@@ -138,7 +164,7 @@ class Road:
         jl, tl = _lateral_weights(y, np.array([half, -half]))
         tracks = z[:, jl] * (1.0 - tl) + z[:, jl + 1] * tl
         return cls(x=x, left=tracks[:, 0], right=tracks[:, 1], track_width=track_width,
-                   y=y, z=z, heading=heading, name=name, source=source)
+                   y=y, z=z, heading=heading, name=name, source=source, plan=plan)
 
     # ----------------------------------------------------------------- properties
     @property
@@ -182,20 +208,28 @@ class Road:
         Returns
         -------
         float or ndarray
-            Height (m); see the module notes for the interpolation and end rules.
+            Height (m); see the module notes for the interpolation and end rules.  NaN
+            where ``s`` or ``lateral`` is not finite.
         """
         if type(s) in _SCALARS and type(lateral) in _SCALARS:
+            if not (math.isfinite(s) and math.isfinite(lateral)):
+                return math.nan
             return self._height_scalar(float(s), float(lateral))
         if self.z is None:
             w = np.clip(np.asarray(lateral, dtype=float) / self.track_width + 0.5, 0.0, 1.0)
             return (1.0 - w) * self.right_height(s) + w * self.left_height(s)
         s, lateral = np.broadcast_arrays(np.asarray(s, dtype=float),
                                          np.asarray(lateral, dtype=float))
+        bad = ~(np.isfinite(s) & np.isfinite(lateral))
+        if bad.any():          # NaN in, NaN out (e.g. a diverging simulation)
+            s, lateral = np.where(bad, self.x[0], s), np.where(bad, 0.0, lateral)
         i, t = self._along(s)
         j, u = _lateral_weights(self.y, lateral)
         z = self.z
         h = ((1.0 - t) * ((1.0 - u) * z[i, j] + u * z[i, j + 1])
              + t * ((1.0 - u) * z[i + 1, j] + u * z[i + 1, j + 1]))
+        if bad.any():
+            h = np.where(bad, np.nan, h)
         return h[()] if h.ndim == 0 else h
 
     def _height_scalar(self, s: float, lateral: float) -> float:
@@ -265,15 +299,59 @@ class Road:
                 f"needs {start:g} .. {end:g} m; use a longer road or a shorter run",
                 file=self.source or None)
 
+    def height_xy(self, x, y):
+        """Road height under global plan positions ``(x, y)`` (arrays broadcast, m).
+
+        With a :attr:`plan` (OpenCRG roads) the positions are mapped to road coordinates
+        ``(u, v)`` along the reference line (curved or straight, placed by the file's
+        start position and heading) and :meth:`height` is evaluated there; without one
+        the road lies along the x axis and this is ``height(x, y)``.
+        """
+        if self.plan is None:
+            return self.height(x, y)
+        scalar = np.ndim(x) == 0 and np.ndim(y) == 0
+        u, v = self.plan.xy_to_uv(x, y)
+        h = self.height(u, v)
+        return float(h) if scalar else h
+
+    def to_uv(self, x, y):
+        """Road coordinates ``(u, v)`` of global plan positions ``(x, y)`` (m)."""
+        if self.plan is None:
+            return np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+        return self.plan.xy_to_uv(x, y)
+
     def reference_line(self):
-        """Plan coordinates ``(X, Y)`` of the reference line (straight unless ``heading``)."""
-        if self.heading is None:
-            return self.x - self.x[0], np.zeros_like(self.x)
-        ds = np.diff(self.x)
-        # OpenCRG: the heading at sample i is the direction from sample i-1 to sample i
-        X = np.concatenate([[0.0], np.cumsum(ds * np.cos(self.heading[1:]))])
-        Y = np.concatenate([[0.0], np.cumsum(ds * np.sin(self.heading[1:]))])
-        return X, Y
+        """Plan coordinates ``(X, Y)`` of the reference line samples (m).
+
+        The global positions from :attr:`plan`; without one the x axis (``X = x``).
+        """
+        if self.plan is None:
+            return self.x.copy(), np.zeros_like(self.x)
+        return self.plan.x.copy(), self.plan.y.copy()
+
+    def reference_path(self, *, ds: float = 0.5):
+        """The reference line as a :class:`flexpipe.driver.Path` for the driver to follow.
+
+        Parameters
+        ----------
+        ds : float
+            Largest spacing of the path points (m); the road's samples are thinned to
+            about this spacing (first and last kept).
+
+        Returns
+        -------
+        flexpipe.driver.Path
+            Starting at the road's first sample (arc length 0 at ``u = x[0]``).
+        """
+        from flexpipe.driver.path import Path
+
+        if not (isinstance(ds, int | float) and math.isfinite(ds) and ds > 0.0):
+            raise InputError(f"ds must be a finite number > 0, got {ds!r}", key="ds")
+        X, Y = self.reference_line()
+        step = max(1, int(ds / max(self.dx, 1e-12)))
+        keep = np.unique(np.r_[np.arange(0, X.size, step), X.size - 1])
+        return Path.from_xy(X[keep], Y[keep], name=f"{self.name or 'road'} reference line",
+                            source=self.source)
 
     # ----------------------------------------------------------------- output
     def to_csv(self, path) -> None:

@@ -76,14 +76,14 @@ def _summary_diffs(diff: dict) -> dict:
 def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
              h: float | None = None, notes=None, name: str = "run", log=print,
-             progress: bool = True) -> dict:
-    """Simulate ``car`` with each body kind, write CSVs, plots and ``summary.json``.
+             format: str = "csv", progress: bool = True) -> dict:  # noqa: A002
+    """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
     The run is a transaction: everything is written into a staging folder next to
     ``out`` which then replaces ``out`` as a whole, so ``out`` never mixes files of two
     runs.  A run that fails or is interrupted (Ctrl-C, SIGTERM) still replaces ``out``
     with its own ``summary.json`` (``state`` "error" or "interrupted", the message and
-    the CSVs of the runs that finished), then the exception propagates.
+    the channel files of the runs that finished), then the exception propagates.
 
     Returns
     -------
@@ -92,6 +92,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         stopped early; ``state`` "completed" or "stopped early".
     """
     from flexpipe._io import commit_directory, stage_directory
+    from flexpipe.vehicle.export import SUFFIX
+    from flexpipe.vehicle.simulation import simulate
     from flexpipe.vehicle.spec import Car, load_car
 
     car = car if isinstance(car, Car) else load_car(car)
@@ -99,7 +101,12 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         from flexpipe.roads import load_road
 
         road = load_road(road)
-    if isinstance(path, (str, Path)) and path != "straight":
+    if isinstance(path, str) and path == "road":       # follow the road's reference line
+        if road is None or not hasattr(road, "reference_path"):
+            raise InputError("path 'road' follows the road's reference line: give a road "
+                             "file", key="path")
+        path = road.reference_path()
+    elif isinstance(path, (str, Path)) and path != "straight":
         from flexpipe.driver import read_path
 
         path = read_path(path)
@@ -118,21 +125,21 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         kw = {} if h is None else {"h": h}
         for i, body in enumerate(bodies, 1):
             log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
-            from flexpipe.vehicle.simulation import simulate
-
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                          progress=progress, cache=cache, log=lambda m: log("      " + m), **kw)
             results[body] = r
-            files.append(r.to_csv(stage / f"{body}.csv").name)
+            files.append(r.save(stage / f"{body}{SUFFIX.get(format, '.csv')}",
+                                format=format).name)
             log(f"      {r.message}; CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s "
                 f"simulated (real-time factor {r.realtime_factor:.2f})")
         summary = _summary(base, results, path=path, speed=speed)
         files += _plots(results, stage, plots=plots, path=path, title=title)
+        summary["files"] = sorted(files + ["summary.json"])
+        _durability(stage, results, summary, car=car, road=road, log=log)
     except BaseException as exc:
         _write_failure(stage, base, results, files, exc, bodies=bodies, t0=t0)
         commit_directory(stage, out)
         raise
-    summary["files"] = sorted(files + ["summary.json"])
     summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
     write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
     commit_directory(stage, out)
@@ -219,6 +226,23 @@ def _write_failure(stage, base, results, files, exc, *, bodies, t0) -> None:
                "files": sorted(files + ["summary.json"]),
                "total_wall_time_s": round(time.perf_counter() - t0, 2)}
     write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
+
+
+def _durability(out, results, summary, *, car, road, log):
+    """Durability outputs (feat/durability): body motion, hardpoints, stress and fatigue
+    (``stress/``), ParaView animation (``animation/``); ``summary["file_descriptions"]``
+    says what every file holds."""
+    from flexpipe.durability.pipeline import scenario_outputs
+
+    if road is None:
+        from flexpipe.roads import flat
+
+        road = flat(1000.0, dx=1.0, track_width=1.5)
+    t0 = time.perf_counter()
+    desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log)
+    summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
+    summary["files"] = sorted(set(summary["files"]) | set(desc))
+    summary["file_descriptions"] = dict(sorted(desc.items()))
 
 
 def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print) -> dict:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.tires.checks import probe_forces
 from flexpipe.tires.contact import TireModel
 from flexpipe.tires.fiala import FialaTire
 from flexpipe.tires.pac2002 import MagicFormula, SlipForces
@@ -123,9 +124,19 @@ def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
     Returns
     -------
     TireModel
+        Checked to give finite forces over the normal operating range
+        (:func:`flexpipe.tires.checks.probe_forces`).
     """
     builders = {"pac2002": Pac2002Tire.from_properties, "fiala": FialaTire.from_properties}
     if model not in builders:
         raise InputError(f"unknown tyre model {model!r}; valid: {sorted(builders)}", file=path,
                          key="model")
-    return builders[model](read_tir(path), **options)
+    props = read_tir(path)
+    try:
+        tire = builders[model](props, **options)
+    except InputError as exc:
+        if exc.file is not None:
+            raise
+        raise InputError(str(exc), file=props.path, key=exc.key) from None
+    probe_forces(tire, props.path)
+    return tire

@@ -12,9 +12,11 @@ Format handled
 
 Checks (all raise :class:`~flexpipe.errors.InputError` naming the file and line): a line
 that is neither a section, key, table header nor table row; a key before the first
-section; a duplicate key; a non-numeric value in a coefficient section; an unknown key in
-a coefficient section of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file);
-an unknown unit name.  Missing required sections raise naming the file and the section.
+section; a duplicate key; a non-numeric or non-finite value in a coefficient section; the
+physical ranges of :mod:`flexpipe.tires.checks`; an unknown key in a coefficient section
+of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file); an unknown unit name; a
+key or section name one letter away from a known one. Missing required sections raise
+naming the file and the section.
 Unknown sections are kept and produce a :class:`UserWarning`.
 
 Units
@@ -26,7 +28,6 @@ Magic Formula coefficients are non-dimensional (radian-based) and are used as wr
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 import warnings
@@ -39,6 +40,7 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.tires import _keys
+from flexpipe.tires.checks import check_keys, check_tir, scale, unit_factors
 
 _SECTION_RE = re.compile(r"^\[\s*([A-Za-z0-9_\- ]+?)\s*\]$")
 _KEY_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
@@ -62,11 +64,14 @@ class TirTable:
         Read-only values, converted to SI for known tables.
     line : int
         Line number of the ``{...}`` header.
+    row_lines : tuple of int
+        Line number of every row.
     """
 
     columns: tuple[str, ...]
     data: np.ndarray
     line: int
+    row_lines: tuple[int, ...] = ()
 
     def column(self, name: str) -> np.ndarray:
         """Return the column ``name`` (case-insensitive)."""
@@ -256,55 +261,6 @@ def _parse_value(raw: str):
     return raw
 
 
-def _unit_factors(path, units: dict, lines: dict) -> dict[str, float]:
-    factors = {}
-    for quantity in _keys.UNIT_QUANTITIES:
-        name = units.get(quantity)
-        if name is None:
-            factors[quantity] = 1.0
-            continue
-        table = _keys.UNIT_FACTORS[quantity]
-        key = str(name).strip().lower()
-        if key not in table:
-            raise InputError(
-                f"[UNITS] {quantity} = '{name}' is not a known unit; valid: "
-                f"{', '.join(sorted(table))}", file=path, line=lines.get(("UNITS", quantity)),
-                key=quantity)
-        factors[quantity] = table[key]
-    return factors
-
-
-def _scale(exponents, factors) -> float:
-    return math.prod(factors[q] ** e for q, e in zip(_keys.UNIT_QUANTITIES, exponents, strict=True)
-                     if e)
-
-
-def _check_keys(path, fmt, sections, lines):
-    strict = {"PAC2002": _keys.PAC2002_STRICT, "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
-    for name, sec in sections.items():
-        allowed = strict.get(name)
-        if allowed is None:
-            allowed = _keys.KNOWN_SECTIONS.get(name)
-            if allowed is None:
-                if name not in _keys.FREE_SECTIONS and name not in _keys.PAC2002_STRICT:
-                    warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
-                                  " kept but not used", UserWarning, stacklevel=4)
-                continue
-            for key in sec:
-                if key not in allowed:
-                    warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
-                                  f"known entry of [{name}]; ignored", UserWarning,
-                                  stacklevel=4)
-            continue
-        for key in sec:
-            if key not in allowed:
-                close = difflib.get_close_matches(key, sorted(allowed), n=3, cutoff=0.6)
-                hint = f" (did you mean {' or '.join(close)}?)" if close else ""
-                raise InputError(
-                    f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
-                    f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
-
-
 #: Sections a PAC2002 file needs, by USE_MODE % 10.
 def _required_sections(fmt: str, use_mode: int) -> list[str]:
     if fmt == "FIALA":
@@ -381,6 +337,9 @@ def read_tir(path) -> TireProperties:
             if current in _keys.NUMERIC_SECTIONS and isinstance(value, str):
                 raise InputError(f"[{current}] {key} must be a number, got '{m.group(2).strip()}'",
                                  file=path, line=lineno, key=key)
+            if isinstance(value, float) and not math.isfinite(value):
+                raise InputError(f"[{current}] {key} = {m.group(2).strip()} is not a finite "
+                                 "number", file=path, line=lineno, key=key)
             sections[current][key] = value
             lines[(current, key)] = lineno
             continue
@@ -390,16 +349,21 @@ def read_tir(path) -> TireProperties:
             if not cols or current in tables:
                 why = "an empty table header" if not cols else "a second table in the section"
                 raise InputError(f"[{current}] has {why}", file=path, line=lineno)
-            tables[current] = (cols, [], lineno)
+            tables[current] = (cols, [], lineno, [])
             table_open = current
             continue
         if table_open is not None:
-            cols, rows, _ = tables[table_open]
+            cols, rows, _, row_lines = tables[table_open]
             parts = body.replace(",", " ").split()
             if len(parts) != len(cols) or not all(_NUMBER_RE.match(p) for p in parts):
                 raise InputError(f"[{current}] table row '{body}' must hold {len(cols)} numbers "
                                  f"({' '.join(cols)})", file=path, line=lineno)
-            rows.append([float(p.replace("d", "e").replace("D", "E")) for p in parts])
+            row = [float(p.replace("d", "e").replace("D", "E")) for p in parts]
+            if not all(math.isfinite(x) for x in row):
+                raise InputError(f"[{current}] table row '{body}' holds a non-finite number",
+                                 file=path, line=lineno)
+            rows.append(row)
+            row_lines.append(lineno)
             continue
         raise InputError(f"cannot parse '{body}' in [{current}]: expected KEY = value, "
                          "a [SECTION] header or a {{table}} header", file=path, line=lineno)
@@ -417,31 +381,35 @@ def read_tir(path) -> TireProperties:
         if name not in sections:
             raise InputError(f"required section [{name}] is missing for a {fmt or 'tyre'} "
                              f"file with USE_MODE {int(use_mode)}", file=path, key=name)
+        if not sections[name] and name not in tables:
+            raise InputError(f"required section [{name}] is empty (truncated file?)",
+                             file=path, line=lines[(name, "")], key=name)
     if "PROPERTY_FILE_FORMAT" not in sections["MODEL"]:
         raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002' or 'FIALA')",
                          file=path, line=lines[("MODEL", "")], key="PROPERTY_FILE_FORMAT")
-    _check_keys(path, fmt, sections, lines)
+    check_keys(path, fmt, sections, lines)
 
-    factors = _unit_factors(path, sections.get("UNITS", {}), lines)
+    factors = unit_factors(path, sections.get("UNITS", {}), lines)
     if fmt == "PAC2002" and factors["ANGLE"] != 1.0:
         warnings.warn(f"{path}: [UNITS] ANGLE is not radian; Magic Formula coefficients are "
                       "still interpreted as radian-based", UserWarning, stacklevel=2)
     for (sec, key), dims in _keys.UNIT_DIMENSIONS.items():
         value = sections.get(sec, {}).get(key)
         if isinstance(value, float):
-            sections[sec][key] = value * _scale(dims, factors)
+            sections[sec][key] = value * scale(dims, factors)
 
     frozen_tables = {}
-    for name, (cols, rows, lineno) in tables.items():
+    for name, (cols, rows, lineno, row_lines) in tables.items():
         if not rows:
             raise InputError(f"[{name}] table {{{' '.join(cols)}}} has no rows", file=path,
                              line=lineno)
         data = np.array(rows, dtype=float)
         dims = _keys.TABLE_DIMENSIONS.get(name)
         if dims is not None and len(dims) == data.shape[1]:
-            data = data * np.array([_scale(d, factors) for d in dims])
+            data = data * np.array([scale(d, factors) for d in dims])
         data.setflags(write=False)
-        frozen_tables[name] = TirTable(cols, data, lineno)
+        frozen_tables[name] = TirTable(cols, data, lineno, tuple(row_lines))
+    check_tir(path, fmt, int(use_mode), sections, lines, frozen_tables)
 
     return TireProperties(
         path=path,

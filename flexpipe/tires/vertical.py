@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -88,7 +89,8 @@ class VerticalModel:
             ``duffing``: ``k, k3`` from ``VERTICAL_STIFFNESS_CUBIC`` (flexpipe extension, with
             ``VERTICAL_STIFFNESS``) or else a least-squares fit ``Fz = k d + k3 d^3`` of the
             ``[DEFLECTION_LOAD_CURVE] {pen fz}`` table.  ``auto``: duffing when either is
-            present, else linear.
+            present, else linear.  When the table is used and ``VERTICAL_STIFFNESS``
+            differs from its fitted ``k`` by more than 5 %, a warning says which is used.
         """
         if law not in ("auto", "linear", "duffing"):
             raise InputError(f"law must be 'auto', 'linear' or 'duffing', got {law!r}", key="law")
@@ -98,7 +100,12 @@ class VerticalModel:
         if law == "linear" or (law == "auto" and cubic is None and table is None):
             return cls(k=props.vertical_stiffness, c=c)
         if cubic is not None:
-            return cls(k=props.vertical_stiffness, c=c, k3=cubic)
+            try:
+                return cls(k=props.vertical_stiffness, c=c, k3=cubic)
+            except InputError as exc:
+                raise InputError(str(exc), file=props.path, key="VERTICAL_STIFFNESS_CUBIC",
+                                 line=props.lines.get(("VERTICAL", "VERTICAL_STIFFNESS_CUBIC"))
+                                 ) from None
         if table is None:
             raise InputError("a Duffing tyre needs [VERTICAL] VERTICAL_STIFFNESS_CUBIC or a "
                              "[DEFLECTION_LOAD_CURVE] {pen fz} table", file=props.path,
@@ -106,7 +113,20 @@ class VerticalModel:
         k, k3 = fit_duffing(table.column("pen"), table.column("fz"))
         lcz = float(props.get("SCALING_COEFFICIENTS", "LCZ", 1.0))
         d_max = float(np.max(table.column("pen")))
-        return cls(k=k * lcz, c=c, k3=k3 * lcz, d_max=d_max)
+        k_file = props.get("VERTICAL", "VERTICAL_STIFFNESS")
+        if isinstance(k_file, float) and abs(k * lcz - k_file * lcz) > 0.05 * k_file * lcz:
+            warnings.warn(
+                f"{props.path}, line {table.line}: the [DEFLECTION_LOAD_CURVE] table is used "
+                f"for the vertical force (fit k = {k * lcz:.6g} N/m, k3 = {k3 * lcz:.6g} "
+                f"N/m^3); [VERTICAL] VERTICAL_STIFFNESS = {k_file:g} N/m (line "
+                f"{props.lines.get(('VERTICAL', 'VERTICAL_STIFFNESS'))}) differs by more "
+                "than 5 % and is not used (vertical_law='linear' uses it instead)",
+                UserWarning, stacklevel=3)
+        try:
+            return cls(k=k * lcz, c=c, k3=k3 * lcz, d_max=d_max)
+        except InputError as exc:
+            raise InputError(f"[DEFLECTION_LOAD_CURVE] fit Fz = k d + k3 d^3: {exc}",
+                             file=props.path, line=table.line) from None
 
 
 def fit_duffing(d, Fz) -> tuple[float, float]:

@@ -33,6 +33,8 @@ CB_RATIO = 1.5
 OFF_BODY_TOL = 0.05
 #: bump when the cache layout or the reduction settings' meaning changes
 CACHE_VERSION = 1
+#: stress modes stored with the car body (``reduce(..., stress=...)``): "all", a cell set, None
+STRESS_MODES = "all"
 
 
 def cache_dir() -> Path:
@@ -260,7 +262,7 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     from flexpipe.vehicle import _cache
 
     cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
-    key = _digest(car, {"cutoff": round(cutoff, 6), "m": method})
+    key = _digest(car, {"cutoff": round(cutoff, 6), "m": method, "stress": STRESS_MODES})
     path = cache_dir() / f"body-{key[:20]}.npz"
     if cache:  # verified entry (input key, content hash, physics) or rebuilt with a warning
         _cache.clean_stale(cache_dir())
@@ -273,9 +275,10 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     itf = corner_interfaces(car, fe.nodes)
     if method == "craig-bampton":  # the car's own cut-off for fixed-interface modes
         body = reduce(fe, itf, method=method, f_max=f_max, cb_factor=cutoff / f_max,
-                      damping=modal_damping(car))
+                      damping=modal_damping(car), stress=STRESS_MODES)
     else:
-        body = reduce(fe, itf, method=method, f_max=cutoff, damping=modal_damping(car))
+        body = reduce(fe, itf, method=method, f_max=cutoff, damping=modal_damping(car),
+                      stress=STRESS_MODES)
     seconds = time.perf_counter() - t0
     log(f"  {fe.n_dof} DOF -> {body.n_elastic} elastic modes "
         f"({body.frequencies_hz[body.n_rigid]:.1f}-{body.frequencies_hz[-1]:.0f} Hz) "

@@ -46,19 +46,29 @@ class CornerArrays:
         """Number of corners (4)."""
         return len(self.k)
 
-    def force(self, jounce, rate) -> np.ndarray:
-        """Suspension force (4,) for jounce (m) and jounce rate (m/s)."""
+    def force(self, jounce, rate, *, anti_roll: bool = True) -> np.ndarray:
+        """Suspension force (4,) for jounce (m) and jounce rate (m/s) (without the
+        anti-roll bars for ``anti_roll=False``)."""
         jounce = np.asarray(jounce, dtype=float)
         rate = np.asarray(rate, dtype=float)
         F = self.preload + self.k * jounce
         F = F + np.where(rate > 0.0, self.c_jounce, self.c_rebound) * rate
         F = F + self.bump_rate * np.maximum(jounce - self.bump_clearance, 0.0)
         F = F - self.rebound_rate * np.maximum(-jounce - self.rebound_clearance, 0.0)
+        if not anti_roll:
+            return F
         d_front = jounce[0] - jounce[1]
         d_rear = jounce[2] - jounce[3]
         arb = np.array([self.arb[0] * d_front, -self.arb[0] * d_front,
                         self.arb[1] * d_rear, -self.arb[1] * d_rear])
         return F + arb
+
+
+    def stiffness(self, jounce) -> np.ndarray:
+        """Tangent stiffness (4,) of spring and stops (no anti-roll bar) at ``jounce``, N/m."""
+        jounce = np.asarray(jounce, dtype=float)
+        return (self.k + self.bump_rate * (jounce > self.bump_clearance)
+                + self.rebound_rate * (-jounce > self.rebound_clearance))
 
 
 def static_wheel_loads(car: Car, body_mass: float, body_cg, *, g: float = GRAVITY):

@@ -25,6 +25,7 @@ import math
 
 import numpy as np
 
+from flexpipe.tires.contact import _cross
 from flexpipe.vehicle.spec import CORNERS
 
 #: sign that turns the GenericJoint's ForceLocal into the force on the body (checked against
@@ -85,14 +86,18 @@ class CarController:
         Named body points whose accelerations are recorded.
     point_acc : callable
         ``point_acc() -> {name: global acceleration}`` (read from the multibody model).
-    driver_every : int
-        Driver update period in steps.
+    body_motion : callable, optional
+        ``body_motion() -> (q, p, R)`` recorded at every output row (``Result.motion``).
+    driver_dt : float
+        Driver (steering and speed controller) sampling period, s, independent of ``h``;
+        the driver acts at the first step at or after each sampling instant.
     """
 
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
-                 wheel_acc=None, gravity=9.81, driver_every=5, body_com=None, track=None,
-                 tire_k=None, tire_c=None, preview_time=0.3):
+                 wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
+                 tire_k=None, tire_c=None, preview_time=0.3, linkage=None,
+                 body_motion=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -101,18 +106,21 @@ class CarController:
         self.car = car
         self.h = float(h)
         self.output_every = int(output_every)
-        self.driver_every = int(driver_every)
+        self.linkage = linkage  # LinkageModel of a linkage car (None: prismatic corners)
+        self.driver_dt = float(driver_dt)
+        self._next_driver_t = 0.0
         self.points = list(points)
         self.point_acc = point_acc
         self.joint_forces = joint_forces
         self.wheel_acc = wheel_acc
+        self.body_motion = body_motion  # durability: () -> (q, p, R), one per output row
+        self.motion = []
         self.gvec = np.array([0.0, 0.0, -float(gravity)])
         self.tire_k = np.zeros(4) if tire_k is None else np.asarray(tire_k, dtype=float)
         self.tire_c = np.zeros(4) if tire_c is None else np.asarray(tire_c, dtype=float)
-        self.road_lead = 1.0  # fraction of the step the road height is taken ahead
         self.preview_time = float(preview_time)
         self.r0 = np.array([t.unloaded_radius for t in tires])
-        self._prev_tire = None
+        self._tire_lin = None
         self.body_com = np.zeros(3) if body_com is None else np.asarray(body_com, dtype=float)
         groups = {}
         for i, t in enumerate(tires):
@@ -122,9 +130,9 @@ class CarController:
         self.mirror = np.zeros(4, dtype=bool)
         for t, ix in self.tire_groups:
             self.mirror[ix] = t.mirror_for([sides[i] for i in ix])
-        from flexpipe.tires import SlipState
+        from flexpipe.vehicle.tire_coupling import ImplicitTires
 
-        self.slip = {id(t): SlipState.zeros(len(ix)) for t, ix in self.tire_groups}
+        self.tires = ImplicitTires(tires, self.mirror)
         st = car.steering
         self.steered = np.array([car.corners[i].axle == st.axle for i in range(4)])
         self.max_angle = st.max_wheel_angle
@@ -160,7 +168,7 @@ class CarController:
         e = 0.05
         x = np.concatenate([P[:, 0], P[:, 0] + e, P[:, 0] - e, P[:, 0], P[:, 0]])
         y = np.concatenate([P[:, 1], P[:, 1], P[:, 1], P[:, 1] + e, P[:, 1] - e])
-        z = np.asarray(self.road.height(x, y), dtype=float).reshape(5, -1)
+        z = np.asarray(self.road.height_xy(x, y), dtype=float).reshape(5, -1)
         gx = (z[1] - z[2]) / (2 * e)
         gy = (z[3] - z[4]) / (2 * e)
         n = np.column_stack([-gx, -gy, np.ones_like(gx)])
@@ -181,13 +189,13 @@ class CarController:
         return out
 
     def driver(self, st, v: float, yaw: float) -> None:
-        """Update steering command and drive torque (every ``driver_every`` steps).
+        """Update steering command and drive torque (every ``driver_dt`` seconds).
 
         The pure-pursuit law is applied to the pose predicted ``preview_time`` ahead
         (constant velocity and yaw rate): a driver anticipates the vehicle's own response
         lag (tyre relaxation, yaw inertia), which a kinematic pure pursuit does not know.
         """
-        dt = self.h * self.driver_every
+        dt = self.driver_dt
         tau = self.preview_time
         p = st.body_p + tau * st.body_v
         yaw_p = yaw + tau * float(st.body_w[2])
@@ -216,70 +224,75 @@ class CarController:
         v = float(R[:, 0] @ st.body_v)
         if self.v_target == 0.0:
             self.torque = 0.0  # parked: no driver, wheels braked below
-        elif self.step_no % self.driver_every == 0:
+        elif st.t >= self._next_driver_t - 1e-9:
             self.driver(st, v, yaw)
+            self._next_driver_t += self.driver_dt
         # steering actuator: rate limit towards the command
         dmax = self.max_rate * self.h
         self.delta += max(-dmax, min(dmax, self.delta_cmd - self.delta))
         steer = self.wheel_angles(self.delta)
 
-        # tyres
+        # tyres: correct the relaxation over the step just taken, then linearize the
+        # force for the coming one (solved implicitly, flexpipe.vehicle.tire_coupling)
         s_axis = st.wheel_R[:, :, 1]
         omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
         h_road, n_road = self.road_contact(st.wheel_p)
-        F = np.zeros((4, 3))
-        M = np.zeros((4, 3))
-        Fw = np.zeros((4, 3))
-        for tire, ix in self.tire_groups:
-            wf = tire.wheel_forces(
-                st.wheel_p[ix], s_axis[ix], omega[ix], st.wheel_v[ix],
-                road_height=h_road[ix], road_normal=n_road[ix],
-                angular_velocity=st.wheel_w[ix] + st.spin_rate[ix, None] * s_axis[ix],
-                mirror=self.mirror[ix], state=self.slip[id(tire)], dt=self.h)
-            self.slip[id(tire)] = wf.state
-            F[ix] = wf.force
-            M[ix] = wf.moment
-            Fw[ix] = np.column_stack([wf.Fx, wf.Fy, wf.Fz])
-        if not np.all(np.isfinite(F)):
+        kin = {"C": st.wheel_p, "s": s_axis, "v": st.wheel_v, "omega": omega,
+               "w": st.wheel_w + st.spin_rate[:, None] * s_axis,
+               "h_road": h_road, "n_road": n_road}
+        now = self.tires.correct(kin, self.h)
+        Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
+        F_applied = self._applied_tire_force(st, s_axis, omega)
+        ahead = st.wheel_p + self.h * st.wheel_v
+        road_ahead = np.asarray(self.road.height_xy(ahead[:, 0], ahead[:, 1]), dtype=float)
+        ts = self.tires.predict(kin, self.h, road_ahead)
+        if not (np.all(np.isfinite(ts.F0)) and np.all(np.isfinite(ts.Dv))):
             return self._fail(st.t, "tyre forces became non-finite")
         share = self.drive_share if self.torque >= 0 else self.brake_share
         T = self.torque * share
         # brakes oppose the rolling direction
         if self.torque < 0:
             T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
-        Ms = np.einsum("ij,ij->i", M, s_axis)
+        Ms = np.einsum("ij,ij->i", ts.moment, s_axis)
         if self.v_target == 0.0:  # parking brake: viscous, at half the explicit limit
             T = -0.5 * self.spin_inertia / self.h * st.spin_rate
         spin_torque = T + Ms
-        carrier_moment = M - (Ms + T)[:, None] * s_axis
-
-        # suspension: spring (with preload) and damper are implicit connectors; the damping
-        # coefficient for this step follows the sign of the jounce rate; the stops, the
-        # anti-roll bars (and any difference) come explicitly
-        Fs = self.c.force(st.jounce, st.jounce_rate)
-        c_step = np.where(st.jounce_rate > 0.0, self.c.c_jounce, self.c.c_rebound)
-        Fs_implicit = self.c.preload + self.c.k * st.jounce + c_step * st.jounce_rate
-
-        # the implicit linear tyre spring-damper pushes k (z_ref - z) - c z_dot up; the
-        # explicit load is the tyre model's force minus that spring's force now.  Over the
-        # step the spring's zero is the road where the wheel will be at the end of the step
-        # (the implicit integrator balances forces there), so the road input is not
-        # delayed by the explicit coupling
-        F_lin = self.tire_k * (h_road + self.r0 - st.wheel_p[:, 2]) \
-            - self.tire_c * st.wheel_v[:, 2]
-        F_explicit = F.copy()
-        F_explicit[:, 2] -= F_lin
-        ahead = st.wheel_p + self.road_lead * self.h * st.wheel_v
-        z_ref = np.asarray(self.road.height(ahead[:, 0], ahead[:, 1]), dtype=float) + self.r0
+        carrier_moment = ts.moment - Ms[:, None] * s_axis
 
         from flexpipe.exu.car import CarLoads
 
-        loads = CarLoads(suspension=Fs - Fs_implicit, damper_c=c_step, tire_force=F_explicit,
+        if self.linkage is not None:  # the linkage's force elements linearize themselves
+            rk = self.car.suspension.rack
+            s_rack = None
+            if rk is not None:
+                s_rack = -self.delta * self.ratio * rk.travel_per_rev / (2 * math.pi)
+            loads = CarLoads(suspension=np.zeros(4), damper_c=np.zeros(4), tire=ts,
+                             tire_moment=carrier_moment, spin_torque=spin_torque,
+                             steer=steer, rack_travel=s_rack)
+            self._tire_lin = (ts, st, omega)
+            if self.step_no % self.output_every == 0:
+                self._record(st, np.zeros(4), Fw, v, roll, pitch, yaw, F_applied)
+            self.step_no += 1
+            return loads
+        # suspension: spring, damper (rate by the sign of the jounce rate) and the stops are
+        # one implicit connector linearized at the start of the step; the anti-roll bars
+        # come explicitly
+        Fs = self.c.force(st.jounce, st.jounce_rate)
+        # the anti-roll bars (explicit) at the travel predicted for the end of the step
+        j_end = st.jounce + self.h * st.jounce_rate
+        F_arb = self.c.force(j_end, st.jounce_rate) - self.c.force(j_end, st.jounce_rate,
+                                                                    anti_roll=False)
+        c_step = np.where(st.jounce_rate > 0.0, self.c.c_jounce, self.c.c_rebound)
+        Fs_own = self.c.force(st.jounce, st.jounce_rate, anti_roll=False)
+        k_t = self.c.stiffness(st.jounce)
+        f0 = Fs_own - k_t * st.jounce - c_step * st.jounce_rate
+
+        loads = CarLoads(suspension=F_arb, damper_c=c_step, tire=ts,
                          tire_moment=carrier_moment, spin_torque=spin_torque, steer=steer,
-                         tire_ref_z=z_ref)
+                         suspension_k=k_t, suspension_f0=f0)
+        self._tire_lin = (ts, st, omega)
         if self.step_no % self.output_every == 0:
-            self._record(st, Fs, Fw, v, roll, pitch, yaw)
-        self._prev_tire = (F_explicit, z_ref)
+            self._record(st, Fs, Fw, v, roll, pitch, yaw, F_applied)
         self.step_no += 1
         return loads
 
@@ -288,22 +301,36 @@ class CarController:
         self.message = f"simulation stopped at t = {t:.4f} s: {why}"
         return None
 
-    def _record(self, st, Fs, Fw, v, roll, pitch, yaw):
+    def _applied_tire_force(self, st, s_axis, omega):
+        """Tyre force (4, 3) the integrator applied at the end of the step just taken (the
+        linearized force of :mod:`flexpipe.vehicle.tire_coupling` at the new state)."""
+        if self._tire_lin is None:
+            return None
+        ts, st0, om0 = self._tire_lin
+        wc = st.wheel_w - np.einsum("ij,ij->i", st.wheel_w, s_axis)[:, None] * s_axis
+        wc0 = st0.wheel_w - np.einsum("ij,ij->i", st0.wheel_w, ts.spin_axis)[:, None] \
+            * ts.spin_axis
+        vP = st.wheel_v + _cross(wc, ts.r)
+        vP0 = st0.wheel_v + _cross(wc0, ts.r)
+        return (ts.F0 + np.einsum("nij,nj->ni", ts.Dv, vP - vP0)
+                + ts.dw * (omega - om0)[:, None]
+                + ts.A * (st.wheel_p[:, 2] - st0.wheel_p[:, 2])[:, None])
+
+    def _record(self, st, Fs, Fw, v, roll, pitch, yaw, F_tire=None):
         R = st.body_R
         # hub force on the body at each hardpoint, in that mount's frame (~ body axes)
-        if self._prev_tire is None or self.wheel_acc is None:
+        if F_tire is None or self.wheel_acc is None:
             jf = st.joint_force if st.joint_force is not None else self.joint_forces()
             hub = JOINT_FORCE_SIGN * np.asarray(jf, dtype=float)
             hub[:, 2] += Fs
         else:
             # Newton's law of each wheel carrier under the loads of the step just taken:
             # what the corner applies to the body = tyre force + weight - m a
-            a = self.wheel_acc()
-            F_expl, z_ref = self._prev_tire  # the tyre force the carrier felt over the step
-            F_tire = F_expl.copy()
-            F_tire[:, 2] += self.tire_k * (z_ref - st.wheel_p[:, 2]) \
-                - self.tire_c * st.wheel_v[:, 2]
-            hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
+            if self.linkage is not None:
+                hub_g = self.linkage.hub_forces(F_tire)
+            else:
+                a = self.wheel_acc()
+                hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
             hub = np.einsum("nji,nj->ni", st.mount_R, hub_g)
         # lateral acceleration of the body origin from its velocity history
         if self._prev_v is None:
@@ -326,3 +353,5 @@ class CarController:
             for p in self.points:
                 row += list(R.T @ acc[p])
         self.rec.add(st.t, np.array(row, dtype=float))
+        if self.body_motion is not None and len(self.motion) < self.rec.rows:
+            self.motion.append(self.body_motion())

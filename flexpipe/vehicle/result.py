@@ -1,5 +1,5 @@
-"""Simulation results: :class:`Result` (named channels, status, message, CSV) and
-:func:`compare` (rigid-vs-flexible differences)."""
+"""Simulation results: :class:`Result` (named channels, status, message, body motion,
+CSV/HDF5/MAT export) and :func:`compare` (rigid-vs-flexible differences)."""
 
 from __future__ import annotations
 
@@ -12,6 +12,70 @@ import numpy as np
 
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
+
+
+@dataclass(frozen=True, eq=False)
+class BodyMotion:
+    """Pose and elastic modal coordinates of the car body at every output step.
+
+    Attributes
+    ----------
+    t : ndarray (n,)
+        Output times, s.
+    q : ndarray (n, m)
+        Elastic modal coordinates (float64; ``m = 0`` for a rigid body).
+    position : ndarray (n, 3)
+        Global position of the body-frame origin (the mesh origin), m.
+    rotation : ndarray (n, 3, 3)
+        Body-to-global rotation matrices.
+    mode_index : ndarray of int (m,)
+        The :class:`~flexpipe.flexbody.FlexBody` modes (indices into its
+        ``frequencies_hz``) the columns of ``q`` refer to.
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    position: np.ndarray
+    rotation: np.ndarray
+    mode_index: np.ndarray
+
+    def __post_init__(self):
+        n = len(np.asarray(self.t))
+        for name, shape in (("t", (n,)), ("position", (n, 3)), ("rotation", (n, 3, 3))):
+            a = np.array(getattr(self, name), dtype=float)
+            if a.shape != shape:
+                raise ValueError(f"BodyMotion.{name} must have shape {shape}, got {a.shape}")
+            object.__setattr__(self, name, a)
+        mi = np.array(self.mode_index, dtype=np.int64).reshape(-1)
+        q = np.array(self.q, dtype=float).reshape(n, mi.size)
+        object.__setattr__(self, "q", q)
+        object.__setattr__(self, "mode_index", mi)
+
+    @property
+    def n_modes(self) -> int:
+        """Number of elastic modal coordinates."""
+        return self.q.shape[1]
+
+    def save(self, path, **extra) -> Path:
+        """Write to ``path`` (``.npz``) atomically; ``extra`` arrays are stored alongside."""
+        path = Path(path)
+        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
+            np.savez(fh, t=self.t, q=self.q, position=self.position, rotation=self.rotation,
+                     mode_index=self.mode_index, **extra)
+        return path
+
+    @classmethod
+    def load(cls, path) -> BodyMotion:
+        """Read a file written by :meth:`save`."""
+        path = Path(path)
+        if not path.is_file():
+            raise InputError("body motion file not found", file=path)
+        with np.load(path, allow_pickle=False) as d:
+            missing = [k for k in ("t", "q", "position", "rotation", "mode_index")
+                       if k not in d.files]
+            if missing:
+                raise InputError(f"not a body motion file: missing {missing}", file=path)
+            return cls(d["t"], d["q"], d["position"], d["rotation"], d["mode_index"])
 
 
 @dataclass(frozen=True, eq=False)
@@ -38,6 +102,9 @@ class Result:
         Simulated time reached, s.
     info : dict
         Settings and model facts: step size, modes, band, reduction time, car name...
+    motion : BodyMotion or None
+        Body pose and elastic modal coordinates at every output step (for stress
+        recovery and animation); None when the model did not record them.
     """
 
     t: np.ndarray
@@ -49,6 +116,7 @@ class Result:
     wall_time: float
     simulated_time: float
     info: dict = field(default_factory=dict)
+    motion: BodyMotion | None = None
 
     @property
     def success(self) -> bool:
@@ -68,22 +136,51 @@ class Result:
         return self.simulated_time / self.cpu_time if self.cpu_time > 0 else float("inf")
 
     def to_csv(self, path, *, channels=None) -> Path:
-        """Write ``t`` and the channels (all, or the names given) to a CSV file atomically."""
+        """Write ``t`` and the channels (all, or the names given) to a CSV file atomically.
+
+        The header names the unit of every column (``t [s]``, ``hub_fl_z [N]``); time is
+        written with 12 significant digits (1e-8 s at 3600 s), channels with 7.
+        """
+        from flexpipe.vehicle.export import channel_unit
+
+        names = self._names(channels)
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["t [s]"] + [f"{n} [{channel_unit(n)}]" for n in names])
+        data = np.column_stack([self.t] + [self.channels[n] for n in names])
+        for row in data:
+            w.writerow([f"{row[0]:.12g}"] + [f"{v:.7g}" for v in row[1:]])
+        path = Path(path)
+        with atomic_path(path) as tmp:
+            tmp.write_text(buf.getvalue())
+        return path
+
+    def _names(self, channels):
         names = list(self.channels) if channels is None else list(channels)
         for n in names:
             if n not in self.channels:
                 raise InputError(f"no channel {n!r}; valid: {', '.join(sorted(self.channels))}",
                                  key="channels")
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(["t"] + names)
-        data = np.column_stack([self.t] + [self.channels[n] for n in names])
-        for row in data:
-            w.writerow([f"{v:.6g}" for v in row])
-        path = Path(path)
-        with atomic_path(path) as tmp:
-            tmp.write_text(buf.getvalue())
-        return path
+        return names
+
+    def save(self, path, *, format: str = "csv", channels=None) -> Path:  # noqa: A002
+        """Write the channels as ``csv``, ``hdf5`` (h5py) or ``mat`` (MATLAB, SciPy).
+
+        HDF5 and MAT files also hold the units, the run's ``info`` and, when recorded,
+        the body motion (``motion/t, q, position, rotation, mode_index``).
+        """
+        from flexpipe.vehicle.export import save_result
+
+        return save_result(self, path, format=format, channels=channels)
+
+    def to_dataframe(self, channels=None):
+        """The channels as a pandas DataFrame indexed by time (needs pandas installed).
+
+        Column names carry the unit, as in the CSV header (``hub_fl_z [N]``).
+        """
+        from flexpipe.vehicle.export import to_dataframe
+
+        return to_dataframe(self, self._names(channels))
 
     def __repr__(self) -> str:
         return (f"Result(body={self.body!r}, status={self.status}, t=0..{self.simulated_time:.3g}"

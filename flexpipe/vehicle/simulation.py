@@ -30,7 +30,7 @@ from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import GRAVITY, corner_arrays
 from flexpipe.vehicle.result import Result
-from flexpipe.vehicle.spec import Car, load_car
+from flexpipe.vehicle.spec import CORNERS, Car, load_car
 
 BODIES = ("flexible", "rigid", "full")
 #: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
@@ -164,11 +164,12 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     car : Car or str or Path
         A car (:func:`load_car`) or its TOML file.
     road : Road, str, Path or None
-        Road (file: ``.toml`` spec, ``.crg``, ``.csv``); ``None`` for a flat road.  Road
-        coordinates are global: distance ``s = x`` and ``lateral = y``.
+        Road (file: ``.toml`` spec, ``.crg``, ``.csv``); ``None`` for a flat road.  Heights
+        are taken at global positions (:meth:`Road.height_xy`): OpenCRG roads lie where
+        their reference line puts them (curved, sloped, banked); others along the x axis.
     path : flexpipe.driver.Path, str, Path or None
         Path the driver follows (file ``.csv``/``.toml``); ``None`` or ``"straight"`` for
-        the x axis.
+        the x axis; ``"road"`` for the road's reference line (:meth:`Road.reference_path`).
     speed : float
         Target (and initial) speed, m/s (0 for a car at rest).
     t_end : float
@@ -244,7 +245,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     travel = speed * t_end
     needed = start + travel + 10.0
     road_obj = _road(road, needed)
-    path_obj = _path(path, needed)
+    path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
+        else _path(path, needed)  # path="road": follow the road's reference line
     what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
     road_obj.require_length(needed, what=what, start=road_obj.x[0])
     path_obj.require_length(travel + 10.0, what=what, start=start)
@@ -277,7 +279,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    [0.0, 0.0, 1.0]])
     W = corners.wheel_center
     Pw = np.array([x0, y0, 0.0]) + W @ R0.T
-    z0 = float(np.mean(road_obj.height(Pw[:, 0], Pw[:, 1])))
+    z0 = float(np.mean(road_obj.height_xy(Pw[:, 0], Pw[:, 1])))
     p0 = np.array([x0, y0, z0])
     re = np.array([float(t.effective_rolling_radius(t.unloaded_radius - wz))
                    for t, wz in zip(tires, W[:, 2], strict=True)])
@@ -311,7 +313,18 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                 raise InputError(f"max_mode_hz = {max_mode_hz:g} Hz keeps no elastic mode: the "
                                  f"lowest is {fb.frequencies_hz[fb.n_rigid]:.4g} Hz; use "
                                  "body='rigid' or a higher max_mode_hz", key="max_mode_hz")
-        q0 = static_deflection(fb, corners, n_modes)
+        q0 = None if car.suspension is not None else static_deflection(fb, corners, n_modes)
+    susp = None
+    if car.suspension is not None:
+        from flexpipe.vehicle.corners import static_wheel_loads
+        from flexpipe.vehicle.suspension.statics import preloaded, with_wheels
+
+        N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY)
+        links = car.suspension.corners()
+        wheels = {c.name: (c.unsprung_mass - sum(p.mass for p in links[c.name].parts),
+                           c.unsprung_inertia) for c in car.corners}
+        susp = preloaded(with_wheels(car.suspension, wheels),
+                         dict(zip(CORNERS, N, strict=True)), g=GRAVITY)
     build = CarBuild(
         chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass,
         center_of_mass=rb.center_of_mass,
@@ -323,15 +336,23 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         steered=np.array([c.axle == car.steering.axle for c in car.corners]),
         position=p0, rotation=R0, speed=speed, spin_rate=spin0, gravity=GRAVITY,
         body_rates=rates,
-        point_nodes=pn if pn else {n: -1 for n in names}, point_local=local)
-    system = CarSystem(build)
+        point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
+        suspension=susp)
+    if susp is not None:
+        from flexpipe.exu.linkage_car import LinkageCarSystem
+
+        system = LinkageCarSystem(build)
+    else:
+        system = CarSystem(build)
     ctrl = CarController(corners=corners, tires=tires, road=road_obj, steering=steering,
                          speed_pi=speed_pi, target_speed=speed, car=car, h=h, t_end=t_end,
                          output_every=every, points=names,
                          point_acc=system.point_accelerations,
                          joint_forces=system.joint_forces,
                          wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
-                         tire_k=tire_k, tire_c=tire_c)
+                         tire_k=tire_k, tire_c=tire_c,
+                         linkage=getattr(system, "linkage", None),
+                         body_motion=system.body_motion_sample)
     bar = None
     if progress:
         from tqdm import tqdm
@@ -373,6 +394,21 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                     highest_mode_hz=float(fb.frequencies_hz[fb.n_rigid + used - 1]),
                     reduction_cached=prep["reduction"]["cached"],
                     reduction_s=prep["reduction"]["seconds"])
-    return Result(t=ctrl.rec.t[: ctrl.rec.rows].copy(), channels=ch, status=status,
+    t_out = ctrl.rec.t[: ctrl.rec.rows].copy()
+    return Result(t=t_out, channels=ch, status=status,
                   message=message, body=body, cpu_time=cpu, wall_time=wall,
-                  simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info)
+                  simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info,
+                  motion=_motion(t_out, ctrl.motion, fb))
+
+
+def _motion(t, rows, fb):
+    """BodyMotion from the recorded ``(q, p, R)`` rows (durability, feat/durability)."""
+    from flexpipe.vehicle.result import BodyMotion
+
+    if not rows or len(rows) != len(t):
+        return None
+    q = np.array([r[0] for r in rows], dtype=float).reshape(len(t), -1)
+    first = fb.n_rigid if fb is not None else 0
+    return BodyMotion(t=t, q=q, position=np.array([r[1] for r in rows]),
+                      rotation=np.array([r[2] for r in rows]),
+                      mode_index=np.arange(first, first + q.shape[1]))

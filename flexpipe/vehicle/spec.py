@@ -19,6 +19,8 @@ File layout (see ``cars/sedan.toml`` for a complete example; defaults in bracket
     [[body.mass]]    name, mass_kg, position_m, spread_radius_m [0.3]
                      (non-structural masses: powertrain, trim, occupants)
     [body.points]    name = [x, y, z]  (named output points for accelerations)
+    [body.fatigue]   sigma_f_Pa, b, endurance_limit_Pa [0], name: Basquin S-N curve of the
+                     body for fatigue damage (flexpipe.durability.fatigue)
     [corners.fl|fr|rl|rr]
                      hardpoint_m, wheel_center_m, spring_rate_N_per_m, spring_preload_N
                      [computed: holds the design position], damper_N_s_per_m (linear) or
@@ -94,6 +96,7 @@ class BodySpec:
     rigid: RigidProps | None
     added_masses: tuple[AddedMass, ...]
     points: dict
+    fatigue: object = None  # FatigueMaterial of [body.fatigue] (feat/durability)
 
 
 @dataclass(frozen=True)
@@ -170,6 +173,7 @@ class Car:
     steering: SteeringSpec
     anti_roll_bars: dict
     drive: DriveSpec
+    suspension: object = None  # flexpipe.vehicle.suspension.Suspension (linkage templates)
 
     def corner(self, name: str) -> CornerSpec:
         """The corner called ``name`` (fl, fr, rl, rr)."""
@@ -262,8 +266,14 @@ def _body(doc: Table, base: Path) -> BodySpec:
         for k in list(p.data):
             points[k] = p.vector(k)
         p.finish()
+    fatigue = None
+    if t.has("fatigue"):  # feat/durability: Basquin S-N data, flexpipe.durability.fatigue
+        from flexpipe.durability.fatigue import read_fatigue_table
+
+        fatigue = read_fatigue_table(t.sub("fatigue"))
     t.finish()
-    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points)
+    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
+                    fatigue)
 
 
 def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
@@ -314,6 +324,33 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
     return spec
 
 
+def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
+    """A corner of a car with linkage suspension: wheel, tyre and the linkage's masses."""
+    c = corners.sub(name)
+    tire = (base / c.string("tire", doc="tire property file (.tir)")).resolve()
+    if not tire.is_file():
+        raise c.error("tire", f"tire file {tire} does not exist (paths are relative to the "
+                              "car file)")
+    m_wheel = c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass")
+    J_wheel = _inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
+        np.zeros((3, 3))
+    spring = linkage.spring()
+    spec = CornerSpec(
+        name=name, hardpoint=np.array(spring.body_point if spring is not None
+                                      else linkage.wheel_center, dtype=float),
+        wheel_center=np.array(linkage.wheel_center, dtype=float), spring_rate=0.0,
+        spring_preload=None, damper_jounce=0.0, damper_rebound=0.0,
+        bump_stop_clearance=0.0, bump_stop_rate=0.0, rebound_stop_clearance=0.0,
+        rebound_stop_rate=0.0,
+        unsprung_mass=m_wheel + sum(p.mass for p in linkage.parts),
+        unsprung_inertia=J_wheel,
+        wheel_radius=c.number("wheel_radius_m", lo=0, lo_open=True),
+        spin_inertia=c.number("wheel_spin_inertia_kg_m2", lo=0, lo_open=True),
+        tire=tire)
+    c.finish()
+    return spec
+
+
 def load_car(path) -> Car:
     """Read and validate a car file.
 
@@ -342,7 +379,16 @@ def load_car(path) -> Car:
     ct.finish()
     body = _body(doc, base)
     corners_t = doc.sub("corners")
-    corners = tuple(_corner(corners_t, n, base) for n in CORNERS)
+    suspension = None
+    if doc.has("suspension"):
+        from flexpipe.vehicle.suspension import load_suspension
+
+        doc.raw("suspension")
+        suspension = load_suspension(path)
+        links = suspension.corners()
+        corners = tuple(_wheel_corner(corners_t, n, base, links[n]) for n in CORNERS)
+    else:
+        corners = tuple(_corner(corners_t, n, base) for n in CORNERS)
     corners_t.finish()
     x = [c.wheel_center[0] for c in corners]
     if min(x[:2]) <= max(x[2:]):
@@ -355,6 +401,8 @@ def load_car(path) -> Car:
         st.number("ratio", lo=0, lo_open=True, doc="steering-wheel angle / road-wheel angle"),
         np.radians(st.number("max_wheel_angle_deg", 35.0, lo=0, lo_open=True, hi=80)),
         np.radians(st.number("max_rate_deg_per_s", 60.0, lo=0, lo_open=True)))
+    if suspension is not None and st.has("rack"):
+        st.raw("rack")  # read by flexpipe.vehicle.suspension.load_suspension
     st.finish()
     arbs = {}
     if doc.has("anti_roll_bar"):
@@ -376,4 +424,4 @@ def load_car(path) -> Car:
         dt.number("front_share", 0.5, lo=0, hi=1))
     dt.finish()
     doc.finish()
-    return Car(name, path, body, corners, steering, arbs, drive)
+    return Car(name, path, body, corners, steering, arbs, drive, suspension)

@@ -21,7 +21,8 @@ MESH_SUFFIXES = {".bdf", ".nas", ".dat", ".inp", ".msh", ".vtu", ".vtk", ".stl",
 #: a location in a message: line, key, card, element/node/material/property id, entry
 _LOCATION = re.compile(
     r"line \d+|key '|\bkeys? \w|card|\b(element|elem|node|vertex|facet|cell|material|"
-    r"property|mid|pid|eid|nid|grid|id|set|interface|entry|mode|column|row|argument|option)"
+    r"property|mid|pid|eid|nid|grid|id|set|interface|entry|mode|column|row|argument|option|"
+    r"record|channel|header|data block|section)"
     r"\b|--\w", re.IGNORECASE)
 
 
@@ -134,8 +135,11 @@ def _run_cli(spec: dict, folder: Path):
     return code, err.getvalue()
 
 
-def run_case(generator: str, case, folder: Path) -> Outcome:
-    """Write the case into the empty ``folder``, load it, classify the result."""
+def run_case(generator: str, case, folder: Path, loader=None) -> Outcome:
+    """Write the case into the empty ``folder``, load it, classify the result.
+
+    ``loader(path)`` is the generator's own ``load`` function when it defines one;
+    otherwise the file name selects the reader (:func:`kind_of`)."""
     case_id, filename, content, expect = case
     path = folder / filename
     old = signal.signal(signal.SIGALRM, _alarm)
@@ -146,7 +150,10 @@ def run_case(generator: str, case, folder: Path) -> Outcome:
         path.write_bytes(content)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            load(kind_of(filename), path)
+            if loader is not None:
+                loader(path)
+            else:
+                load(kind_of(filename), path)
     except _Timeout:
         return Outcome(generator, case_id, filename, expect, "raw",
                        f"no answer within {TIME_LIMIT_S} s (hang)")

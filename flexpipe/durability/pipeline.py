@@ -1,0 +1,139 @@
+"""Durability outputs of a scenario run (called by :func:`flexpipe.scenarios.runner.run_pair`)
+and the work behind ``flexpipe stress`` and ``flexpipe animate``."""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import write_text_atomic
+from flexpipe.durability.rundir import MOTION_FILE, RunData, load_run, road_strip
+
+#: time between animation frames written by a scenario run, s
+ANIMATION_FRAME_STEP = 0.1
+
+DESCRIPTIONS = {
+    "rigid.csv": "channels of the rigid-body run vs time t [s]; unit of every column in "
+                 "its header (see flexpipe.vehicle.dynamics for the channel list)",
+    "flexible.csv": "channels of the flexible-body run vs time t [s]; units in the header",
+    "full.csv": "channels of the full-body run vs time t [s]; units in the header",
+    **{f"{b}.h5": f"channels of the {b}-body run (HDF5: t, channels/NAME with a unit "
+                  "attribute, motion/ for a flexible body, info)"
+       for b in ("rigid", "flexible", "full")},
+    **{f"{b}.mat": f"channels of the {b}-body run (MATLAB: t, channels, units, motion, info)"
+       for b in ("rigid", "flexible", "full")},
+    "hub_force_fl.png": "vertical force on the front-left hub, rigid vs flexible",
+    "trajectory.png": "driven path of each run",
+    "summary.json": "this file: settings, run status, CPU times, hub-force differences",
+    "motion_flexible.npz": "flexible body pose (origin position m, body-to-global rotation) "
+                           "and elastic modal coordinates per output step, with the body "
+                           "file, its band and a road strip (input of flexpipe stress/animate)",
+    "hardpoints.csv": "elastic displacement (m) and rotation (rad) of every suspension "
+                      "hardpoint of the flexible body, global axes, vs time",
+}
+
+
+def hardpoint_table(body, motion):
+    """``(header, data)``: elastic hardpoint displacement and rotation in global axes."""
+    header, cols = ["t [s]"], [motion.t]
+    for itf in body.interfaces:
+        sh = itf.shapes[:, motion.mode_index]                      # (6, m)
+        u = motion.q @ sh[:3].T                                    # (n, 3) body axes
+        th = motion.q @ sh[3:].T
+        ug = np.einsum("nij,nj->ni", motion.rotation, u)
+        tg = np.einsum("nij,nj->ni", motion.rotation, th)
+        for k, a in enumerate("xyz"):
+            header.append(f"hardpoint_{itf.name}_u{a} [m]")
+            cols.append(ug[:, k])
+        for k, a in enumerate("xyz"):
+            header.append(f"hardpoint_{itf.name}_r{a} [rad]")
+            cols.append(tg[:, k])
+    return header, np.column_stack(cols)
+
+
+def write_hardpoints(path, body, motion):
+    """``hardpoints.csv`` (see :data:`DESCRIPTIONS`)."""
+    header, data = hardpoint_table(body, motion)
+    buf = io.StringIO()
+    buf.write(",".join(header) + "\n")
+    for row in data:
+        buf.write(",".join([f"{row[0]:.12g}"] + [f"{v:.9g}" for v in row[1:]]) + "\n")
+    write_text_atomic(path, buf.getvalue())
+
+
+def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=None,
+                   body=None, progress: bool = False) -> dict:
+    """``flexpipe stress OUT_DIR``: modal stress recovery and fatigue into ``OUT_DIR/stress``."""
+    import time
+
+    from flexpipe.durability.recover import recover_stress
+    from flexpipe.durability.report import write_stress_report
+
+    run = load_run(out) if run is None else run
+    body = run.body(log=log) if body is None else body
+    car = run.car()
+    mat = car.body.fatigue if fatigue else None
+    t0 = time.perf_counter()
+    sr = recover_stress(run.motion, body, fatigue=mat, progress=progress)
+    seconds = time.perf_counter() - t0
+    title = (f"{car.name}: max von Mises over {run.motion.t[-1]:.1f} s "
+             f"({run.summary.get('title', '')})")
+    files = write_stress_report(Path(out) / "stress", sr, body, run.channels, top=top,
+                                title=title)
+    i = int(np.argmax(sr.max_von_mises))
+    log(f"stress: {len(sr.element_id)} elements, {len(sr.t)} steps in {seconds:.2f} s; max "
+        f"von Mises {sr.max_von_mises[i] / 1e6:.1f} MPa at element {sr.element_id[i]} "
+        f"({sr.location[i]}) at t = {sr.time_of_max[i]:.3f} s")
+    if sr.damage is not None:
+        j = int(np.nanargmax(sr.damage))
+        per_km = sr.damage[j] / max(sr.distance_km, 1e-12)
+        log(f"fatigue: max damage {sr.damage[j]:.3g} ({per_km:.3g} per km) at element "
+            f"{sr.element_id[j]}")
+    return {f"stress/{k}": v for k, v in files.items()}
+
+
+def animate_outputs(out, *, dest=None, scale: float = 1.0, every: int = 1,
+                    progress: bool = False, log=print, run=None, body=None) -> dict:
+    """``flexpipe animate OUT_DIR``: the ParaView animation into ``OUT_DIR/animation``."""
+    from flexpipe.durability.animate import write_animation
+
+    run = load_run(out) if run is None else run
+    body = run.body(log=log) if body is None else body
+    dest = Path(out) / "animation" if dest is None else Path(dest)
+    files = write_animation(dest, run, body, scale=scale, every=every, progress=progress)
+    log(f"animation: {dest}/animation.pvd ({len(range(0, len(run.motion.t), every))} frames)")
+    rel = dest.name if dest.parent == Path(out) else str(dest)
+    return {f"{rel}/{k}": v for k, v in files.items()}
+
+
+def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=print) -> dict:
+    """Durability outputs of a scenario run (motion, hardpoints, stress, animation).
+
+    Returns ``{file: description}`` of every file written (and of the run's own files).
+    """
+    from flexpipe.vehicle import bodymodel
+
+    out = Path(out)
+    files = {k: v for k, v in DESCRIPTIONS.items()
+             if (out / k).exists() or k == "summary.json"}
+    r = results.get("flexible")
+    if r is None or r.motion is None or r.motion.n_modes == 0:
+        return files
+    band = r.info.get("band_hz")
+    body, info = bodymodel.reduced_body(car, f_max=band, log=lambda *a: None)
+    X, Y, Z = road_strip(road, r.motion.position[:, 0], r.motion.position[:, 1],
+                         width=2.0 * float(np.max(np.abs([c.wheel_center[1]
+                                                          for c in car.corners]))) + 1.0)
+    r.motion.save(out / MOTION_FILE.format(body="flexible"), body_file=np.array(info["path"]),
+                  band_hz=np.array(band), road_x=X, road_y=Y, road_z=Z)
+    write_hardpoints(out / "hardpoints.csv", body, r.motion)
+    files.update({k: DESCRIPTIONS[k] for k in ("motion_flexible.npz", "hardpoints.csv")})
+    run = RunData(out, {"car_file": str(car.file), "title": title}, r.t, r.channels, r.motion,
+                  Path(info["path"]), band, (X, Y, Z))
+    if body.stress is not None:
+        files.update(stress_outputs(out, log=log, run=run, body=body))
+    every = max(1, int(round(ANIMATION_FRAME_STEP / r.info["output_step"])))
+    files.update(animate_outputs(out, every=every, log=log, run=run, body=body))
+    return files

@@ -1,0 +1,141 @@
+"""A run's output folder as the durability tools read it back.
+
+``make straight`` / :func:`flexpipe.scenarios.runner.run_pair` leave in ``OUT_DIR``:
+``summary.json`` (car file, scenario), ``flexible.csv`` (channels, units in the header)
+and ``motion_flexible.npz`` (:class:`~flexpipe.vehicle.result.BodyMotion` plus the body
+file it refers to, the band it was reduced for and a strip of the road surface).
+:func:`load_run` turns them into a :class:`RunData`.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import InputError
+
+MOTION_FILE = "motion_{body}.npz"
+
+
+def read_channels_csv(path) -> tuple[np.ndarray, dict]:
+    """``(t, {channel: values})`` of a result CSV (header ``name [unit]``)."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("result CSV not found", file=path)
+    with open(path, newline="") as fh:
+        rows = list(csv.reader(fh))
+    if len(rows) < 2:
+        raise InputError("result CSV has no data rows", file=path)
+    names = [re.sub(r"\s*\[.*\]\s*$", "", h) for h in rows[0]]
+    try:
+        data = np.array(rows[1:], dtype=float)
+    except ValueError as exc:
+        raise InputError(f"non-numeric value in the result CSV ({exc})", file=path) from None
+    return data[:, 0], {n: data[:, i] for i, n in enumerate(names) if i > 0}
+
+
+def read_channels(out, body: str = "flexible"):
+    """``(t, channels)`` of a run's channel file: ``BODY.csv``, ``BODY.h5`` or ``BODY.mat``."""
+    out = Path(out)
+    if (out / f"{body}.csv").is_file():
+        return read_channels_csv(out / f"{body}.csv")
+    if (out / f"{body}.h5").is_file():
+        import h5py
+
+        with h5py.File(out / f"{body}.h5", "r") as f:
+            return f["t"][()], {k: v[()] for k, v in f["channels"].items()}
+    if (out / f"{body}.mat").is_file():
+        from scipy.io import loadmat
+
+        d = loadmat(out / f"{body}.mat", simplify_cells=True)
+        return np.ravel(d["t"]), {k: np.ravel(v) for k, v in d["channels"].items()}
+    raise InputError(f"no {body}.csv, {body}.h5 or {body}.mat", file=out)
+
+
+def road_strip(road, x, y, *, width: float = 3.0, ds: float = 0.25):
+    """Road surface heights on a strip along the driven track ``(x, y)`` (global).
+
+    Returns ``(X, Y, Z)`` arrays (n_along, n_across) for a ``width``-wide strip.
+    """
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    ss = np.arange(s[0] - 3.0, s[-1] + 3.0, ds)
+    cx, cy = np.interp(ss, s, x), np.interp(ss, s, y)
+    hx, hy = np.gradient(cx), np.gradient(cy)
+    nrm = np.hypot(hx, hy)
+    nrm[nrm == 0] = 1.0
+    nx_, ny_ = -hy / nrm, hx / nrm
+    off = np.linspace(-width / 2, width / 2, 13)
+    X = cx[:, None] + off[None] * nx_[:, None]
+    Y = cy[:, None] + off[None] * ny_[:, None]
+    Z = np.asarray(road.height(X.ravel(), Y.ravel()), dtype=float).reshape(X.shape)
+    return X, Y, Z
+
+
+@dataclass
+class RunData:
+    """What the durability tools need from one run folder."""
+
+    out: Path
+    summary: dict
+    t: np.ndarray
+    channels: dict
+    motion: object
+    body_file: Path
+    band_hz: float | None
+    road: tuple | None
+
+    def car(self):
+        """The car of the run (from ``summary.json``)."""
+        from flexpipe.vehicle.spec import load_car
+
+        return load_car(self.summary["car_file"])
+
+    def body(self, *, log=None):
+        """The reduced body of the run: its cached file, or reduced again with stresses."""
+        from flexpipe.flexbody import load_body
+
+        if self.body_file.is_file():
+            body = load_body(self.body_file)
+            if body.stress is not None:
+                return body
+        if self.band_hz is None:
+            raise InputError(f"body file {self.body_file} is missing and the run does not "
+                             "say its band; rerun the scenario", file=self.out)
+        from flexpipe.vehicle import bodymodel
+
+        body, _ = bodymodel.reduced_body(self.car(), f_max=self.band_hz,
+                                         log=log or (lambda *a: None))
+        return body
+
+
+def load_run(out, *, body: str = "flexible") -> RunData:
+    """Read a run folder (see module docstring)."""
+    from flexpipe.vehicle.result import BodyMotion
+
+    out = Path(out)
+    if not out.is_dir():
+        raise InputError("run folder not found (make straight writes out/straight)", file=out)
+    summary_path = out / "summary.json"
+    if not summary_path.is_file():
+        raise InputError("no summary.json: not a flexpipe run folder", file=out)
+    summary = json.loads(summary_path.read_text())
+    mpath = out / MOTION_FILE.format(body=body)
+    if not mpath.is_file():
+        raise InputError(f"no {mpath.name}: the run has no recorded {body} body motion "
+                         "(rerun the scenario with this flexpipe version)", file=out)
+    motion = BodyMotion.load(mpath)
+    with np.load(mpath, allow_pickle=False) as d:
+        body_file = Path(str(d["body_file"])) if "body_file" in d.files else Path()
+        band = float(d["band_hz"]) if "band_hz" in d.files else None
+        road = (d["road_x"], d["road_y"], d["road_z"]) if "road_x" in d.files else None
+    t, ch = read_channels(out, body)
+    if len(t) != len(motion.t):
+        raise InputError(f"{body}.csv has {len(t)} rows but {mpath.name} {len(motion.t)} "
+                         "steps: files from different runs", file=out)
+    return RunData(out, summary, t, ch, motion, body_file, band, road)

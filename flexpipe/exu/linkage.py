@@ -1,0 +1,321 @@
+"""Exudyn multibody of the linkage suspension (:mod:`flexpipe.vehicle.suspension`).
+
+Each corner's parts are rigid bodies (the knuckle carries the wheel; its node sits at the
+wheel centre so that the tyre coupling of :mod:`flexpipe.exu.car` applies unchanged).
+Joints become Exudyn constraints (``spherical`` -> ``ObjectJointSpherical``; ``inline``,
+``revolute`` and ``universal`` -> ``GenericJoint`` in a frame whose axes are the joint's),
+massless two-force links ``ObjectConnectorDistance`` (``ObjectConnectorSpringDamper`` when
+compliant), bushings ``ObjectConnectorRigidBodySpringDamper`` (linear 6-DOF in the bushing
+frame).  Springs, dampers and stops act between their real seats through one
+``ObjectConnectorSpringDamper`` each, linearized at the start of every step (tangent
+stiffness or damping and the force at the start), so they are solved implicitly.  The
+steering rack is a rigid body sliding along the body y axis in its two housing mounts,
+held by the column stiffness at the travel the driver commands; an anti-roll bar is two
+arms turning in their body bushings, joined by the torsion bar and carried by drop links.
+
+Body side: ``mount_marker(name, rigid)`` returns the body's marker at a mount (a
+position marker, or a rigid one where a joint or bushing needs the mount's frame).
+"""
+
+from __future__ import annotations
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+from exudyn.rigidBodyUtilities import GetRigidBodyNode
+
+from flexpipe.exu.body import NODE_TYPE
+from flexpipe.vehicle.suspension.model import BODY, RACK
+
+OV = exu.OutputVariableType
+CORNERS = ("fl", "fr", "rl", "rr")
+#: masses given to parts the car file leaves massless, and to rack and bar arms (kg)
+MIN_PART_MASS = 0.2
+RACK_MASS = 2.0
+ARB_ARM_MASS = 0.5
+#: stiffness of a steering column given as rigid (N/m at the rack)
+RIGID_RACK = 1e8
+
+
+def _frame(z_axis, x_hint=(1.0, 0.0, 0.0)) -> np.ndarray:
+    """Rotation matrix whose third column is ``z_axis``."""
+    z = np.asarray(z_axis, float)
+    z = z / np.linalg.norm(z)
+    x = np.asarray(x_hint, float)
+    if abs(x @ z) > 0.9:
+        x = np.array([0.0, 1.0, 0.0]) if abs(z[1]) < 0.9 else np.array([0.0, 0.0, 1.0])
+    x = x - (x @ z) * z
+    x /= np.linalg.norm(x)
+    return np.column_stack([x, np.cross(z, x), z])
+
+
+def _inertia6(J):
+    return [J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]]
+
+
+class LinkageModel:
+    """The suspension of a car added to an Exudyn system (see module docstring).
+
+    Parameters
+    ----------
+    mbs : exudyn MainSystem
+    suspension : Suspension
+        With spring free lengths set for the design position and the wheels (rim and
+        tyre) in the knuckles (:func:`flexpipe.vehicle.suspension.statics.with_wheels`).
+    mount_marker : callable
+        ``mount_marker(name, rigid) -> MarkerIndex`` on the car body.
+    p0, R0, v0 : arrays
+        Pose of the body frame and the initial velocity (global).
+    gravity : array (3,)
+    """
+
+    def __init__(self, mbs, suspension, *, mount_marker, p0, R0, v0, gravity):
+        self.mbs = mbs
+        self.p0, self.R0 = np.asarray(p0, float), np.asarray(R0, float)
+        self.v0 = np.asarray(v0, float)
+        self.g = np.asarray(gravity, float)
+        self.mount_marker = mount_marker
+        self.susp = suspension
+        self.corners = suspension.corners()
+        self.knuckle_node, self.part_nodes, self.forces = [], [], []
+        self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
+        self._pos_markers = {}
+        self.rack = None
+        for i, cn in enumerate(CORNERS):
+            self._corner(i, self.corners[cn])
+        for axle in suspension.axles.values():
+            if axle.anti_roll_bar is not None:
+                self._anti_roll_bar(axle)
+
+    # ------------------------------------------------------------------ helpers
+    def _body(self, mass, J_cm, cm, ref):
+        """Rigid body with node at ``ref`` (body coordinates at design), cm and inertia."""
+        mbs = self.mbs
+        d = np.asarray(cm, float) - ref
+        J = np.asarray(J_cm, float) + mass * (d @ d * np.eye(3) - np.outer(d, d))
+        node = mbs.AddNode(GetRigidBodyNode(
+            nodeType=NODE_TYPE, position=list(self.p0 + self.R0 @ ref),
+            velocity=list(self.v0), rotationMatrix=self.R0, angularVelocity=[0.0, 0.0, 0.0]))
+        obj = mbs.AddObject(eii.ObjectRigidBody(mass=float(mass), nodeNumber=node,
+                                                inertia=_inertia6(J),
+                                                centerOfMass=list(d)))
+        m = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
+        mbs.AddLoad(eii.LoadMassProportional(markerNumber=m, loadVector=list(self.g)))
+        return node, obj
+
+    def _marker(self, owner, point, rigid):
+        """Marker at ``point`` (body coordinates) on ``owner`` = (obj, ref) or 'body'."""
+        if owner == BODY:
+            return self._body_marker(point, rigid)
+        obj, ref = owner
+        local = list(np.asarray(point, float) - ref)
+        if rigid:
+            return self.mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=obj, localPosition=local))
+        return self.mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=obj, localPosition=local))
+
+    def _body_marker(self, point, rigid, mount=None):
+        return self.mount_marker(mount, rigid)
+
+    # ------------------------------------------------------------------ corner
+    def _corner(self, i, c):
+        mbs = self.mbs
+        owners = {}
+        nodes = []
+        for p in c.parts:
+            mass, J = p.mass, p.inertia
+            ref = np.asarray(c.wheel_center if p.name == c.knuckle else p.cm, float)
+            if mass <= 0:
+                mass = MIN_PART_MASS
+            J = np.array(J, float)
+            J += np.eye(3) * max(1e-4, 1e-3 * mass) * (np.trace(J) <= 0)
+            node, obj = self._body(mass, J, p.cm, ref)
+            owners[p.name] = (obj, ref)
+            nodes.append((node, mass))
+            if p.name == c.knuckle:
+                self.knuckle_node.append(node)
+                self.knuckle_obj = getattr(self, "knuckle_obj", []) + [obj]
+        self.part_nodes.append(nodes)
+        self.owners = getattr(self, "owners", {})
+        self.owners[CORNERS[i]] = owners
+
+        def own(name):
+            return BODY if name == BODY else owners[name]
+
+        for j in c.joints:
+            self._joint(j, own(j.a), own(j.b))
+        for lk in c.links:
+            b = own(lk.b) if lk.b != RACK else self._rack_owner()
+            ma = self._marker(own(lk.a), lk.point_a, False)
+            mb = (self.mount_marker(lk.mount, False) if lk.b == BODY
+                  else self._marker(b, lk.point_b, False))
+            if lk.axial_stiffness is None:
+                co = mbs.AddObject(eii.ObjectConnectorDistance(
+                    markerNumbers=[mb, ma], distance=lk.length,
+                    visualization=eii.VObjectConnectorDistance(show=False)))
+            else:
+                co = mbs.AddObject(eii.ObjectConnectorSpringDamper(
+                    markerNumbers=[mb, ma], referenceLength=lk.length,
+                    stiffness=float(lk.axial_stiffness),
+                    visualization=eii.VObjectConnectorSpringDamper(show=False)))
+            if lk.b == RACK:
+                self.to_other.append((i, co, mb, ma))
+        for f in c.forces:
+            mb = self.mount_marker(f.mount, False)
+            ma = self._marker(own(f.part), f.point, False)
+            co = mbs.AddObject(eii.ObjectConnectorSpringDamper(
+                markerNumbers=[mb, ma], referenceLength=f.design_length, stiffness=0.0,
+                damping=0.0, force=0.0,
+                visualization=eii.VObjectConnectorSpringDamper(show=False)))
+            self.forces.append((i, f, co, mb, ma))
+
+    def _joint(self, j, a, b):
+        """Joint ``j`` between owners ``a`` and ``b`` (see module docstring)."""
+        mbs = self.mbs
+        if j.bushing is not None:
+            body_first = b == BODY
+            part = a if body_first else b
+            m0 = self.mount_marker(j.mount, True)
+            m1 = self._marker(part, j.point, True)
+            bu = j.bushing
+            A = bu.frame
+            mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+                markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
+                damping=np.diag(bu.damping), rotationMarker0=A, rotationMarker1=A,
+                visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False)))
+            return
+        if j.kind == "spherical":
+            m0 = (self.mount_marker(j.mount, False) if a == BODY
+                  else self._marker(a, j.point, False))
+            m1 = (self.mount_marker(j.mount, False) if b == BODY
+                  else self._marker(b, j.point, False))
+            mbs.AddObject(eii.ObjectJointSpherical(
+                markerNumbers=[m0, m1], visualization=eii.VObjectJointSpherical(show=False)))
+            return
+        m0 = self.mount_marker(j.mount, True) if a == BODY else self._marker(a, j.point, True)
+        m1 = self.mount_marker(j.mount, True) if b == BODY else self._marker(b, j.point, True)
+        if j.kind == "inline":  # the point of b stays on the line along axis fixed in a
+            A, axes = _frame(j.axis), [1, 1, 0, 0, 0, 0]
+        elif j.kind == "revolute":
+            A, axes = _frame(j.axis), [1, 1, 1, 1, 1, 0]
+        else:  # universal: axis (in a) stays perpendicular to axis_b (in b)
+            ey, ez = np.asarray(j.axis, float), np.asarray(j.axis_b, float)
+            ex = np.cross(ey, ez)
+            ex /= np.linalg.norm(ex)
+            A, axes = np.column_stack([ex, ey, np.cross(ex, ey)]), [1, 1, 1, 1, 0, 0]
+        mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
+                                       rotationMarker0=A, rotationMarker1=A,
+                                       visualization=eii.VGenericJoint(show=False)))
+
+    # ------------------------------------------------------------------ rack, bars
+    def _rack_owner(self):
+        if self.rack is not None:
+            return self.rack["owner"]
+        mbs = self.mbs
+        rk = self.susp.rack
+        names = sorted(rk.mounts)
+        pts = np.array([rk.mounts[n] for n in names])
+        cm = pts.mean(axis=0)
+        J = np.diag([0.1, 1e-3, 0.1])
+        node, obj = self._body(RACK_MASS, J, cm, cm)
+        owner = (obj, cm)
+        left = names[int(np.argmax(pts[:, 1]))]
+        right = names[int(np.argmin(pts[:, 1]))]
+        for name, axes in ((left, [1, 0, 1, 0, 1, 0]), (right, [1, 0, 1, 0, 0, 0])):
+            m0 = self.mount_marker(name, True)
+            m1 = self._marker(owner, rk.mounts[name], True)
+            mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
+                                           visualization=eii.VGenericJoint(show=False)))
+        # column: a spring along the rack from the left mount to a rack point d to the right
+        d = 0.2
+        pl = np.asarray(rk.mounts[left], float)
+        mb = self.mount_marker(left, False)
+        mr = self._marker(owner, pl - np.array([0.0, d, 0.0]), False)
+        k = rk.axial_stiffness or RIGID_RACK
+        col = mbs.AddObject(eii.ObjectConnectorSpringDamper(
+            markerNumbers=[mb, mr], referenceLength=d, stiffness=float(k),
+            damping=float(2e-3 * k), visualization=eii.VObjectConnectorSpringDamper(show=False)))
+        self.rack = {"owner": owner, "node": node, "column": col, "d": d, "rack": rk}
+        return owner
+
+    def set_rack_travel(self, s: float) -> None:
+        """Rack travel commanded through the column (m, toward +y = left)."""
+        if self.rack is not None:
+            self.mbs.SetObjectParameter(self.rack["column"], "referenceLength",
+                                        float(self.rack["d"] - s))
+
+    def _anti_roll_bar(self, axle):
+        mbs = self.mbs
+        arb = axle.anti_roll_bar
+        mounts = dict(arb.mounts)
+        arms = []
+        for corner in (axle.left, axle.right):
+            S = np.diag([1.0, float(corner.side), 1.0])
+            bush, end, low = S @ arb.bushing, S @ arb.arm_end, S @ arb.drop_link_lower
+            name = min(mounts, key=lambda n, b=bush: np.linalg.norm(np.asarray(mounts[n]) - b))
+            cm = 0.5 * (bush + end)
+            node, obj = self._body(ARB_ARM_MASS, np.eye(3) * 1e-3, cm, cm)
+            owner = (obj, cm)
+            A = _frame((0.0, 1.0, 0.0))
+            m0 = self.mount_marker(name, True)
+            m1 = self._marker(owner, bush, True)
+            mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=[1, 1, 1,
+                                                                                    1, 1, 0],
+                                           rotationMarker0=A, rotationMarker1=A,
+                                           visualization=eii.VGenericJoint(show=False)))
+            i = CORNERS.index(corner.corner)
+            part = self.owners[corner.corner][arb.part]
+            ma = self._marker(part, low, False)
+            mb = self._marker(owner, end, False)
+            link = mbs.AddObject(eii.ObjectConnectorDistance(
+                markerNumbers=[mb, ma], distance=float(np.linalg.norm(end - low)),
+                visualization=eii.VObjectConnectorDistance(show=False)))
+            self.to_other.append((i, link, mb, ma))
+            arms.append((owner, bush))
+        A = _frame((0.0, 1.0, 0.0))
+        mL = self._marker(arms[0][0], arms[0][1], True)
+        mR = self._marker(arms[1][0], arms[1][1], True)
+        mbs.AddObject(eii.ObjectConnectorTorsionalSpringDamper(
+            markerNumbers=[mL, mR], stiffness=float(arb.torsion_rate),
+            damping=float(1e-3 * arb.torsion_rate), rotationMarker0=A, rotationMarker1=A,
+            visualization=eii.VObjectConnectorTorsionalSpringDamper(show=False)))
+
+    # ------------------------------------------------------------------ per step
+    def update_forces(self) -> None:
+        """Linearize every spring, damper and stop at the current state (implicit step)."""
+        gm = self.mbs.GetMarkerOutput
+        so = self.mbs.SetObjectParameter
+        for _i, f, co, mb, ma in self.forces:
+            pb, pa = np.asarray(gm(mb, OV.Position)), np.asarray(gm(ma, OV.Position))
+            vb, va = np.asarray(gm(mb, OV.Velocity)), np.asarray(gm(ma, OV.Velocity))
+            d = pa - pb
+            L = float(np.sqrt(d @ d))
+            Ld = float(d @ (va - vb)) / L
+            if f.kind == "damper":
+                e = 1e-4
+                P = -f.damper_force(Ld)
+                Pv = -(f.damper_force(Ld + e) - f.damper_force(Ld - e)) / (2 * e)
+                k, c, force = 0.0, -Pv, -P + Pv * Ld
+            else:
+                e = 1e-5
+                P = f.static_force(L)
+                PL = (f.static_force(L + e) - f.static_force(L - e)) / (2 * e)
+                k, c, force = -PL, 0.0, -P
+            so(co, "referenceLength", L)
+            so(co, "stiffness", k)
+            so(co, "damping", c)
+            so(co, "force", force)
+
+    def hub_forces(self, F_tire: np.ndarray) -> np.ndarray:
+        """Force (4, 3, global) each corner applies to the body through its own mounts:
+        tyre force + weight - m a of its parts + the forces of the links to rack and bar."""
+        g = self.mbs.GetNodeOutput
+        out = np.array(F_tire, dtype=float)
+        for i, nodes in enumerate(self.part_nodes):
+            for node, m in nodes:
+                out[i] += m * (self.g - np.asarray(g(node, OV.Acceleration)))
+        gm = self.mbs.GetMarkerOutput
+        for i, co, mb, ma in self.to_other:
+            d = np.asarray(gm(ma, OV.Position)) - np.asarray(gm(mb, OV.Position))
+            F = float(self.mbs.GetObjectOutput(co, OV.Force))
+            out[i] += -F * d / np.linalg.norm(d)  # tension pulls the corner's end back
+        return out

@@ -1,0 +1,157 @@
+"""The full car with linkage suspensions: body (rigid or flexible) + :class:`LinkageModel`
++ wheel spin and the implicit tyre coupling of :class:`~flexpipe.exu.car.CarSystem`.
+
+Every body-side mount of the suspension loads the body where it really sits: on the rigid
+body through a marker at the mount point, on the flexible body through the mount's
+interface (a position marker, or the rigid marker of a 6-DOF interface where a joint or a
+bushing needs the mount's frame).
+"""
+
+from __future__ import annotations
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+from exudyn.rigidBodyUtilities import GetRigidBodyNode
+
+from flexpipe.errors import InputError
+from flexpipe.exu.body import NODE_TYPE, add_flexible_body
+from flexpipe.exu.car import CarState, CarSystem
+from flexpipe.exu.linkage import LinkageModel
+
+OV = exu.OutputVariableType
+
+
+class LinkageCarSystem(CarSystem):
+    """An assembled Exudyn car with linkage suspensions (``spec.suspension``)."""
+
+    def __init__(self, spec):  # noqa: D107 - see class docstring
+        self.spec = spec
+        self.SC = exu.SystemContainer()
+        self.mbs = mbs = self.SC.AddSystem()
+        p0 = np.asarray(spec.position, dtype=float)
+        R0 = np.asarray(spec.rotation, dtype=float)
+        v0 = R0 @ np.array([spec.speed, 0.0, 0.0])
+        g = np.array([0.0, 0.0, -spec.gravity])
+        if spec.chassis == "flexible" and spec.n_modes == 0:
+            fb = spec.flexbody
+            spec.mass, spec.center_of_mass = fb.mass, fb.center_of_mass
+            spec.inertia_origin = fb.inertia_origin
+            spec.chassis = "rigid"
+        self.modal_node = None
+        cache = {}
+        if spec.chassis == "flexible":
+            h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=v0,
+                                  angular_velocity=[0.0, 0.0, 0.0], gravity=g,
+                                  n_modes=spec.n_modes, name="body")
+            self.body_node, self.body_obj, self.modal_node = h.node, h.object, h.modal_node
+            if spec.modal_q0 is not None:
+                mbs.SetNodeParameter(h.modal_node, "initialCoordinates",
+                                     [float(v) for v in spec.modal_q0])
+
+            def mount_marker(name, rigid):
+                table = h.markers if rigid else h.position_markers
+                if name not in table:
+                    kind = "6-DOF (rigid)" if rigid else "position"
+                    raise InputError(f"the flexible body has no {kind} interface for the "
+                                     f"suspension mount '{name}'; reduce the body with this "
+                                     "mount (dofs = 6 where a joint or bushing needs the "
+                                     "mount's frame)", key=name)
+                return table[name]
+        else:
+            J = spec.inertia_origin
+            self.body_node = mbs.AddNode(GetRigidBodyNode(
+                nodeType=NODE_TYPE, position=list(p0), velocity=list(v0), rotationMatrix=R0,
+                angularVelocity=[0.0, 0.0, 0.0]))
+            self.body_obj = mbs.AddObject(eii.ObjectRigidBody(
+                mass=spec.mass, nodeNumber=self.body_node,
+                inertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
+                centerOfMass=list(spec.center_of_mass)))
+            mb = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=self.body_obj))
+            mbs.AddLoad(eii.LoadMassProportional(markerNumber=mb, loadVector=list(g)))
+            points = spec.suspension.mounts()
+
+            def mount_marker(name, rigid):
+                key = (name, rigid)
+                if key not in cache:
+                    loc = [float(v) for v in points[name]]
+                    item = (eii.MarkerBodyRigid if rigid else eii.MarkerBodyPosition)(
+                        bodyNumber=self.body_obj, localPosition=loc)
+                    cache[key] = mbs.AddMarker(item)
+                return cache[key]
+        self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
+        self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker,
+                                         p0=p0, R0=R0, v0=v0, gravity=g)
+        self.wheel_node = list(lk.knuckle_node)
+        self.spin_node, self.load_tire_m, self.load_spin, self.tire_elem = [], [], [], []
+        for i in range(4):
+            n_w = self.wheel_node[i]
+            n_s = mbs.AddNode(eii.Node1D(referenceCoordinates=[0.0], initialCoordinates=[0.0],
+                                         initialVelocities=[float(spec.spin_rate[i])]))
+            mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
+                                                     nodeNumber=n_s))
+            m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
+            m_center = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
+            self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
+                nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
+                stiffnessMatrix=np.zeros((8, 8)), dampingMatrix=np.zeros((8, 8)),
+                forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
+            self.load_tire_m.append(mbs.AddLoad(eii.LoadTorqueVector(
+                markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
+            self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
+                                                                 load=0.0)))
+            self.spin_node.append(n_s)
+        order = spec.suspension.corners()
+        self.design_wheel = np.array([order[c].wheel_center for c in ("fl", "fr", "rl", "rr")])
+        mbs.Assemble()
+        self.wheel_ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
+                                   for n in self.wheel_node], dtype=float)
+        self.newton_rtol = 1e-3
+        self.newton_atol = 1e-4
+        self.points = {}
+        for name, node in spec.point_nodes.items():
+            self.points[name] = ("node", int(node)) if spec.chassis == "flexible" else \
+                ("local", list(map(float, spec.point_local[name])))
+        self.joint = []
+
+    def state(self, t: float) -> CarState:
+        """Current state; ``jounce`` is the wheel-centre travel along the body z axis."""
+        g = self.mbs.GetNodeOutput
+        bn = self.body_node
+        body_p = np.asarray(g(bn, OV.Position))
+        body_R = np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3)
+        body_v = np.asarray(g(bn, OV.Velocity))
+        body_w = np.asarray(g(bn, OV.AngularVelocity))
+        wp = np.array([g(n, OV.Position) for n in self.wheel_node])
+        wv = np.array([g(n, OV.Velocity) for n in self.wheel_node])
+        wR = np.array([g(n, OV.RotationMatrix) for n in self.wheel_node]).reshape(4, 3, 3)
+        ww = np.array([g(n, OV.AngularVelocity) for n in self.wheel_node])
+        spin = np.array([g(n, OV.Coordinates_t) for n in self.spin_node], dtype=float).ravel()
+        wq = np.array([g(n, OV.Coordinates) for n in self.wheel_node], dtype=float)
+        wqt = np.array([g(n, OV.Coordinates_t) for n in self.wheel_node], dtype=float)
+        local = (wp - body_p) @ body_R
+        jounce = local[:, 2] - self.design_wheel[:, 2]
+        vrel = (wv - body_v - np.cross(body_w, wp - body_p)) @ body_R
+        return CarState(t=t, body_p=body_p, body_R=body_R, body_v=body_v, body_w=body_w,
+                        wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
+                        jounce=jounce, jounce_rate=vrel[:, 2], joint_force=None,
+                        mount_R=np.repeat(body_R[None], 4, axis=0), wheel_q=wq, wheel_qt=wqt)
+
+    def apply(self, loads, mount_R, st) -> None:
+        """Tyre coupling, tyre moments, spin torques, rack travel; linearize the springs."""
+        mbs = self.mbs
+        so = mbs.SetObjectParameter
+        D, K, f = self.tire_matrices(loads.tire, st)
+        for i in range(4):
+            mbs.SetLoadParameter(self.load_tire_m[i], "loadVector",
+                                 loads.tire_moment[i].tolist())
+            mbs.SetLoadParameter(self.load_spin[i], "load", float(loads.spin_torque[i]))
+            so(self.tire_elem[i], "dampingMatrix", D[i])
+            so(self.tire_elem[i], "stiffnessMatrix", K[i])
+            so(self.tire_elem[i], "forceVector", f[i])
+        if loads.rack_travel is not None:
+            self.linkage.set_rack_travel(loads.rack_travel)
+        self.linkage.update_forces()
+
+    def joint_forces(self):  # the hub force comes from hub_forces for linkage cars
+        return np.zeros((4, 3))

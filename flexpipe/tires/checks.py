@@ -1,0 +1,262 @@
+"""Checks of a ``.tir`` file: key names, units, and physical ranges (values in SI, after the
+``[UNITS]`` conversion).
+
+Key names: an unknown key in a PAC2002 coefficient section (or FIALA ``[PARAMETER]``) is an
+error; elsewhere an unknown key or section warns, unless it is one edit away from a known
+one (a typo that would silently fall back to a default), which is an error.
+
+Every value that would make the tyre model divide by zero, return NaN, or give plausible
+but wrong forces is rejected with an :class:`~flexpipe.errors.InputError` naming the file,
+the line, the key and the valid range:
+
+* radius, nominal load, stiffness and the force range must be positive
+  (``UNLOADED_RADIUS``, ``FNOMIN``, ``VERTICAL_STIFFNESS``, ``FZMAX`` > 0; damping and
+  ``FZMIN`` >= 0; a given ``RIM_RADIUS`` < ``UNLOADED_RADIUS``; ``FZMIN`` < ``FZMAX``);
+  dimensions the models do not use (``WIDTH``, ``BOTTOMING_RADIUS`` ...) are not checked;
+* radius, nominal load and vertical stiffness must be those of a road-vehicle tyre
+  (0.05-5 m, 10 N-2 MN, 1e3-1e9 N/m): outside, a ``[UNITS]`` entry is usually wrong;
+* input ranges must be ordered and hold zero (``KPUMIN <= 0 <= KPUMAX``, ``KPUMIN <
+  KPUMAX``; the same for ``ALPMIN/ALPMAX`` (within +-pi/2) and ``CAMMIN/CAMMAX``), since the
+  model clips its inputs to them;
+* PAC2002 factors that divide or set a peak (``LFZO``, ``LCZ`` > 0; for the force
+  directions the USE_MODE computes: ``LMUX, LCX, LMUY, LCY, LKY`` > 0 and ``PCX1, PDX1,
+  PCY1, PDY1, PKY1, PKY2`` non-zero);
+* a ``[DEFLECTION_LOAD_CURVE] {pen fz}`` table needs increasing deflections >= 0 and
+  non-decreasing loads >= 0.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import warnings
+
+import numpy as np
+
+from flexpipe.errors import InputError
+from flexpipe.tires import _keys
+
+_POSITIVE = {
+    "DIMENSION": ("UNLOADED_RADIUS",),
+    "VERTICAL": ("FNOMIN", "VERTICAL_STIFFNESS"),
+    "VERTICAL_FORCE_RANGE": ("FZMAX",),
+    "SCALING_COEFFICIENTS": ("LFZO", "LCZ"),
+    "PARAMETER": ("CSLIP", "CALPHA", "UMAX", "UMIN"),
+}
+_NONNEGATIVE = {
+    "VERTICAL": ("VERTICAL_DAMPING",),
+    "VERTICAL_FORCE_RANGE": ("FZMIN",),
+    "PARAMETER": ("ROLLING_RESISTANCE", "RELAX_LENGTH_X", "RELAX_LENGTH_Y"),
+}
+_PLAUSIBLE = (  # section, key, low, high (SI): any road-vehicle tyre, bicycle to mining truck
+    ("DIMENSION", "UNLOADED_RADIUS", 0.05, 5.0, "m"),
+    ("VERTICAL", "FNOMIN", 10.0, 2e6, "N"),
+    ("VERTICAL", "VERTICAL_STIFFNESS", 1e3, 1e9, "N/m"),
+)
+_RANGES = (  # section, low key, high key, default low, default high, absolute limit
+    ("LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", -1.5, 1.5, math.inf),
+    ("SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", -1.5707, 1.5707, math.pi / 2 + 1e-3),
+    ("INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", -0.5, 0.5, math.pi / 2),
+)
+_MF_LONG = (("SCALING_COEFFICIENTS", ("LMUX", "LCX"), True),
+            ("LONGITUDINAL_COEFFICIENTS", ("PCX1", "PDX1"), False))
+_MF_LAT = (("SCALING_COEFFICIENTS", ("LMUY", "LCY", "LKY"), True),
+           ("LATERAL_COEFFICIENTS", ("PCY1", "PDY1", "PKY1", "PKY2"), False))
+
+
+def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
+    """Raise :class:`InputError` for the first physically invalid value (see module notes)."""
+
+    def fail(sec, key, value, valid):
+        raise InputError(f"[{sec}] {key} = {value:g} is out of range; valid: {valid}",
+                         file=path, line=lines.get((sec, key)), key=key)
+
+    def value(sec, key):
+        v = sections.get(sec, {}).get(key)
+        return v if isinstance(v, float) else None
+
+    for sec, keys in _POSITIVE.items():
+        for key in keys:
+            v = value(sec, key)
+            if v is not None and not v > 0.0:
+                fail(sec, key, v, "> 0")
+    for sec, keys in _NONNEGATIVE.items():
+        for key in keys:
+            v = value(sec, key)
+            if v is not None and not v >= 0.0:
+                fail(sec, key, v, ">= 0")
+    for sec, key, lo, hi, unit in _PLAUSIBLE:
+        v = value(sec, key)
+        if v is not None and not lo <= v <= hi:
+            fail(sec, key, v, f"{lo:g} .. {hi:g} {unit} after the [UNITS] conversion (a tyre "
+                              "outside it usually means a wrong [UNITS] entry)")
+    r0, rim = value("DIMENSION", "UNLOADED_RADIUS"), value("DIMENSION", "RIM_RADIUS")
+    if r0 is not None and rim is not None and rim > 0.0 and rim >= r0:
+        fail("DIMENSION", "RIM_RADIUS", rim, f"< UNLOADED_RADIUS = {r0:g} m")
+    umax, umin = value("PARAMETER", "UMAX"), value("PARAMETER", "UMIN")
+    if umax is not None and umin is not None and umin > umax:
+        fail("PARAMETER", "UMIN", umin, f"<= UMAX = {umax:g}")
+    fzmin, fzmax = value("VERTICAL_FORCE_RANGE", "FZMIN"), value("VERTICAL_FORCE_RANGE", "FZMAX")
+    if fzmin is not None and fzmax is not None and fzmin >= fzmax:
+        fail("VERTICAL_FORCE_RANGE", "FZMIN", fzmin, f"< FZMAX = {fzmax:g} N")
+    for sec, lo_key, hi_key, lo_def, hi_def, limit in _RANGES:
+        lo, hi = value(sec, lo_key), value(sec, hi_key)
+        lo_v = lo_def if lo is None else lo
+        hi_v = hi_def if hi is None else hi
+        if lo is not None and not -limit <= lo <= 0.0:
+            fail(sec, lo_key, lo, f"in [{-limit:.4g}, 0] (the model clips its input to it)")
+        if hi is not None and not 0.0 <= hi <= limit:
+            fail(sec, hi_key, hi, f"in [0, {limit:.4g}] (the model clips its input to it)")
+        if not lo_v < hi_v:
+            fail(sec, lo_key if lo is not None else hi_key, lo_v if lo is not None else hi_v,
+                 f"{lo_key} < {hi_key} (got {lo_v:g} and {hi_v:g})")
+    if fmt == "PAC2002":
+        mode = abs(int(use_mode)) % 10
+        groups = (_MF_LONG if mode in (1, 3, 4) else ()) + (_MF_LAT if mode in (2, 3, 4) else ())
+        for sec, keys, positive in groups:
+            for key in keys:
+                v = value(sec, key)
+                if v is None and not positive:
+                    raise InputError(f"[{sec}] has no {key}; USE_MODE {use_mode} needs it "
+                                     "(a zero would give NaN forces)", file=path,
+                                     line=lines.get((sec, "")), key=key)
+                if v is not None and (not v > 0.0 if positive else v == 0.0):
+                    fail(sec, key, v, "> 0" if positive else "non-zero (a zero gives NaN "
+                                                               "forces)")
+    table = tables.get("DEFLECTION_LOAD_CURVE")
+    if table is not None:
+        _check_load_curve(path, table)
+
+
+def _check_load_curve(path, table) -> None:
+    cols = table.columns
+    if "pen" not in cols or "fz" not in cols:
+        raise InputError(f"[DEFLECTION_LOAD_CURVE] table columns are {{{' '.join(cols)}}}; "
+                         "expected {pen fz}", file=path, line=table.line)
+    pen, fz = table.column("pen"), table.column("fz")
+    bad = np.flatnonzero((pen < 0.0) | (fz < 0.0))
+    if bad.size:
+        i = int(bad[0])
+        raise InputError(f"[DEFLECTION_LOAD_CURVE] row {i + 1} (pen {pen[i]:g} m, fz "
+                         f"{fz[i]:g} N) is negative; deflection and load must be >= 0",
+                         file=path, line=_row_line(table, i))
+    for name, a, strict in (("pen", pen, True), ("fz", fz, False)):
+        step = np.diff(a)
+        wrong = np.flatnonzero(step <= 0.0 if strict else step < 0.0)
+        if wrong.size:
+            i = int(wrong[0]) + 1
+            raise InputError(f"[DEFLECTION_LOAD_CURVE] {name} of row {i + 1} ({a[i]:g}) does "
+                             f"not {'increase' if strict else 'stay or increase'} from row "
+                             f"{i} ({a[i - 1]:g})", file=path, line=_row_line(table, i))
+    if np.count_nonzero(pen > 0.0) < 2:
+        raise InputError("[DEFLECTION_LOAD_CURVE] needs at least two rows with pen > 0",
+                         file=path, line=table.line)
+
+
+def _row_line(table, i: int):
+    return table.row_lines[i] if i < len(table.row_lines) else table.line
+
+
+def probe_forces(tire, path) -> None:
+    """Raise :class:`InputError` if ``tire`` gives a non-finite force in its normal range.
+
+    Evaluated at loads 0.1-2 x nominal, slips -0.5..0.5, slip angles -0.3..0.3 rad and
+    camber -0.05..0.05 rad: catches coefficient combinations the single-key checks cannot.
+    """
+    fn = getattr(getattr(tire, "mf", None), "fnomin", None) or 4000.0
+    Fz = np.array([0.1, 0.5, 1.0, 2.0])[:, None, None, None] * fn
+    kappa = np.array([-0.5, -0.05, 0.0, 0.05, 0.5])[None, :, None, None]
+    alpha = np.array([-0.3, 0.0, 0.3])[None, None, :, None]
+    gamma = np.array([-0.05, 0.0, 0.05])[None, None, None, :]
+    with np.errstate(all="ignore"):
+        f = tire.slip_forces(kappa, alpha, Fz, gamma)
+    for name in ("Fx", "Fy", "Mz", "Mx", "My"):
+        a = np.broadcast_to(np.asarray(getattr(f, name), dtype=float),
+                            np.broadcast_shapes(Fz.shape, kappa.shape, alpha.shape, gamma.shape))
+        bad = np.argwhere(~np.isfinite(a))
+        if bad.size:
+            i, j, k, m = bad[0]
+            raise InputError(
+                f"the tyre coefficients give {name} = {a[i, j, k, m]} at Fz = "
+                f"{float(Fz[i, 0, 0, 0]):g} N, kappa = {float(kappa[0, j, 0, 0]):g}, alpha = "
+                f"{float(alpha[0, 0, k, 0]):g} rad, gamma = {float(gamma[0, 0, 0, m]):g} rad; "
+                "check the Magic Formula / Fiala coefficients for zeros or overflow", file=path)
+
+
+# ---------------------------------------------------------------- keys and units
+def unit_factors(path, units: dict, lines: dict) -> dict[str, float]:
+    factors = {}
+    for quantity in _keys.UNIT_QUANTITIES:
+        name = units.get(quantity)
+        if name is None:
+            factors[quantity] = 1.0
+            continue
+        table = _keys.UNIT_FACTORS[quantity]
+        key = str(name).strip().lower()
+        if key not in table:
+            raise InputError(
+                f"[UNITS] {quantity} = '{name}' is not a known unit; valid: "
+                f"{', '.join(sorted(table))}", file=path, line=lines.get(("UNITS", quantity)),
+                key=quantity)
+        factors[quantity] = table[key]
+    return factors
+
+
+def scale(exponents, factors) -> float:
+    return math.prod(factors[q] ** e for q, e in zip(_keys.UNIT_QUANTITIES, exponents, strict=True)
+                     if e)
+
+
+def check_keys(path, fmt, sections, lines):
+    strict = {"PAC2002": _keys.PAC2002_STRICT, "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
+    for name, sec in sections.items():
+        allowed = strict.get(name)
+        if allowed is None:
+            allowed = _keys.KNOWN_SECTIONS.get(name)
+            if allowed is None:
+                if name not in _keys.FREE_SECTIONS and name not in _keys.PAC2002_STRICT:
+                    close = difflib.get_close_matches(name, _ALL_SECTIONS, n=1, cutoff=0.85)
+                    if close:   # a misspelt known section would silently drop its data
+                        raise InputError(f"unknown section [{name}] (did you mean "
+                                         f"[{close[0]}]?)", file=path,
+                                         line=lines[(name, "")], key=name)
+                    warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
+                                  " kept but not used", UserWarning, stacklevel=4)
+                continue
+            for key in sec:
+                if key not in allowed:
+                    close = [k for k in sorted(allowed) if _one_edit(key, k)]
+                    if close:   # a misspelt known key would silently fall back to a default
+                        raise InputError(f"unknown key {key} in [{name}] (did you mean "
+                                         f"{close[0]}?)", file=path, line=lines[(name, key)],
+                                         key=key)
+                    warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
+                                  f"known entry of [{name}]; ignored", UserWarning,
+                                  stacklevel=4)
+            continue
+        for key in sec:
+            if key not in allowed:
+                close = difflib.get_close_matches(key, sorted(allowed), n=3, cutoff=0.6)
+                hint = f" (did you mean {' or '.join(close)}?)" if close else ""
+                raise InputError(
+                    f"unknown key {key} in [{name}] of a {fmt} file{hint}; valid keys: "
+                    f"{', '.join(sorted(allowed))}", file=path, line=lines[(name, key)], key=key)
+
+
+def _one_edit(a: str, b: str) -> bool:
+    """True if ``a`` becomes ``b`` by one insertion, deletion, substitution or swap of two
+    neighbours -- except a changed digit (``Q_FZ4`` is another coefficient, not a typo)."""
+    if a == b or abs(len(a) - len(b)) > 1:
+        return False
+    if len(a) == len(b):
+        diff = [i for i in range(len(a)) if a[i] != b[i]]
+        if len(diff) == 1:
+            return not (a[diff[0]].isdigit() and b[diff[0]].isdigit())
+        return (len(diff) == 2 and diff[1] == diff[0] + 1 and a[diff[0]] == b[diff[1]]
+                and a[diff[1]] == b[diff[0]])
+    short, long_ = (a, b) if len(a) < len(b) else (b, a)
+    return any(long_[:i] + long_[i + 1:] == short for i in range(len(long_)))
+
+
+_ALL_SECTIONS = sorted(set(_keys.KNOWN_SECTIONS) | set(_keys.FREE_SECTIONS)
+                       | set(_keys.PAC2002_STRICT) | set(_keys.FIALA_STRICT))

@@ -1,0 +1,103 @@
+"""Files of the K&C rig: one CSV per analysis (units in the headers), ``kc_summary.json``
+and PNG plots of the characteristics vs wheel travel; all written atomically."""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import atomic_path, write_text_atomic
+
+#: quantities plotted against wheel travel, one panel each
+PANELS = ("camber [deg]", "toe [deg]", "caster [deg]", "kpi [deg]", "scrub radius [mm]",
+          "wheel rate [N/m]", "roll centre height [mm]", "bump steer [deg/m]")
+
+
+def _csv(table) -> str:
+    buf = io.StringIO()
+    buf.write(",".join(table.columns) + "\n")
+    np.savetxt(buf, table.data, delimiter=",", fmt="%.10g")
+    return buf.getvalue()
+
+
+def _figure():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save(plt, fig, path):
+    with atomic_path(path, suffix=".png") as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
+    plt.close(fig)
+
+
+def plot_travel(res, path: Path) -> None:
+    """Characteristics vs wheel travel, one line per axle (parallel; roll centre also
+    for opposite travel)."""
+    plt = _figure()
+    fig, axs = plt.subplots(2, 4, figsize=(15, 7), constrained_layout=True)
+    for name in res.summary:
+        par = res.tables[f"{name}_parallel_travel"]
+        s = par["wheel travel [mm]"]
+        for ax, q in zip(axs.flat, PANELS, strict=True):
+            ax.plot(par[q], s, label=f"{name}")
+            if q == "roll centre height [mm]":
+                opp = res.tables[f"{name}_opposite_travel"]
+                ax.plot(opp[q], opp["wheel travel [mm]"], ls="--", label=f"{name}, opposite")
+    for ax, q in zip(axs.flat, PANELS, strict=True):
+        ax.set_xlabel(q)
+        ax.set_ylabel("wheel travel [mm]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("Parallel wheel travel (left corner; Adams/Car sign conventions)")
+    _save(plt, fig, path)
+
+
+def plot_steer_and_compliance(res, path: Path) -> None:
+    """Static steer and force-compliance curves."""
+    plt = _figure()
+    fig, axs = plt.subplots(1, 3, figsize=(15, 4.5), constrained_layout=True)
+    for name in res.summary:
+        st = res.tables.get(f"{name}_static_steer")
+        if st is not None:
+            axs[0].plot(st["steering wheel angle [deg]"], st["steer left [deg]"],
+                        label=f"{name} left")
+            axs[0].plot(st["steering wheel angle [deg]"], st["steer right [deg]"], ls="--",
+                        label=f"{name} right")
+        for ax, kind in ((axs[1], "longitudinal"), (axs[2], "lateral")):
+            t = res.tables[f"{name}_{kind}_force"]
+            ax.plot(t["force [N]"] / 1e3, t["toe [deg]"], label=f"{name} toe")
+            ax.plot(t["force [N]"] / 1e3, t["camber [deg]"], ls="--", label=f"{name} camber")
+    axs[0].set_xlabel("steering wheel angle [deg]")
+    axs[0].set_ylabel("road wheel angle [deg]")
+    axs[1].set_xlabel("longitudinal force at the contact patch [kN]")
+    axs[2].set_xlabel("lateral force at the contact patch [kN]")
+    for ax in axs[1:]:
+        ax.set_ylabel("angle [deg]")
+    for ax in axs:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    _save(plt, fig, path)
+
+
+def write(res, out: Path) -> list[Path]:
+    """Write every table as CSV, the summary as JSON and the plots; returns the paths."""
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, table in res.tables.items():
+        p = out / f"{name}.csv"
+        write_text_atomic(p, _csv(table))
+        paths.append(p)
+    p = out / "kc_summary.json"
+    write_text_atomic(p, json.dumps(res.summary, indent=2) + "\n")
+    paths.append(p)
+    plot_travel(res, out / "kc_wheel_travel.png")
+    plot_steer_and_compliance(res, out / "kc_steer_compliance.png")
+    return paths + [out / "kc_wheel_travel.png", out / "kc_steer_compliance.png"]

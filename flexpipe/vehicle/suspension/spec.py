@@ -1,0 +1,277 @@
+"""Suspension part of the car file: ``[suspension.<axle>]``, ``[steering.rack]``.
+
+Every error is an :class:`~flexpipe.errors.InputError` naming the file, line and key
+(through :class:`flexpipe.vehicle._toml.Table`).  See ``docs/car-file.md`` for the format.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import InputError, ModelError
+from flexpipe.vehicle._toml import Table, parse
+from flexpipe.vehicle.suspension.model import (
+    BUSHING_DOFS,
+    AntiRollBar,
+    Axle,
+    Bushing,
+    Rack,
+    mirror_corner,
+)
+from flexpipe.vehicle.suspension.templates import HARDPOINTS, PARTS, SPRING_PART, build
+
+AXLES = ("front", "rear")
+
+
+@dataclass(frozen=True)
+class Suspension:
+    """The car's suspension: ``axles`` ``{"front": Axle, "rear": Axle}`` and the rack."""
+
+    file: Path
+    axles: dict
+    rack: Rack | None = None
+
+    def corners(self) -> dict:
+        """``{"fl": CornerLinkage, "fr": ..., "rl": ..., "rr": ...}``."""
+        out = {}
+        for a in self.axles.values():
+            out[a.left.corner], out[a.right.corner] = a.left, a.right
+        return out
+
+    def mounts(self) -> dict:
+        """Every body mount ``{name: point}`` (corners, rack housing, anti-roll bars)."""
+        out = {}
+        for c in self.corners().values():
+            out.update(c.mounts)
+        if self.rack is not None:
+            out.update(self.rack.mounts)
+        for a in self.axles.values():
+            if a.anti_roll_bar is not None:
+                out.update(dict(a.anti_roll_bar.mounts))
+        return out
+
+
+def _table_xy(t: Table, xkey: str, ykey: str, *, increasing=True):
+    x, y = t.raw(xkey), t.raw(ykey)
+    ok = (isinstance(x, list) and isinstance(y, list) and len(x) == len(y) >= 2
+          and all(isinstance(v, int | float) and not isinstance(v, bool) for v in x + y))
+    if not ok:
+        raise t.error(xkey, f"'{xkey}' and '{ykey}' must be lists of numbers of equal "
+                            "length >= 2")
+    x, y = np.array(x, float), np.array(y, float)
+    if increasing and np.any(np.diff(x) <= 0):
+        raise t.error(xkey, f"'{xkey}' must increase strictly, got {x.tolist()}")
+    return x, y
+
+
+def _bushing(t: Table) -> Bushing:
+    dofs = t.string("dofs", "all", choices=("all", "translational"))
+    k = t.vector("stiffness", 6, doc="kx ky kz [N/m] krx kry krz [N m/rad]")
+    c = t.vector("damping", 6, np.zeros(6))
+    if np.any(k < 0) or np.any(c < 0):
+        raise t.error("stiffness", "stiffness and damping must be >= 0")
+    if dofs == "translational":
+        k, c = k.copy(), c.copy()
+        k[3:] = c[3:] = 0.0
+    frame = np.eye(3)
+    if t.has("axis"):
+        z = t.vector("axis")
+        if np.linalg.norm(z) == 0:
+            raise t.error("axis", "the bushing axis must not be zero")
+        z = z / np.linalg.norm(z)
+        x = np.cross([0, 1.0, 0], z) if abs(z[1]) < 0.9 else np.cross(z, [0, 0, 1.0])
+        x /= np.linalg.norm(x)
+        frame = np.column_stack([x, np.cross(z, x), z])
+    tables = {}
+    tt = t.sub("tables", None)
+    if tt is not None:
+        for dof in list(tt.data):
+            if dof not in BUSHING_DOFS:
+                raise tt.error(dof, f"unknown bushing direction; valid: {', '.join(BUSHING_DOFS)}")
+            d = tt.sub(dof)
+            tables[dof] = _table_xy(d, "deflection", "force")
+            d.finish()
+        tt.finish()
+    t.finish()
+    return Bushing(k, c, frame, tables)
+
+
+def _forces(t: Table) -> dict:
+    out = {}
+    s = t.sub("spring", None)
+    if s is not None:
+        d = {"rate": s.number("rate_N_per_m", lo=0, lo_open=True)}
+        if s.has("free_length_m") and s.has("preload_N"):
+            raise s.error("preload_N", "give free_length_m or preload_N, not both")
+        d["free_length"] = s.number("free_length_m", None, lo=0, lo_open=True)
+        if s.has("compression_m"):
+            d["table"] = _table_xy(s, "compression_m", "force_N")
+        out["spring"] = d
+        out["_preload"] = s.number("preload_N", None)
+        s.finish()
+    dm = t.sub("damper", None)
+    if dm is not None:
+        if dm.has("velocity_m_per_s"):
+            out["damper"] = {"table": _table_xy(dm, "velocity_m_per_s", "force_N")}
+        else:
+            cb = dm.number("bump_N_s_per_m", lo=0, doc="compression damping (dual rate)")
+            cr = dm.number("rebound_N_s_per_m", lo=0, doc="extension damping")
+            out["damper"] = {"table": (np.array([-1.0, 0.0, 1.0]), np.array([-cb, 0.0, cr]))}
+        dm.finish()
+    for kind in ("bump_stop", "rebound_stop"):
+        st = t.sub(kind, None)
+        if st is not None:
+            out[kind] = {"clearance": st.number("clearance_m", lo=0),
+                         "table": _table_xy(st, "deflection_m", "force_N")}
+            st.finish()
+    return out
+
+
+def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
+    t = st.sub(axle)
+    template = t.string("template", choices=tuple(HARDPOINTS))
+    loc = t.vector("location_m", 3, np.zeros(3))
+    hpt = t.sub("hardpoints_m")
+    req, opt = HARDPOINTS[template]
+    for k in hpt.data:
+        if k not in req + opt:
+            raise hpt.error(k, f"unknown hardpoint for template {template}; valid: "
+                               f"{', '.join(req + opt)}")
+    for k in req:
+        if k not in hpt.data:
+            raise hpt.error(None, f"missing hardpoint '{k}' of template {template} "
+                                  f"(required: {', '.join(req)})")
+    hp = {k: hpt.vector(k) + loc for k in list(hpt.data)}
+    hpt.finish()
+    parts = {}
+    pt = t.sub("parts", None)
+    if pt is not None:
+        for name in list(pt.data):
+            if name not in PARTS[template]:
+                raise pt.error(name, f"unknown part for template {template}; valid: "
+                                     f"{', '.join(PARTS[template])}")
+            p = pt.sub(name)
+            inertia = p.vector("inertia_kg_m2", 3, np.zeros(3), doc="Ixx Iyy Izz about cm")
+            parts[name] = {"mass": p.number("mass_kg", lo=0),
+                           "cm": p.vector("cm_m") + loc, "inertia": np.diag(inertia)}
+            p.finish()
+        pt.finish()
+    bushings = {}
+    bt = t.sub("bushings", None)
+    if bt is not None:
+        for name in list(bt.data):
+            if name not in req + opt:
+                raise bt.error(name, f"unknown hardpoint for a bushing; valid: body-side "
+                                     f"hardpoints of {template}")
+            bushings[name] = _bushing(bt.sub(name))
+        bt.finish()
+    forces = _forces(t)
+    preload = forces.pop("_preload", None)
+    wheel_load = t.number("wheel_load_N", None, lo=0, lo_open=True)
+    kw = dict(axle=axle, corner=axle[0] + "l", camber_deg=t.number("camber_deg", 0.0),
+              toe_deg=t.number("toe_deg", 0.0),
+              wheel_radius=t.number("wheel_radius_m", float(hp["wheel_center"][2]),
+                                    lo=0, lo_open=True),
+              parts=parts, bushings=bushings, forces=forces, steered=(rack_axle == axle),
+              file=t.file)
+    if template == "multi_link" and t.has("universal_axes"):
+        ax = t.raw("universal_axes")
+        if not (isinstance(ax, list) and len(ax) == 2):
+            raise t.error("universal_axes", "expected [[link axis], [body axis]]")
+        kw["universal_axes"] = tuple(np.array(a, float) for a in ax)
+    try:
+        left = build(template, hp, **kw)
+    except InputError as exc:  # name the table and line of the offending key
+        key = exc.key or ""
+        sub = bt if bt is not None and key in bt.data else hpt
+        raise sub.error(key if key in sub.data else None, str(exc).split(": ", 1)[-1]) from None
+    if preload is not None:
+        from flexpipe.vehicle.suspension.statics import with_preload
+
+        left = with_preload(left, preload)
+    arb = None
+    at = t.sub("anti_roll_bar", None)
+    if at is not None:
+        for k in ("arb_bushing", "arb_arm_end", "drop_link_lower"):
+            if k not in hp:
+                raise at.error(None, f"an anti-roll bar needs hardpoint '{k}' in "
+                                     f"[{t.name}.hardpoints_m]")
+        arb = AntiRollBar(at.number("torsion_rate_N_m_per_rad", lo=0, lo_open=True),
+                          hp["arb_bushing"], hp["arb_arm_end"], hp["drop_link_lower"],
+                          SPRING_PART[template],
+                          mounts=((f"{axle}_arb_bushing_l", hp["arb_bushing"]),
+                                  (f"{axle}_arb_bushing_r", hp["arb_bushing"] * [1, -1, 1])),
+                          bushing_stiffness=(_bushing(at.sub("bushing"))
+                                             if at.has("bushing") else None))
+        at.finish()
+    t.finish()
+    _check_assembles(left, t, hpt)
+    return Axle(axle, left, mirror_corner(left, axle[0] + "r"), anti_roll_bar=arb,
+                wheel_load=wheel_load)
+
+
+def _check_assembles(corner, t: Table, hpt: Table) -> None:
+    """Every constraint must hold at the design position; name the one that does not."""
+    from flexpipe.vehicle.suspension.kinematics import Linkage
+
+    lk = Linkage(corner)
+    g, _, names = lk.constraints(lk.design())
+    g[-1] -= corner.wheel_center[2]
+    k = int(np.argmax(np.abs(g)))
+    if abs(g[k]) <= 1e-6:
+        return
+    msg = (f"the linkage does not assemble at the design position: {names[k]} has "
+           f"residual {g[k]:.3g} (m or rad)")
+    if "(universal)" in names[k] and "universal_axes" in t.data:
+        raise t.error("universal_axes", msg + "; the two axes must be perpendicular")
+    joint = names[k].split("'")[1] if "'" in names[k] else None
+    raise hpt.error(joint if joint in hpt.data else None, msg)
+
+
+def load_suspension(path) -> Suspension:
+    """Read the suspension of the car file ``path`` (``[suspension.*]``, ``[steering.rack]``).
+
+    Raises
+    ------
+    InputError
+        Naming file, line and key: unknown or missing hardpoint, bad table, a linkage that
+        does not assemble (the failing constraint and its residual).
+    """
+    path = Path(path)
+    doc, lines = parse(path)
+    top = Table(doc, "", path, lines)
+    st = top.sub("suspension", None)
+    if st is None:
+        raise InputError("no [suspension.front] / [suspension.rear] tables; see "
+                         "docs/car-file.md", file=path, key="suspension")
+    rack, rack_axle = None, None
+    steer = top.sub("steering", None)
+    if steer is not None and steer.has("rack"):
+        rt = steer.sub("rack")
+        rack_axle = rt.string("axle", "front", choices=AXLES)
+        mount = rt.vector("mount_m")
+        rack = Rack({f"{rack_axle}_rack_mount_l": mount,
+                     f"{rack_axle}_rack_mount_r": mount * [1, -1, 1]},
+                     rt.number("travel_per_rev_m", lo=0, lo_open=True,
+                               doc="rack travel per pinion revolution"),
+                     rt.number("ratio", None, lo=0, lo_open=True),
+                     rt.number("column_stiffness_N_m_per_rad", None, lo=0, lo_open=True))
+        rt.finish()
+    axles = {}
+    for name in list(st.data):
+        if name not in AXLES:
+            raise st.error(name, f"unknown axle; valid: {', '.join(AXLES)}")
+        axles[name] = _axle(st, name, rack_axle)
+    st.finish()
+    if rack is not None:
+        if rack_axle not in axles:
+            raise InputError(f"the rack is on the {rack_axle} axle, which has no "
+                             f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
+        axles[rack_axle] = replace(axles[rack_axle], rack=rack)
+    return Suspension(path, axles, rack)
+
+
+__all__ = ["Suspension", "load_suspension", "ModelError"]

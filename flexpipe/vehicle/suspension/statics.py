@@ -1,0 +1,111 @@
+"""Static corner quantities: spring preload for a wheel load and wheel rate.
+
+The preload follows from virtual work at the design position: with s the wheel-centre
+travel, MR = -dL/ds of the spring and dz_i/ds of every part's centre of mass,
+``preload * MR = wheel_load * dz_patch/ds - sum(m_i g dz_i/ds)``.
+The wheel rate is d(rig force)/ds from compliance solves (bushings, compliant links,
+spring, stops), so bushing torsion and compliance enter as they do on a K&C rig.
+Force compliance at the contact patch is in :mod:`flexpipe.vehicle.suspension.kc`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from flexpipe.errors import InputError
+from flexpipe.vehicle.suspension.kinematics import G, Linkage, solve_compliance, solve_kinematics
+from flexpipe.vehicle.suspension.metrics import rates
+from flexpipe.vehicle.suspension.model import CornerLinkage
+
+
+def spring_preload(corner: CornerLinkage, wheel_load: float, *, g: float = G) -> float:
+    """Spring force (N, compression > 0) that holds the design position under ``wheel_load``.
+
+    Parameters
+    ----------
+    corner : CornerLinkage
+        The corner (its spring is the first ``spring`` force element).
+    wheel_load : float
+        Vertical tyre force at the contact patch (N).
+    g : float
+        Gravity (m/s^2) acting on the linkage's parts.
+    """
+    spring = corner.spring()
+    if spring is None:
+        raise InputError(f"corner {corner.corner} has no spring to preload")
+    lk = Linkage(corner)
+    pose = solve_kinematics(lk, 0.0)
+    r = rates(lk, pose)
+    masses = np.array([p.mass for p in corner.parts])
+    work = wheel_load * r["patch_velocity"][2] - g * masses @ r["part_dz"]
+    return float(work / r["spring_mr"])
+
+
+def with_preload(corner: CornerLinkage, preload: float) -> CornerLinkage:
+    """``corner`` whose spring free length gives ``preload`` (N) at the design length."""
+    forces = []
+    for f in corner.forces:
+        if f.kind == "spring":
+            if f.table is not None:
+                comp = float(np.interp(preload, f.table[1], f.table[0]))
+            else:
+                comp = preload / f.rate
+            f = replace(f, free_length=f.design_length + comp)
+        forces.append(f)
+    return replace(corner, forces=tuple(forces))
+
+
+def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4) -> float:
+    """Vertical wheel-centre rate (N/m) at ``travel``: central difference of the rig force
+    from compliance solves (bushings, compliant links, spring, stops)."""
+    lk = Linkage(corner)
+    f = [solve_compliance(lk, s).force for s in (travel - h, travel + h)]
+    return (f[1] - f[0]) / (2 * h)
+
+
+def preloaded(suspension, wheel_loads: dict, *, g: float = G):
+    """``suspension`` with every spring preloaded for its corner's static wheel load.
+
+    Parameters
+    ----------
+    suspension : Suspension
+    wheel_loads : dict
+        ``{"fl": N, ...}`` vertical tyre loads at rest (N).
+    """
+    axles = {}
+    for name, a in suspension.axles.items():
+        left = with_preload(a.left, spring_preload(a.left, wheel_loads[a.left.corner], g=g))
+        right = with_preload(a.right, spring_preload(a.right, wheel_loads[a.right.corner],
+                                                     g=g))
+        axles[name] = replace(a, left=left, right=right)
+    return replace(suspension, axles=axles)
+
+
+def with_wheels(suspension, wheels: dict):
+    """``suspension`` whose knuckles carry the wheels (rim + tyre) at the wheel centres.
+
+    ``wheels`` is ``{"fl": (mass_kg, inertia 3x3 about the wheel centre), ...}``; the
+    knuckle's mass, centre of mass and inertia become those of knuckle plus wheel, so the
+    spring preload (virtual work) and the multibody model both see the wheel's weight.
+    """
+    axles = {}
+    for name, a in suspension.axles.items():
+        sides = []
+        for c in (a.left, a.right):
+            mw, Jw = wheels[c.corner]
+            parts = []
+            for p in c.parts:
+                if p.name == c.knuckle and mw > 0:
+                    w = np.asarray(c.wheel_center, float)
+                    m = p.mass + mw
+                    cm = (p.mass * p.cm + mw * w) / m
+                    dk, dw = p.cm - cm, w - cm
+                    J = (p.inertia + p.mass * (dk @ dk * np.eye(3) - np.outer(dk, dk))
+                         + np.asarray(Jw, float) + mw * (dw @ dw * np.eye(3) - np.outer(dw, dw)))
+                    p = replace(p, mass=m, cm=cm, inertia=J)
+                parts.append(p)
+            sides.append(replace(c, parts=tuple(parts)))
+        axles[name] = replace(a, left=sides[0], right=sides[1])
+    return replace(suspension, axles=axles)

@@ -1,0 +1,227 @@
+"""Durability on the sample car: recorded body motion, ``make straight`` outputs (hot spots,
+animation folder), ``flexpipe animate`` frames checked with meshio against the hardpoint
+motion, ``flexpipe stress``, equivalent stresses against NumPy eigenvalues."""
+
+from __future__ import annotations
+
+import json
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import meshio
+import numpy as np
+import pytest
+
+from flexpipe.cli import main
+from flexpipe.durability.recover import plane_equivalent, solid_equivalent
+
+ROOT = Path(__file__).resolve().parents[1]
+T_END = 0.2
+
+
+@pytest.fixture(scope="module")
+def straight(tmp_path_factory):
+    """The straight scenario of ``make straight``, shortened to 0.2 s."""
+    from flexpipe.scenarios.runner import run_scenario
+
+    d = tmp_path_factory.mktemp("straight")
+    mp = pytest.MonkeyPatch()
+    mp.setenv("FLEXPIPE_CACHE", str(d / "cache"))
+    out = d / "out"
+    summary = run_scenario("straight", out=out, t_end=T_END, log=lambda *a: None)
+    yield out, summary
+    mp.undo()
+
+
+def _csv(path):
+    header = path.read_text().splitlines()[0].split(",")
+    values = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    return {h.split(" [")[0]: values[:, i] for i, h in enumerate(header)}, header
+
+
+def test_straight_run_writes_hotspots_and_animation(straight):
+    out, summary = straight
+    assert summary["status"] == 0
+    for name in ("hotspots.csv", "stress_max.vtu", "stress_max.png", "stress_histories.csv"):
+        assert (out / "stress" / name).is_file()
+    assert (out / "animation" / "animation.pvd").is_file()
+    assert (out / "animation" / "preview.png").read_bytes()[:4] == b"\x89PNG"
+    desc = summary["file_descriptions"]
+    for name in ("flexible.csv", "motion_flexible.npz", "stress/hotspots.csv",
+                 "animation/body.pvd", "summary.json"):
+        assert name in desc and desc[name]
+    on_disk = json.loads((out / "summary.json").read_text())
+    assert on_disk["file_descriptions"] == desc
+    text = (out / "stress" / "hotspots.csv").read_text().splitlines()
+    header = text[0].split(",")
+    for col in ("element_id", "location", "max_von_mises [MPa]", "time_of_max [s]",
+                "damage [-]", "damage_per_km [1/km]", "most_correlated_channel",
+                "rank_damage"):
+        assert col in header
+    first = dict(zip(header, text[1].split(","), strict=True))
+    assert first["rank_von_mises"] == "1"
+    assert first["most_correlated_channel"].startswith(("hub_", "tire_"))
+    assert 0.0 <= float(first["time_of_max [s]"]) <= T_END + 1e-9
+
+
+def test_animate_frames_match_output_steps_nodes_and_hardpoint_motion(straight, tmp_path):
+    from flexpipe.durability.rundir import load_run
+
+    out, _ = straight
+    dest = tmp_path / "anim"
+    assert main(["animate", str(out), "--dest", str(dest)]) == 0
+    run = load_run(out)
+    body = run.body()
+    ch, _ = _csv(out / "flexible.csv")
+    steps = len(ch["t"])
+    frames = ET.parse(dest / "body.pvd").getroot().findall("./Collection/DataSet")
+    assert len(frames) == steps
+    times = np.array([float(f.get("timestep")) for f in frames])
+    np.testing.assert_allclose(times, ch["t"], atol=1e-9)
+    hp, _ = _csv(out / "hardpoints.csv")
+    checked = 0
+    for k in (1, steps // 2, steps - 1):
+        m = meshio.read(dest / frames[k].get("file"))
+        assert len(m.points) == body.n_nodes
+        assert sum(len(c) for c in m.cell_data["von_mises [Pa]"]) == body.stress.n_elements
+        d = m.point_data["elastic_displacement [m]"]
+        R = run.motion.rotation[k]
+        # the frame's origin placement agrees with the body channels of the CSV
+        x0 = m.points - d - body.nodes @ R.T
+        np.testing.assert_allclose(x0, np.broadcast_to([ch["x"][k], ch["y"][k], ch["z"][k]],
+                                                       x0.shape), atol=2e-4)
+        for itf in body.interfaces:
+            u = np.array([hp[f"hardpoint_{itf.name}_u{a}"][k] for a in "xyz"])
+            th = np.array([hp[f"hardpoint_{itf.name}_r{a}"][k] for a in "xyz"])
+            r = (body.nodes[itf.nodes] - itf.point) @ R.T
+            want = u + np.cross(th, r)  # the rigid spider: u_s = u_h + theta_h x r
+            np.testing.assert_allclose(d[itf.nodes], want, rtol=0, atol=1e-6)
+            assert np.abs(want).max() > 1e-6  # the interface does move
+            checked += 1
+    assert checked == 12
+
+
+def test_stress_command_and_result_motion(straight, capsys):
+    out, _ = straight
+    assert main(["stress", str(out), "--top", "5", "--no-fatigue"]) == 0
+    text = (out / "stress" / "hotspots.csv").read_text().splitlines()
+    assert len(text) == 6  # header + 5 hot spots (no damage ranking)
+    assert "stress:" in capsys.readouterr().out or True
+
+
+def test_stress_command_errors_in_one_line(tmp_path, capsys):
+    (tmp_path / "summary.json").write_text("{}")
+    assert main(["stress", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("flexpipe stress: error:") and "motion_flexible.npz" in err
+
+
+def test_equivalent_stresses_against_eigenvalues():
+    rng = np.random.default_rng(4)
+    s = rng.normal(size=(6, 200)) * 1e8
+    vm, sp = solid_equivalent(s)
+    T = np.zeros((200, 3, 3))
+    for (i, j), k in zip([(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)], range(6),
+                         strict=True):
+        T[:, i, j] = T[:, j, i] = s[k]
+    p = np.linalg.eigvalsh(T)
+    vm_ref = np.sqrt(0.5 * ((p[:, 0] - p[:, 1]) ** 2 + (p[:, 1] - p[:, 2]) ** 2
+                            + (p[:, 2] - p[:, 0]) ** 2))
+    sp_ref = np.where(np.abs(p[:, 2]) >= np.abs(p[:, 0]), p[:, 2], p[:, 0])
+    np.testing.assert_allclose(vm, vm_ref, rtol=1e-9)
+    np.testing.assert_allclose(sp, sp_ref, rtol=1e-7, atol=1e-3)
+    T2 = T.copy()
+    T2[:, 2, :] = T2[:, :, 2] = 0.0
+    vm2, sp2 = plane_equivalent(T2[:, 0, 0], T2[:, 1, 1], T2[:, 0, 1])
+    vm2_ref, sp2_ref = solid_equivalent(np.stack([T2[:, 0, 0], T2[:, 1, 1], T2[:, 2, 2],
+                                                  T2[:, 1, 2], T2[:, 0, 2], T2[:, 0, 1]]))
+    np.testing.assert_allclose(vm2, vm2_ref, rtol=1e-9)
+    np.testing.assert_allclose(sp2, sp2_ref, rtol=1e-7, atol=1e-3)
+
+
+def test_readme_durability_example_runs(straight, capsys):
+    import re
+
+    text = (ROOT / "README.md").read_text()
+    block = re.search(r"## Durability.*?```python\n(.*?)```", text, flags=re.S).group(1)
+    out, _ = straight
+    block = block.replace('"out/straight"', repr(str(out)))
+    exec(compile(block, "README.md", "exec"), {})
+    printed = capsys.readouterr().out.split()
+    hot = (out / "stress" / "hotspots.csv").read_text().splitlines()[1].split(",")
+    assert printed[0] == hot[2]  # the same top element as the hot-spot table
+
+
+def test_recovery_of_a_single_mode_sine_equals_closed_form():
+    """q = a cos(2 pi f t) in one mode: max von Mises = |a| vm(mode), Miner damage of
+    n cycles of signed von Mises with amplitude |a| vm(mode) (Basquin closed form)."""
+    import flexpipe as fp
+    from flexpipe.durability.fatigue import FatigueMaterial
+    from flexpipe.durability.recover import equivalents, recover_stress
+    from flexpipe.mesh.generate import plate
+    from flexpipe.vehicle.result import BodyMotion
+
+    fe = fp.assemble(plate(0.4, 0.2, 8, 4), fp.Material(210e9, 0.3, 7850.0), thickness=0.002)
+    body = fp.reduce(fe, [fp.Interface((0.0, 0.1, 0.0), radius=0.05, name="a")], n_modes=3,
+                     stress="all")
+    k, a, cycles = 2, 1.5e-3, 20
+    t = np.linspace(0.0, 1.0, 40 * cycles + 1)
+    q = np.zeros((len(t), body.n_elastic))
+    q[:, k] = a * np.cos(2 * np.pi * cycles * t)
+    n = len(t)
+    motion = BodyMotion(t, q, np.column_stack([10 * t, np.zeros(n), np.zeros(n)]),
+                        np.broadcast_to(np.eye(3), (n, 3, 3)), body.n_rigid + np.arange(
+                            body.n_elastic))
+    mat = FatigueMaterial(sigma_f=1e9, b=-0.1)
+    sr = recover_stress(motion, body, fatigue=mat)
+    vm_mode, _ = equivalents("shell", body.stress.blocks[0].modes[:, :, k:k + 1])
+    amp = a * vm_mode[:, :, 0].max(axis=1)
+    np.testing.assert_allclose(sr.max_von_mises, amp, rtol=1e-12)
+    assert set(np.round(sr.time_of_max * cycles, 9)) <= set(np.arange(cycles + 1.0))
+    counted = np.isfinite(sr.damage)  # elements whose damage bound is not negligible
+    assert counted[amp >= 0.3 * amp.max()].all()
+    N = 0.5 * (amp[counted] / mat.sigma_f) ** (1 / mat.b)
+    np.testing.assert_allclose(sr.damage[counted], cycles / N, rtol=1e-9)
+    assert sr.distance_km == pytest.approx(0.01)
+
+
+def test_fast_recovery_agrees_with_generic_equivalents(straight):
+    from flexpipe.durability.recover import recover_stress
+    from flexpipe.durability.rundir import load_run
+
+    run = load_run(straight[0])
+    sr = recover_stress(run.motion, run.body())
+    rng = np.random.default_rng(0)
+    for i in list(sr.top(5)) + list(rng.choice(len(sr.element_id), 20, replace=False)):
+        vm, sp = sr.history(int(i))  # generic path: every location, eigenvalue formulas
+        assert vm.max() == pytest.approx(sr.max_von_mises[i], rel=1e-12)
+        j = int(np.argmin(np.abs(sr.t - sr.time_of_max[i])))
+        assert sp[j] == pytest.approx(sr.principal_at_max[i], rel=1e-9)
+
+
+def test_solid_body_nodal_recovery_and_report(tmp_path):
+    """A hex8 bar bent by one mode: element, nodal and report outputs agree."""
+    import flexpipe as fp
+    from flexpipe.durability.recover import recover_stress, solid_equivalent
+    from flexpipe.durability.report import write_vtu
+    from flexpipe.mesh.generate import box
+    from flexpipe.vehicle.result import BodyMotion
+
+    fe = fp.assemble(box(1.0, 0.1, 0.1, 10, 1, 1, cell="hexahedron"),
+                     fp.Material(210e9, 0.3, 7850.0))
+    body = fp.reduce(fe, [fp.Interface((0.0, 0.05, 0.05), radius=0.08, name="l"),
+                          fp.Interface((1.0, 0.05, 0.05), radius=0.08, name="r")],
+                     n_modes=2, stress="all")
+    t = np.linspace(0.0, 1.0, 11)
+    n = len(t)
+    q = np.outer(np.sin(np.pi * t), np.linspace(1.0, 2.0, body.n_elastic)) * 1e-3
+    motion = BodyMotion(t, q, np.zeros((n, 3)), np.broadcast_to(np.eye(3), (n, 3, 3)),
+                        body.n_rigid + np.arange(body.n_elastic))
+    sr = recover_stress(motion, body)
+    blk = body.stress.blocks[0]
+    vm, _ = solid_equivalent(np.einsum("kcm,nm->ckn", blk.nodal, q))
+    np.testing.assert_allclose(sr.nodal_max_von_mises[blk.nodes], vm.max(axis=1), rtol=1e-12)
+    m = meshio.read(write_vtu(tmp_path / "s.vtu", body, sr))
+    np.testing.assert_allclose(m.point_data["max_von_mises_nodal [Pa]"][blk.nodes],
+                               vm.max(axis=1), rtol=1e-12)
+    assert len(m.cell_data["max_von_mises [Pa]"][0]) == len(blk)

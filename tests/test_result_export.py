@@ -1,0 +1,83 @@
+"""Self-describing result files: units in CSV headers, time precision past 1000 s, HDF5
+(read back with h5py), MATLAB (read back with scipy.io.loadmat), pandas DataFrame."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from flexpipe.errors import InputError
+from flexpipe.vehicle.export import channel_unit
+from flexpipe.vehicle.result import BodyMotion, Result
+
+
+@pytest.fixture
+def result():
+    t = 1000.0 + 0.002 * np.arange(6)  # %.6g would print every one as "1000"
+    n = len(t)
+    motion = BodyMotion(t=t, q=np.arange(2 * n, dtype=float).reshape(n, 2) * 1e-6,
+                        position=np.column_stack([t * 19.4, np.zeros(n), np.full(n, 0.3)]),
+                        rotation=np.broadcast_to(np.eye(3), (n, 3, 3)), mode_index=[6, 7])
+    ch = {"hub_fl_z": 3500.0 + np.arange(n), "speed": np.full(n, 19.4444444),
+          "roll": np.linspace(0, 1e-3, n), "acc_driver_floor_z": np.ones(n)}
+    return Result(t=t, channels=ch, status=0, message="ok", body="flexible", cpu_time=1.0,
+                  wall_time=1.0, simulated_time=1000.01, info={"h": 0.002}, motion=motion)
+
+
+def test_units_of_channels():
+    assert channel_unit("hub_rr_y") == "N"
+    assert channel_unit("tire_fl_Fz") == "N"
+    assert channel_unit("travel_fl") == "m"
+    assert channel_unit("spin_rl") == "rad/s"
+    assert channel_unit("acc_driver_floor_x") == "m/s^2"
+    assert channel_unit("yaw") == "rad"
+
+
+def test_csv_header_units_and_time_precision(result, tmp_path):
+    path = result.to_csv(tmp_path / "r.csv")
+    lines = path.read_text().splitlines()
+    assert lines[0] == "t [s],hub_fl_z [N],speed [m/s],roll [rad],acc_driver_floor_z [m/s^2]"
+    t = np.loadtxt(path, delimiter=",", skiprows=1)[:, 0]
+    np.testing.assert_array_equal(t, result.t)  # exact: 1000.002 stays 1000.002
+    assert len(set(t)) == len(t)
+
+
+def test_hdf5_round_trip(result, tmp_path):
+    h5py = pytest.importorskip("h5py")
+    path = result.save(tmp_path / "r.h5", format="hdf5")
+    with h5py.File(path, "r") as f:
+        np.testing.assert_array_equal(f["t"][()], result.t)
+        assert f["t"].attrs["unit"] == "s"
+        np.testing.assert_array_equal(f["channels/hub_fl_z"][()], result["hub_fl_z"])
+        assert f["channels/hub_fl_z"].attrs["unit"] == "N"
+        np.testing.assert_array_equal(f["motion/q"][()], result.motion.q)
+        np.testing.assert_array_equal(f["motion/mode_index"][()], [6, 7])
+
+
+def test_mat_round_trip(result, tmp_path):
+    from scipy.io import loadmat
+
+    path = result.save(tmp_path / "r.mat", format="mat")
+    d = loadmat(path, simplify_cells=True)
+    np.testing.assert_array_equal(np.ravel(d["t"]), result.t)
+    np.testing.assert_array_equal(np.ravel(d["channels"]["speed"]), result["speed"])
+    assert d["units"]["hub_fl_z"] == "N"
+    np.testing.assert_array_equal(d["motion"]["position"], result.motion.position)
+
+
+def test_dataframe(result):
+    pytest.importorskip("pandas")
+    df = result.to_dataframe()
+    assert list(df.columns)[0] == "hub_fl_z [N]"
+    assert df.index.name == "t [s]"
+    np.testing.assert_array_equal(df["speed [m/s]"].to_numpy(), result["speed"])
+
+
+def test_bad_format_and_motion_file(result, tmp_path):
+    with pytest.raises(InputError, match="csv, hdf5, mat"):
+        result.save(tmp_path / "r.x", format="xlsx")
+    m = BodyMotion.load(result.motion.save(tmp_path / "m.npz"))
+    np.testing.assert_array_equal(m.q, result.motion.q)
+    with pytest.raises(ValueError, match="position"):
+        BodyMotion(t=[0.0, 1.0], q=np.zeros((2, 1)), position=np.zeros((3, 3)),
+                   rotation=np.zeros((2, 3, 3)), mode_index=[6])

@@ -1,0 +1,112 @@
+"""Suspension tables of the car file: the sample, and bad input named by file, line, key."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from flexpipe.errors import InputError, ModelError
+from flexpipe.vehicle.suspension.kinematics import Linkage, solve_kinematics
+from flexpipe.vehicle.suspension.spec import load_suspension
+from flexpipe.vehicle.suspension.templates import build
+
+SAMPLE = Path(__file__).resolve().parents[1] / "cars" / "sedan_linkage.toml"
+
+# The body mounts the BIW mesh must carry (left side; right mirrored), as agreed with the
+# body engineer: typed here from the task, not from the car file.
+MOUNTS = {
+    "front_lower_arm_front": (0.200, 0.420, 0.148), "front_lower_arm_rear": (-0.200, 0.470, 0.153),
+    "front_upper_arm_front": (-0.100, 0.470, 0.523), "front_upper_arm_rear": (-0.250, 0.510, 0.528),
+    "front_spring_upper": (-0.040, 0.520, 0.648), "front_rack_mount": (-0.200, 0.300, 0.298),
+    "front_arb_bushing": (-0.150, 0.350, 0.220),
+    "rear_upper_arm_front": (-2.690, 0.397, 0.383), "rear_upper_arm_rear": (-2.907, 0.358, 0.363),
+    "rear_lateral_link_inner": (-2.714, 0.188, 0.168),
+    "rear_trailing_link_front": (-2.027, 0.449, 0.229),
+    "rear_tie_rod_inner": (-3.007, 0.170, 0.185), "rear_spring_upper": (-2.569, 0.491, 0.411),
+    "rear_damper_upper": (-2.579, 0.478, 0.616), "rear_arb_bushing": (-2.950, 0.350, 0.250),
+}
+
+
+def test_sample_mounts_are_the_agreed_body_points():
+    mounts = load_suspension(SAMPLE).mounts()
+    expected = {}
+    for k, p in MOUNTS.items():
+        expected[k + "_l"] = np.array(p)
+        expected[k + "_r"] = np.array(p) * [1, -1, 1]
+    assert sorted(mounts) == sorted(expected)
+    for k, p in expected.items():
+        assert np.allclose(mounts[k], p, atol=5e-4), k
+
+
+def _write(tmp_path, text):
+    p = tmp_path / "car.toml"
+    p.write_text(text)
+    return p
+
+
+def _sample_with(tmp_path, old, new):
+    text = SAMPLE.read_text()
+    assert old in text
+    return _write(tmp_path, text.replace(old, new, 1))
+
+
+def _line_of(path, needle):
+    return next(i + 1 for i, s in enumerate(path.read_text().splitlines()) if needle in s)
+
+
+def test_unknown_hardpoint_names_file_line_and_key(tmp_path):
+    p = _sample_with(tmp_path, "upper_arm_outer = [-0.040", "upper_arm_outr = [-0.040")
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"line {_line_of(p, 'upper_arm_outr')}" in msg
+    assert "suspension.front.hardpoints_m.upper_arm_outr" in msg and "upper_arm_outer" in msg
+
+
+def test_missing_hardpoint_is_named(tmp_path):
+    p = _sample_with(tmp_path, "tie_rod_outer = [-0.150, 0.770, -0.120]\n", "")
+    with pytest.raises(InputError, match=r"missing hardpoint 'tie_rod_outer'.*"):
+        load_suspension(p)
+    with pytest.raises(InputError, match=str(_line_of(p, "[suspension.front.hardpoints_m]"))):
+        load_suspension(p)
+
+
+def test_linkage_that_does_not_assemble_names_constraint_and_residual(tmp_path):
+    p = _sample_with(tmp_path, "universal_axes = [[0.0, 0.0, 1.0], [-0.272, 0.962, 0.0]]",
+                     "universal_axes = [[0.0, 0.3, 1.0], [-0.272, 0.962, 0.0]]")
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert f"line {_line_of(p, 'universal_axes = ')}" in msg
+    assert "joint 'trailing_link_front' (universal)" in msg
+    assert re.search(r"residual 0\.2\d+", msg)  # cos of the angle between the axes
+
+
+def test_travel_out_of_reach_names_the_failing_constraint():
+    from test_suspension_statics import HP
+
+    lk = Linkage(build("double_wishbone", HP, wheel_radius=0.3))
+    with pytest.raises(ModelError, match=r"wheel travel 600\.0 mm.*(joint|link|wheel travel)"
+                                         r".*residual"):
+        solve_kinematics(lk, 0.6)
+
+
+def test_bad_tables_and_keys(tmp_path):
+    p = _sample_with(tmp_path, "deflection_m = [0.0, 0.005, 0.010, 0.020]",
+                     "deflection_m = [0.0, 0.010, 0.005, 0.020]")
+    with pytest.raises(InputError, match=r"line \d+, key 'suspension.front.bump_stop."
+                                         r"deflection_m'.*increase"):
+        load_suspension(p)
+    p = _sample_with(tmp_path, 'template = "double_wishbone"', 'template = "double_wishbon"')
+    with pytest.raises(InputError, match=r"key 'suspension.front.template'.*macpherson"):
+        load_suspension(p)
+    p = _sample_with(tmp_path, "[suspension.front.bushings.lower_arm_rear]",
+                     "[suspension.front.bushings.upper_arm_outer]")
+    with pytest.raises(InputError, match=r"bushing at 'upper_arm_outer'.*lower_arm_front"):
+        load_suspension(p)
+    p = _sample_with(tmp_path, "rate_N_per_m = 111000.0", "rate_N_per_m = 111000.0\nrte = 1")
+    with pytest.raises(InputError, match=r"key 'suspension.front.spring.rte'.*unknown"):
+        load_suspension(p)
