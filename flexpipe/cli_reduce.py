@@ -34,6 +34,9 @@ def add_arguments(p) -> None:
     g.add_argument("--n-modes", type=int, help="normal modes to keep (fixed-interface modes "
                    "for Craig-Bampton, elastic free modes otherwise)")
     g.add_argument("--f-max", type=float, help="top of the frequency band in Hz (default 50)")
+    p.add_argument("--interface-f-max", type=float, metavar="HZ",
+                   help="Craig-Bampton interface reduction: keep the characteristic "
+                   "constraint modes up to HZ (for bodies with many interfaces)")
     p.add_argument("--damping", type=float,
                    help="modal damping ratio of every elastic mode (default Adams/Flex: 1%% "
                    "below 100 Hz, 10%% below 1 kHz, critical above)")
@@ -84,7 +87,7 @@ def run(args) -> int:
                "interfaces)", args.quiet):
         body = reduce(fe, interfaces, method=args.method, n_modes=args.n_modes,
                       f_max=args.f_max, damping=args.damping, check=not args.no_check,
-                      stress=args.stress)
+                      stress=args.stress, interface_f_max=args.interface_f_max)
     body.save(out)
     print(info_text(body, path=out))
     if args.vtu:
@@ -111,8 +114,9 @@ def info_text(body, *, path="", mac_size: int = 12) -> str:
     meta = body.meta
     lines = [f"{path}: {body.method}, {body.n_nodes} nodes ({meta.get('n_dof', '?')} DOF), "
              f"{body.n_rigid} rigid + {body.n_elastic} elastic modes",
-             "  interfaces: " + ", ".join(f"{i.name} ({i.kind}, {len(i.nodes)} nodes at "
-                                           f"{_p(i.point)})" for i in body.interfaces),
+             "  interfaces: " + ", ".join(f"{i.name} ({i.kind}, {i.dofs} DOF, "
+                                           f"{len(i.nodes)} nodes at {_p(i.point)})"
+                                           for i in body.interfaces),
              f"  source mesh sha256 {body.source_hash[:16]}...  flexpipe "
              f"{meta.get('flexpipe_version', '?')}  reduced in {meta.get('total_s', '?')} s"]
     if body.stress is not None:

@@ -16,7 +16,10 @@ points at ``+-arm`` along the body axes, whose mode-shape rows are the rigid mot
 the hardpoint, ``u = u_h + theta_h x d``.  A ``MarkerSuperElementRigid`` on these seven
 points (equal weights, centred on the hardpoint, zero offset) therefore moves exactly
 like the hardpoint of the RBE2 spider (or the 6-DOF node) in the reduced model.  Being
-massless, the points do not change the inertia invariants.
+massless, the points do not change the inertia invariants.  A 3-DOF (translational)
+interface gets only the hardpoint itself: a ``MarkerSuperElementPosition`` on it moves
+with the hardpoint; it has no rigid marker (its rotation is not a boundary DOF of the
+reduction, so moments there would not be reproduced).
 """
 
 from __future__ import annotations
@@ -51,7 +54,7 @@ class BodyHandle:
     modal_node : NodeIndex or None
         ``NodeGenericODE2`` holding the modal coordinates (flexible bodies only).
     markers : mapping of str to MarkerIndex
-        Interface name -> 6-DOF marker (``MarkerSuperElementRigid`` /
+        6-DOF interface name -> rigid marker (``MarkerSuperElementRigid`` /
         ``MarkerBodyRigid``) at the hardpoint.
     node_marker : MarkerIndex
         ``MarkerNodeRigid`` on the reference-frame node.
@@ -66,6 +69,10 @@ class BodyHandle:
         Interface name -> index of the body's extra mesh point that sits on the hardpoint
         and follows the rigid spider (flexible bodies only), for one-point markers such
         as ``MarkerSuperElementPosition``.
+    position_markers : mapping of str to MarkerIndex
+        Every interface name -> position marker at the hardpoint
+        (``MarkerSuperElementPosition`` / ``MarkerBodyPosition``): forces, spherical joints,
+        bushings without moments.
     """
 
     kind: str
@@ -79,11 +86,13 @@ class BodyHandle:
     interface_points: Mapping[str, np.ndarray] = field(default_factory=dict)
     mesh_node_count: int = 0
     hardpoint_nodes: Mapping[str, int] = field(default_factory=dict)
+    position_markers: Mapping[str, object] = field(default_factory=dict)
 
     def _marker(self, name):
-        if name not in self.markers:
-            raise InputError(f"no interface {name!r}; valid: {sorted(self.markers)}", key=name)
-        return self.markers[name]
+        if name not in self.position_markers and name not in self.markers:
+            raise InputError(f"no interface {name!r}; valid: {sorted(self.position_markers)}",
+                             key=name)
+        return self.position_markers.get(name, self.markers.get(name))
 
     def interface_position(self, mbs, name: str, *, reference: bool = False) -> np.ndarray:
         """World position of interface ``name`` (current, or reference configuration)."""
@@ -123,9 +132,10 @@ def _check_vec(v, key):
 
 
 def marker_points(body: FlexBody, *, arm: float | None = None):
-    """Reference positions (7 k, 3) and elastic mode rows (7 k, 3, m_e) of the marker points.
+    """Reference positions (p, 3) and elastic mode rows (p, 3, m_e) of the marker points.
 
-    Per interface: the hardpoint, then ``hardpoint +- arm e_x, e_y, e_z``.
+    Per 6-DOF interface: the hardpoint, then ``hardpoint +- arm e_x, e_y, e_z`` (7
+    points); per 3-DOF interface the hardpoint only.
     """
     if arm is None:
         size = np.ptp(body.nodes, axis=0).max() if body.n_nodes else 1.0
@@ -134,9 +144,9 @@ def marker_points(body: FlexBody, *, arm: float | None = None):
     for itf in body.interfaces:
         u = itf.shapes[:3, body.n_rigid:]  # (3, m_e)
         th = itf.shapes[3:, body.n_rigid:]
-        d = np.vstack([np.zeros(3), arm * _ARMS])  # (7, 3)
+        d = np.vstack([np.zeros(3), arm * _ARMS]) if itf.dofs == 6 else np.zeros((1, 3))
         pos.append(itf.point + d)
-        # u + theta x d for every point and mode: (7, 3, m_e)
+        # u + theta x d for every point and mode: (k, 3, m_e)
         rows.append(u[None] + np.cross(th.T[None, :, :], d[:, None, :]).transpose(0, 2, 1))
     m_e = body.n_elastic
     if not pos:
@@ -233,13 +243,21 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
         visualization=eii.VObjectFFRFreducedOrder(
             triangleMesh=np.asarray(body.triangles, dtype=np.int64), color=list(color),
             showNodes=False)))
-    markers = {}
-    for j, itf in enumerate(body.interfaces):
-        pts = list(range(n + 7 * j, n + 7 * j + 7))
-        markers[itf.name] = mbs.AddMarker(eii.MarkerSuperElementRigid(
-            name=f"{name}:{itf.name}" if name else "", bodyNumber=obj, offset=[0.0, 0.0, 0.0],
-            meshNodeNumbers=pts, weightingFactors=[1.0 / 7.0] * 7,
-            useAlternativeApproach=True, rotationsExponentialMap=2))
+    markers, position_markers, first = {}, {}, {}
+    start = n
+    for itf in body.interfaces:
+        first[itf.name] = start
+        label = f"{name}:{itf.name}" if name else ""
+        if itf.dofs == 6:
+            pts = list(range(start, start + 7))
+            markers[itf.name] = mbs.AddMarker(eii.MarkerSuperElementRigid(
+                name=label, bodyNumber=obj, offset=[0.0, 0.0, 0.0],
+                meshNodeNumbers=pts, weightingFactors=[1.0 / 7.0] * 7,
+                useAlternativeApproach=True, rotationsExponentialMap=2))
+        position_markers[itf.name] = mbs.AddMarker(eii.MarkerSuperElementPosition(
+            name=f"{label}:position" if label else "", bodyNumber=obj,
+            meshNodeNumbers=[start], weightingFactors=[1.0]))
+        start += 7 if itf.dofs == 6 else 1
     m_node = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_frame))
     m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
     load = None
@@ -249,8 +267,8 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
                       markers=markers, node_marker=m_node, body_marker=m_body,
                       gravity_load=load,
                       interface_points={i.name: i.point.copy() for i in body.interfaces},
-                      mesh_node_count=n,
-                      hardpoint_nodes={i.name: n + 7 * k for k, i in enumerate(body.interfaces)})
+                      mesh_node_count=n, hardpoint_nodes=first,
+                      position_markers=position_markers)
 
 
 def add_rigid_twin(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=None,
@@ -281,6 +299,9 @@ def add_rigid_twin(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=No
         visualization=eii.VObjectRigidBody(graphicsData=graphics)))
     markers = {itf.name: mbs.AddMarker(eii.MarkerBodyRigid(
         name=f"{name}:{itf.name}" if name else "", bodyNumber=obj,
+        localPosition=list(itf.point))) for itf in body.interfaces if itf.dofs == 6}
+    position_markers = {itf.name: mbs.AddMarker(eii.MarkerBodyPosition(
+        name=f"{name}:{itf.name}:position" if name else "", bodyNumber=obj,
         localPosition=list(itf.point))) for itf in body.interfaces}
     m_node = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_frame))
     m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
@@ -290,4 +311,4 @@ def add_rigid_twin(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=No
     return BodyHandle(kind="rigid", object=obj, node=n_frame, modal_node=None, markers=markers,
                       node_marker=m_node, body_marker=m_body, gravity_load=load,
                       interface_points={i.name: i.point.copy() for i in body.interfaces},
-                      mesh_node_count=body.n_nodes)
+                      mesh_node_count=body.n_nodes, position_markers=position_markers)

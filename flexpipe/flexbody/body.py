@@ -54,7 +54,16 @@ class BodyInterface:
         Hardpoint motion per mode: translations ux, uy, uz (m) and small rotations
         rx, ry, rz (rad) per unit modal coordinate.
     kind : {"rbe2", "node"}
-        A rigid spider to a new hardpoint, or a 6-DOF mesh node used directly.
+        A rigid spider to a new hardpoint, or a mesh node used directly.
+    dofs : {6, 3}
+        Boundary DOF of the reduction at this interface: 6 (forces and moments) or 3
+        (translations only: ball joints, bushings, spring seats).  For a 3-DOF interface
+        the rotation rows of ``shapes`` are the spider's rotation where the model has one
+        (zero for a solid node); moments applied there are not reproduced exactly.
+    residual_compliance : ndarray (dofs, dofs)
+        Static flexibility at this interface that an interface reduction dropped (m/N,
+        rad/(N m)): put it in series with the bushing there.  Zero without interface
+        reduction.
     """
 
     name: str
@@ -62,8 +71,16 @@ class BodyInterface:
     nodes: np.ndarray
     shapes: np.ndarray
     kind: str = "rbe2"
+    dofs: int = 6
+    residual_compliance: np.ndarray | None = None
 
     def __post_init__(self):
+        if int(self.dofs) not in (3, 6):
+            raise ValueError(f"interface {self.name!r}: dofs must be 3 or 6, got {self.dofs!r}")
+        object.__setattr__(self, "dofs", int(self.dofs))
+        C = np.zeros((self.dofs, self.dofs)) if self.residual_compliance is None \
+            else self.residual_compliance
+        object.__setattr__(self, "residual_compliance", _ro(C).reshape(self.dofs, self.dofs))
         object.__setattr__(self, "point", _ro(self.point).reshape(3))
         object.__setattr__(self, "nodes", _ro(self.nodes, np.int64).reshape(-1))
         object.__setattr__(self, "shapes", _ro(self.shapes).reshape(6, -1))
@@ -228,7 +245,8 @@ def _to_arrays(body: FlexBody, *, with_hash: bool = False) -> dict:
     header = {
         "format": FORMAT, "version": VERSION, "n_rigid": body.n_rigid, "mass": body.mass,
         "method": body.method, "source_hash": body.source_hash, "meta": dict(body.meta),
-        "interfaces": [{"name": i.name, "kind": i.kind} for i in body.interfaces],
+        "interfaces": [{"name": i.name, "kind": i.kind, "dofs": i.dofs}
+                       for i in body.interfaces],
         "checks": sorted(body.checks),
     }
     stress_arrays = {}
@@ -243,6 +261,7 @@ def _to_arrays(body: FlexBody, *, with_hash: bool = False) -> dict:
         out[f"interface.{j}.point"] = itf.point
         out[f"interface.{j}.nodes"] = itf.nodes
         out[f"interface.{j}.shapes"] = itf.shapes
+        out[f"interface.{j}.residual_compliance"] = itf.residual_compliance
     for k, v in body.checks.items():
         out[f"checks.{k}"] = v
     out.update(stress_arrays)
@@ -370,9 +389,11 @@ def _load(path: Path) -> FlexBody:
     for j, h in enumerate(header["interfaces"]):
         try:
             interfaces.append(BodyInterface(
-                name=h["name"], kind=h["kind"], point=get2(f"interface.{j}.point"),
-                nodes=get2(f"interface.{j}.nodes"), shapes=get2(f"interface.{j}.shapes")))
-        except ValueError as exc:
+                name=h["name"], kind=h["kind"], dofs=h.get("dofs", 6),
+                point=get2(f"interface.{j}.point"), nodes=get2(f"interface.{j}.nodes"),
+                shapes=get2(f"interface.{j}.shapes"),
+                residual_compliance=stored.get(f"interface.{j}.residual_compliance")))
+        except (ValueError, TypeError) as exc:
             raise InputError(f"malformed interface ({exc})", file=path,
                              key=f"interface.{j}") from None
     checks = {k: get2(f"checks.{k}") for k in header["checks"]}

@@ -107,8 +107,8 @@ def check_body_arrays(path, header: dict, arrays: dict, inv, interfaces) -> None
 def _check_spider(path, j, itf, nodes, modes) -> None:
     """The tied nodes move rigidly with the hardpoint: ``u = u_h + theta_h x (x - x_h)``
     in every mode (exact for the RBE2 elimination; a scaled ``modes`` or ``shapes`` fails)."""
-    if not itf.nodes.size:
-        return
+    if not itf.nodes.size or itf.dofs != 6 or itf.kind not in ("rbe2", "node"):
+        return  # a 3-DOF interface ties translations only: no rigid rotation to check
     S = itf.shapes  # (6, m)
     r = nodes[itf.nodes] - itf.point  # (k, 3)
     rigid = S[None, :3, :] + np.cross(np.broadcast_to(S[3:].T[None], (len(r), S.shape[1], 3)),

@@ -5,7 +5,9 @@ Cards read
 ``GRID`` (``CP`` = 0 or a ``CORD2R`` system), ``CTETRA`` (4 or 10 nodes), ``CHEXA`` (8),
 ``CQUAD4``, ``CTRIA3``, ``CBAR``/``CBEAM`` (orientation vector ``X1 X2 X3`` or node
 ``G0``), ``CONM2``, ``RBE2``, ``PSHELL`` (``T``, ``MID1``), ``PSOLID``, ``PBAR``,
-``PBEAM`` (end-A values ``A, I1, I2, J``), ``MAT1`` (``E, G, NU, RHO``), ``CORD2R``.
+``PBEAM`` (end-A values ``A, I1, I2, J``), ``MAT1`` (``E, G, NU, RHO``), ``CORD2R``,
+``SET1`` (grid ids, ``THRU`` ranges) as the node set ``"SET<id>"``, also named ``name``
+when the line before the card is the comment ``$ SET name``.
 
 GRIDs used only as CBAR/CBEAM ``G0`` orientation nodes are dropped after use.  Every
 element gets the cell set ``"PID<n>"`` of its property id, and
@@ -205,7 +207,7 @@ def read_nastran(path) -> Mesh:
     path = Path(path)
     cards = read_cards(path)
     grids, coords, mats, props = [], {}, {}, {}
-    other_mats, conm2, rbe2 = {}, [], []
+    other_mats, conm2, rbe2, set1 = {}, [], [], []
     els = _Elements()
     for c in cards:
         n = c.name
@@ -217,6 +219,8 @@ def read_nastran(path) -> Mesh:
             conm2.append(c)
         elif n == "RBE2":
             rbe2.append(c)
+        elif n == "SET1":
+            set1.append(c)
         elif n in ("PSHELL", "PSOLID", "PBAR", "PBEAM") or n in SKIPPED_PROPERTIES:
             props[c.int(0, "PID")] = c
         elif n == "MAT1":
@@ -306,10 +310,41 @@ def read_nastran(path) -> Mesh:
             off, inertia = R @ off, R @ inertia @ R.T
         masses.append(PointMass(node, c.real(3, "M"), inertia, off, c.int(0, "EID")))
     links = [_rbe2(c, gid, sorter) for c in rbe2]
+    node_sets = _node_sets(set1, gid, sorter)
     mesh = Mesh(points=X, blocks=tuple(blocks), node_ids=gid, cell_sets=cell_sets,
                 point_masses=tuple(masses), rigid_links=tuple(links), sections=sections,
-                source=str(path))
+                node_sets=node_sets, source=str(path))
     return drop_orientation_nodes(mesh, g0_nodes)
+
+
+def _node_sets(set1: list, gid, sorter) -> dict:
+    """SET1 cards as node sets ``"SET<id>"``, plus the names of ``$ SET name`` comments."""
+    out, names, text = {}, {}, {}
+    for c in set1:
+        sid = c.int(0, "SID")
+        ids, k = [], 1
+        while k < len(c.fields):
+            f = c.raw(k).upper()
+            if f == "THRU":
+                lo, hi = ids[-1], c.int(k + 1, "THRU end")
+                ids.extend(range(lo + 1, hi + 1))
+                k += 2
+                continue
+            if f:
+                ids.append(c.int(k, f"ID{k}"))
+            k += 1
+        idx = _index_of(gid, sorter, ids, [c] * len(ids), "a grid") if ids else []
+        out[f"SET{sid}"] = np.asarray(idx, dtype=np.int64)
+        if c.file not in text:
+            try:
+                text[c.file] = Path(c.file).read_text(errors="replace").splitlines()
+            except OSError:
+                text[c.file] = []
+        lines = text[c.file]
+        prev = lines[c.line - 2].strip() if 2 <= c.line <= len(lines) + 1 else ""
+        if prev.startswith("$ SET ") and len(prev.split()) == 3:
+            names[prev.split()[2]] = out[f"SET{sid}"]
+    return {**out, **names}
 
 
 def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:

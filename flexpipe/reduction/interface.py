@@ -7,6 +7,12 @@ node indices, or -- when none is given -- the 6-DOF (shell/beam) node at the poi
 which is then the interface itself.  The spider is applied on the independent DOF of
 the model: every tied node DOF is replaced by the rigid motion of the hardpoint,
 ``u = u_h + theta_h x (x - x_h)`` and ``theta = theta_h``.
+
+An interface has 6 boundary DOF (the hardpoint's translations and rotations: it transmits
+forces and moments) or 3 (``dofs=3``: translations only, for ball joints, bushings and
+spring seats that transmit forces only).  With 3, the spider stays rigid but its rotation
+is an interior DOF of the reduction (statically condensed like the rest of the body); a
+solid node without rotations can then be an interface on its own.
 """
 
 from __future__ import annotations
@@ -37,6 +43,8 @@ class Interface:
         Interface name (markers, messages); default ``"if1"``, ``"if2"``, ...
     node_set : str, optional
         Tie the nodes of this named node set of the mesh.
+    dofs : {6, 3}
+        Boundary DOF in the reduction: 6 (forces and moments, default) or 3 (forces only).
 
     Notes
     -----
@@ -51,10 +59,16 @@ class Interface:
     _: KW_ONLY
     name: str | None = None
     node_set: str | None = None
+    dofs: int = 6
     #: where the interface was defined, ``(file, line)``, named by errors about it
     source: tuple | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
+        if self.dofs not in (3, 6) or isinstance(self.dofs, bool):
+            raise InputError(f"interface dofs must be 3 (translations, forces only) or 6 "
+                             f"(with rotations, forces and moments), got {self.dofs!r}",
+                             key=f"{self.name or 'interface'}.dofs")
+        object.__setattr__(self, "dofs", int(self.dofs))
         p = np.asarray(self.point, dtype=float).reshape(-1)
         if p.shape != (3,) or not np.all(np.isfinite(p)):
             raise InputError(f"interface point must be 3 finite numbers, got {self.point!r}",
@@ -79,7 +93,8 @@ class ResolvedInterface:
     name: str
     point: np.ndarray
     nodes: np.ndarray
-    kind: str  # "rbe2" (new 6-DOF hardpoint) or "node" (a 6-DOF mesh node)
+    kind: str  # "rbe2" (new 6-DOF hardpoint) or "node" (a mesh node)
+    dofs: int = 6  # boundary DOF in the reduction (3: translations only)
 
 
 def _describe(fe: FEModel, i: int) -> str:
@@ -173,18 +188,20 @@ def _resolve(fe: FEModel, interfaces: list) -> list[ResolvedInterface]:
                     f"{_describe(fe, nearest)}, {dist[nearest]:.4g} m away); give radius=, "
                     "node_set= or nodes=", key=name)
             nodes = np.array([nearest])
-            if not _has_rotations(fe, nodes)[0]:
+            if itf.dofs == 6 and not _has_rotations(fe, nodes)[0]:
                 raise InputError(
                     f"interface '{name}': {_describe(fe, nearest)} has no rotational DOF "
                     "(solid node), so it cannot be a 6-DOF interface on its own; give "
                     "radius=, node_set= or nodes= to build a rigid spider", key=name)
             kind = "node"
         if kind == "rbe2":
-            _check_spider(fe, name, p, nodes)
-            if nodes.size == 1 and dist[nodes[0]] <= max(tol, 1e-9) and \
-                    _has_rotations(fe, nodes)[0]:
+            on_node = nodes.size == 1 and dist[nodes[0]] <= max(tol, 1e-9)
+            if on_node and (itf.dofs == 3 or _has_rotations(fe, nodes)[0]):
                 kind = "node"
-        out.append(ResolvedInterface(name=name, point=p.copy(), nodes=nodes, kind=kind))
+            else:
+                _check_spider(fe, name, p, nodes)
+        out.append(ResolvedInterface(name=name, point=p.copy(), nodes=nodes, kind=kind,
+                                     dofs=itf.dofs))
     names = [r.name for r in out]
     dup = {n for n in names if names.count(n) > 1}
     if dup:
@@ -227,13 +244,18 @@ class InterfaceSystem:
     E : scipy.sparse.csr_matrix (n_dof, n_x)
         Map to all DOF of the model.
     boundary : list of ndarray
-        Per interface, its 6 coordinates in ``x`` (ux, uy, uz, rx, ry, rz).
+        Per interface, its coordinates in ``x`` (ux, uy, uz, rx, ry, rz; only the three
+        translations for a solid node).
+    active : list of ndarray
+        Per interface, its boundary DOF of the reduction: all of ``boundary`` for a 6-DOF
+        interface, the translations for a 3-DOF one.
     """
 
     K: sp.csr_matrix
     M: sp.csr_matrix
     E: sp.csr_matrix
     boundary: list
+    active: list
 
 
 def interface_system(fe: FEModel, resolved: list[ResolvedInterface]) -> InterfaceSystem:
@@ -246,7 +268,8 @@ def interface_system(fe: FEModel, resolved: list[ResolvedInterface]) -> Interfac
     n_new = 0
     for r in resolved:
         if r.kind == "node":
-            c = col_of[r.nodes[0] * dpn + np.arange(6)]
+            c = col_of[r.nodes[0] * dpn + np.arange(6 if _has_rotations(fe, r.nodes)[0]
+                                                    else 3)]
             if (c < 0).any():
                 raise InputError(f"interface '{r.name}': {_describe(fe, r.nodes[0])} is tied "
                                  "by a rigid link of the mesh; use its master node", key=r.name)
@@ -291,7 +314,8 @@ def interface_system(fe: FEModel, resolved: list[ResolvedInterface]) -> Interfac
     boundary = []
     for kind, c in boundary_cols:
         boundary.append(new_index[c] if kind == "old" else keep.size + c + np.arange(6))
+    active = [bj[:r.dofs] for bj, r in zip(boundary, resolved, strict=True)]
     K = sp.csr_matrix(Ti.T @ fe.Kr @ Ti)
     M = sp.csr_matrix(Ti.T @ fe.Mr @ Ti)
     E = sp.csr_matrix(fe.T @ Ti)
-    return InterfaceSystem(K=K, M=M, E=E, boundary=boundary)
+    return InterfaceSystem(K=K, M=M, E=E, boundary=boundary, active=active)

@@ -17,6 +17,15 @@ frequencies below ``f_max`` of a stubby test bar were still 2% and 0.7% high, wi
 0.25%, see tests/test_reduction.py).  With neither given,
 ``f_max = DEFAULT_F_MAX_HZ`` = 2 x 25 Hz: twice the top of the 0-25 Hz ride band
 (Gillespie; the paper's section 3).
+
+Many interfaces
+---------------
+Interfaces with ``dofs=3`` add 3 boundary DOF instead of 6.  Craig-Bampton with
+``interface_f_max`` (Hz) replaces the static constraint modes by the characteristic
+constraint modes up to that frequency (:mod:`flexpipe.reduction.ccmodes`), which keeps
+the number of body modes in check when the body has tens of interfaces; with ``f_max``
+given, the interior static responses to the inertia loads of the CC modes up to
+``INERTIA_FACTOR * f_max`` are added (they restore the band's accuracy, see ccmodes).
 """
 
 from __future__ import annotations
@@ -44,6 +53,8 @@ from flexpipe.reduction.interface import interface_system, resolve_interfaces
 DEFAULT_F_MAX_HZ = 50.0
 #: Craig-Bampton keeps fixed-interface modes up to this multiple of f_max
 CB_FACTOR = 3.0
+#: with interface reduction: inertia vectors for the CC modes up to this multiple of f_max
+INERTIA_FACTOR = 3.0
 METHODS = {
     "craig-bampton": "craig-bampton", "cb": "craig-bampton",
     "hurty-craig-bampton": "craig-bampton",
@@ -81,7 +92,8 @@ def _damping_ratios(damping, f_hz, n_rigid):
 def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int | None = None,
            f_max: float | None = None, *, damping=None, check: bool = False,
            backend: str | None = None, tol: float | None = None,
-           cb_factor: float = CB_FACTOR, stress: str | None = None) -> FlexBody:
+           cb_factor: float = CB_FACTOR, stress: str | None = None,
+           interface_f_max: float | None = None) -> FlexBody:
     """Reduce an FE model to a :class:`FlexBody` by component mode synthesis.
 
     Parameters
@@ -111,6 +123,11 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     stress : {None, "none", "all"} or str
         Stress modes to store with the body (:mod:`flexpipe.flexbody.stress`): none
         (default), every element, or the elements of the named cell set of the mesh.
+    interface_f_max : float, optional
+        Craig-Bampton only: interface reduction, keeping the characteristic constraint
+        modes up to this frequency (Hz) instead of every static constraint mode, plus
+        (with ``f_max``) the inertia vectors of those up to ``INERTIA_FACTOR * f_max``;
+        each interface's ``residual_compliance`` holds the static flexibility dropped.
 
     Returns
     -------
@@ -118,11 +135,12 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     """
     with dense_single_threaded():
         return _reduce(fe, interfaces, method, n_modes, f_max, damping=damping, check=check,
-                       backend=backend, tol=tol, cb_factor=cb_factor, stress=stress)
+                       backend=backend, tol=tol, cb_factor=cb_factor, stress=stress,
+                       interface_f_max=interface_f_max)
 
 
 def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, tol,
-            cb_factor, stress=None):
+            cb_factor, stress=None, interface_f_max=None):
     t0 = time.perf_counter()
     timings = {}
     if not isinstance(fe, FEModel):
@@ -132,6 +150,9 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         raise InputError(f"unknown method {method!r}; valid: craig-bampton, "
                          "residual-flexibility, modal-truncation", key="method")
     method = METHODS[key]
+    if interface_f_max is not None and method != "craig-bampton":
+        raise InputError("interface_f_max (interface reduction) applies to Craig-Bampton "
+                         f"only, not {method}", key="interface_f_max")
     if n_modes is not None and f_max is not None:
         raise InputError("give n_modes or f_max, not both", key="n_modes")
     if n_modes is None and f_max is None:
@@ -140,13 +161,30 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         raise InputError(f"n_modes must be an integer >= 0, got {n_modes!r}", key="n_modes")
     resolved = resolve_interfaces(fe, interfaces)
     system = interface_system(fe, resolved)
-    b = np.concatenate(system.boundary)
+    b = np.concatenate(system.active)
     timings["interfaces_s"] = time.perf_counter() - t0
 
     t = time.perf_counter()
+    factor_out = []
     try:
         Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
-                                   timings=timings, cb_factor=cb_factor)
+                                   timings=timings, cb_factor=cb_factor, factor_out=factor_out)
+        n_constraint = b.size
+        C_res = np.zeros((b.size, b.size))
+        n_inertia = 0
+        if interface_f_max is not None and b.size:
+            from flexpipe.reduction import ccmodes
+
+            Psi_cc, f_cc, C_res = ccmodes.characteristic_constraint_modes(
+                system.M, system.K, Psi[:, :b.size], f_max=float(interface_f_max))
+            n_constraint = Psi_cc.shape[1]
+            parts = [Psi_cc, Psi[:, b.size:]]
+            if f_max is not None and factor_out:
+                low = Psi_cc[:, f_cc <= INERTIA_FACTOR * f_max]
+                interior = np.setdiff1d(np.arange(system.K.shape[0]), b)
+                parts.append(ccmodes.inertia_vectors(system.M, low, interior, factor_out[0]))
+                n_inertia = low.shape[1]
+            Psi = np.hstack(parts)
     except ModelError as exc:
         raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
     timings["basis_s"] = time.perf_counter() - t
@@ -160,7 +198,11 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     trans = (np.arange(n)[:, None] * dpn + np.arange(3)).ravel()
     Et = sp.csr_matrix(system.E[trans])
     U = np.asarray(Et @ Psi)  # (3 n, m) nodal translations
-    shapes = [Psi[bj] for bj in system.boundary]  # (6, m) hardpoint motion per interface
+    shapes = []  # (6, m) hardpoint motion per interface (no rotation rows: zero)
+    for bj in system.boundary:
+        S = np.zeros((6, Psi.shape[1]))
+        S[:len(bj)] = Psi[bj]
+        shapes.append(S)
 
     mass, com, J_com, J_origin = mass_properties(fe.M, fe.nodes, dpn)
     Mt = translational_block(fe.M, dpn)
@@ -185,6 +227,8 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         timings["stress_s"] = time.perf_counter() - t
     zeta = _damping_ratios(damping, f_hz, n_rigid)
     m = len(f_hz)
+    ends = np.cumsum([len(a) for a in system.active])
+    offsets = [np.arange(e - len(a), e) for a, e in zip(system.active, ends, strict=True)]
     mesh = fe.mesh
     triangles = surface_triangles(mesh) if mesh is not None else np.zeros((0, 3), np.int64)
     from flexpipe import __version__
@@ -193,7 +237,10 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         "flexpipe_version": __version__, "n_dof": int(fe.n_dof), "n_nodes": int(n),
         "dofs_per_node": int(dpn), "n_modes_requested": None if n_modes is None else int(n_modes),
         "f_max_hz": None if f_max is None else float(f_max), "source": mesh.source if mesh else "",
-        "n_boundary_dof": int(b.size), **{k: round(v, 4) for k, v in timings.items()},
+        "n_boundary_dof": int(b.size), "n_constraint_modes": int(n_constraint),
+        "n_inertia_vectors": int(n_inertia),
+        "interface_f_max_hz": None if interface_f_max is None else float(interface_f_max),
+        **{k: round(v, 4) for k, v in timings.items()},
         "total_s": round(time.perf_counter() - t0, 4),
     }
     return FlexBody(
@@ -202,18 +249,22 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         damping_ratio=zeta, mass=mass, center_of_mass=com, inertia=J_com,
         inertia_origin=J_origin, invariants=inv,
         interfaces=tuple(BodyInterface(name=r.name, point=r.point, nodes=r.nodes, shapes=s,
-                                       kind=r.kind) for r, s in zip(resolved, shapes, strict=True)),
+                                       kind=r.kind, dofs=r.dofs,
+                                       residual_compliance=C_res[np.ix_(o, o)])
+                         for r, s, o in zip(resolved, shapes, offsets, strict=True)),
         method=method, source_hash=mesh_hash(mesh) if mesh is not None else "",
         meta=meta, checks=checks, stress=smodes,
     )
 
 
-def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_factor):
+def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_factor,
+           factor_out=None):
     """Ritz basis of ``method`` on the interface system, and the rigid count if known."""
     if method == "craig-bampton":
         f_cb = None if f_max is None else cb_factor * f_max
         Psi, _ = cms._craig_bampton(system.M, system.K, b, n_modes, f_max=f_cb,
-                                    backend=backend, tol=tol, timings=timings)
+                                    backend=backend, tol=tol, timings=timings,
+                                    factor_out=factor_out)
         return Psi, None
     if method == "residual-flexibility":
         Psi, _, n_rigid = cms._residual_flexibility(system.M, system.K, b, n_modes, f_max=f_max,

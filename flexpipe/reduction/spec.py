@@ -19,6 +19,7 @@ Example::
     name = "tow"
     point = [1.1, 0.0, 0.3]
     nodes = [101, 102, 103]       # or node ids of the mesh file
+    dofs = 3                      # translations only (ball joint, bushing); default 6
 
 An entry with neither ``radius``, ``node_set`` nor ``nodes`` (and no top-level radius)
 uses the 6-DOF shell/beam node at the point.
@@ -35,7 +36,7 @@ import numpy as np
 from flexpipe.errors import InputError
 from flexpipe.reduction.interface import Interface
 
-_KEYS = {"name", "point", "radius", "node_set", "nodes"}
+_KEYS = {"name", "point", "radius", "node_set", "nodes", "dofs"}
 
 
 def _line_of(lines, k):
@@ -133,6 +134,11 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
                              "interface would otherwise silently ignore one",
                              key=f"interface[{k}].{given[1]}", **where)
         kw = {"name": name, "source": (str(path), line)}
+        if "dofs" in e:
+            if e["dofs"] not in (3, 6) or isinstance(e["dofs"], bool):
+                raise InputError(f"dofs must be 3 (forces only) or 6 (forces and moments), "
+                                 f"got {e['dofs']!r}", key=f"interface[{k}].dofs", **where)
+            kw["dofs"] = int(e["dofs"])
         if "node_set" in e:
             if not isinstance(e["node_set"], str) or not e["node_set"]:
                 raise InputError(f"node_set must be the name of a node set of the mesh, got "

@@ -245,12 +245,21 @@ def modal_damping(car: Car):
 
 
 def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
-                 cache: bool = True, log=print, cutoff: float | None = None):
+                 cache: bool = True, log=print, cutoff: float | None = None,
+                 mounts=None, interface_f_max: float | None = None):
     """The reduced flexible body for band ``f_max`` (Hz), from the cache when possible.
 
     Craig-Bampton keeps the fixed-interface modes up to ``cutoff`` (default
-    ``CB_RATIO * f_max``) plus the 24 static constraint modes of the four hardpoints,
-    which keep the static flexibility of every higher mode exactly.
+    ``CB_RATIO * f_max``) plus the static constraint modes of the interfaces, which keep
+    the static flexibility of every higher mode exactly.
+
+    The interfaces are the four corner hardpoints, or with ``mounts`` every body-side
+    suspension mount: a list of :class:`~flexpipe.vehicle.mounts.Mount` or
+    ``(name, point, radius, dofs)`` tuples (radius None: the mesh node at the point;
+    dofs 3 or 6), see :func:`flexpipe.vehicle.mounts.mount_interfaces`.
+    ``interface_f_max`` (Hz) reduces the interface: characteristic constraint modes up
+    to that frequency replace the static constraint modes
+    (:mod:`flexpipe.reduction.ccmodes`).
 
     Returns
     -------
@@ -262,7 +271,15 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     from flexpipe.vehicle import _cache
 
     cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
-    key = _digest(car, {"cutoff": round(cutoff, 6), "m": method, "stress": STRESS_MODES})
+    key = {"cutoff": round(cutoff, 6), "m": method, "stress": STRESS_MODES}
+    if mounts is not None:  # every body-side mount an interface (flexpipe/vehicle/mounts.py)
+        from flexpipe.vehicle.mounts import as_mount
+
+        mounts = [as_mount(m) for m in mounts]
+        key["mounts"] = [[m.name, m.point, m.radius, m.dofs, m.node_set, m.nodes]
+                         for m in mounts]
+        key["interface_f_max"] = interface_f_max
+    key = _digest(car, key)
     path = cache_dir() / f"body-{key[:20]}.npz"
     if cache:  # verified entry (input key, content hash, physics) or rebuilt with a warning
         _cache.clean_stale(cache_dir())
@@ -272,10 +289,17 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     t0 = time.perf_counter()
     log(f"reducing body {car.body.mesh.name} ({method}, modes to {cutoff:.0f} Hz) ...")
     fe = body_fe(car)
-    itf = corner_interfaces(car, fe.nodes)
+    if mounts is not None:
+        from flexpipe.vehicle.mounts import mount_interfaces
+
+        itf = mount_interfaces(mounts, fe.mesh if fe.mesh is not None else fe.nodes,
+                               file=car.file)
+    else:
+        itf = corner_interfaces(car, fe.nodes)
     if method == "craig-bampton":  # the car's own cut-off for fixed-interface modes
         body = reduce(fe, itf, method=method, f_max=f_max, cb_factor=cutoff / f_max,
-                      damping=modal_damping(car), stress=STRESS_MODES)
+                      damping=modal_damping(car), stress=STRESS_MODES,
+                      interface_f_max=interface_f_max)
     else:
         body = reduce(fe, itf, method=method, f_max=cutoff, damping=modal_damping(car),
                       stress=STRESS_MODES)

@@ -243,9 +243,11 @@ class CarController:
         now = self.tires.correct(kin, self.h)
         Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
         F_applied = self._applied_tire_force(st, s_axis, omega)
+        # road height and normal where the wheels will be at the end of the step (the
+        # force is balanced there): the normal's tilt carries the road slope into Fx, Fy
         ahead = st.wheel_p + self.h * st.wheel_v
-        road_ahead = np.asarray(self.road.height_xy(ahead[:, 0], ahead[:, 1]), dtype=float)
-        ts = self.tires.predict(kin, self.h, road_ahead)
+        road_ahead, n_ahead = self.road_contact(ahead)
+        ts = self.tires.predict(dict(kin, n_road=n_ahead), self.h, road_ahead)
         if not (np.all(np.isfinite(ts.F0)) and np.all(np.isfinite(ts.Dv))):
             return self._fail(st.t, "tyre forces became non-finite")
         share = self.drive_share if self.torque >= 0 else self.brake_share

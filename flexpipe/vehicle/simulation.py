@@ -35,6 +35,11 @@ from flexpipe.vehicle.spec import CORNERS, Car, load_car
 BODIES = ("flexible", "rigid", "full")
 #: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
 FULL_CUTOFF_HZ = 250.0
+#: interface reduction of a body with every suspension mount an interface: characteristic
+#: constraint modes up to this frequency (Hz), see flexpipe.reduction.ccmodes
+INTERFACE_F_MAX_HZ = 400.0
+#: body nodes within this distance of a suspension mount are tied to it (RBE2), m
+MOUNT_RADIUS_M = 0.005
 #: distance along the path of the body origin at t = 0, beyond the wheelbase, m
 START_MARGIN_M = 3.0
 
@@ -148,7 +153,14 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
     if body in ("flexible", "full"):
         band = f_max if f_max is not None else bodymodel.choose_band(speed, road)
         cutoff = FULL_CUTOFF_HZ if body == "full" else None
-        fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log, cutoff=cutoff)
+        kw = {}
+        if car.suspension is not None:  # every body-side mount an interface of the body
+            dofs = car.suspension.mount_dofs()
+            kw = {"mounts": [(n, p, MOUNT_RADIUS_M, dofs[n])
+                             for n, p in car.suspension.mounts().items()],
+                  "interface_f_max": INTERFACE_F_MAX_HZ}
+        fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log, cutoff=cutoff,
+                                          **kw)
         out.update(flexbody=fb, band_hz=None if body == "full" else band, reduction=info)
     return out
 

@@ -53,6 +53,22 @@ class Suspension:
                 out.update(dict(a.anti_roll_bar.mounts))
         return out
 
+    def mount_dofs(self) -> dict:
+        """``{mount: 3 | 6}``: 6 where the body side needs the mount's frame (a bushing, a
+        revolute, universal or inline joint, the rack housing, an anti-roll-bar bushing),
+        3 where only a force passes (ball joints, links, spring and damper seats)."""
+        out = {name: 3 for name in self.mounts()}
+        for c in self.corners().values():
+            for j in c.joints:
+                if j.mount is not None and (j.bushing is not None or j.kind != "spherical"):
+                    out[j.mount] = 6
+        if self.rack is not None:
+            out.update({n: 6 for n in self.rack.mounts})
+        for a in self.axles.values():
+            if a.anti_roll_bar is not None:
+                out.update({n: 6 for n, _ in a.anti_roll_bar.mounts})
+        return out
+
 
 def _table_xy(t: Table, xkey: str, ykey: str, *, increasing=True):
     x, y = t.raw(xkey), t.raw(ykey)

@@ -1,0 +1,183 @@
+"""Body-side suspension mounts: every mount is an interface of the flexible body.
+
+A :class:`Mount` names a point where the suspension loads the body (a bushing, ball joint,
+spring or damper seat, rack mount) and how it ties into the mesh:
+
+* ``point`` alone: the mesh node at the point (a shell/beam node; within
+  :data:`NODE_TOL`) is the interface;
+* ``point`` + ``radius``: the nodes within ``radius`` are tied to the point (RBE2 spider);
+* ``node_set`` (a named set of the mesh, e.g. a Nastran ``SET1`` preceded by
+  ``$ SET name``) or ``nodes`` (0-based node indices): those nodes are tied to ``point``,
+  or to their centroid when no point is given.
+
+``dofs`` = 3 (forces only: ball joints, bushings, spring seats) or 6 (forces and moments).
+:func:`mount_interfaces` checks the mounts against the mesh and returns the
+:class:`~flexpipe.reduction.Interface` list that :func:`flexpipe.reduce` takes;
+:func:`read_hardpoints` reads the ``$ HARDPOINT name x y z`` comments of a Nastran deck.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import InputError
+
+#: a mount point farther than this from every body node is "off the body", m
+OFF_BODY_TOL = 0.05
+#: a mount without radius/node set/nodes must coincide with a node within this distance, m
+NODE_TOL = 1e-6
+_HARDPOINT = re.compile(r"^\$\s*HARDPOINT\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s*$")
+
+
+@dataclass(frozen=True)
+class Mount:
+    """A body-side suspension mount (see the module docstring).
+
+    Parameters
+    ----------
+    name : str
+        Interface and marker name, e.g. ``front_lower_arm_front_l``.
+    point : (3,) array_like, optional
+        Mount point in body (mesh) coordinates, m.
+    radius : float, optional
+        Tie the nodes within this distance of ``point``, m.
+    dofs : {3, 6}
+        Boundary DOF of the reduction at this mount.
+    node_set : str, optional
+        Tie the nodes of this named mesh node set.
+    nodes : tuple of int, optional
+        Tie these nodes (0-based indices).
+    """
+
+    name: str
+    point: tuple | None = None
+    radius: float | None = None
+    dofs: int = 3
+    node_set: str | None = None
+    nodes: tuple | None = None
+
+    def __post_init__(self):
+        if not isinstance(self.name, str) or not self.name:
+            raise InputError(f"a mount needs a name, got {self.name!r}", key="mounts")
+        key = f"mounts.{self.name}"
+        if self.point is not None:
+            p = np.asarray(self.point, dtype=float).reshape(-1)
+            if p.shape != (3,) or not np.all(np.isfinite(p)):
+                raise InputError(f"point must be 3 finite numbers (m), got {self.point!r}",
+                                 key=f"{key}.point")
+            object.__setattr__(self, "point", tuple(float(v) for v in p))
+        if self.dofs not in (3, 6) or isinstance(self.dofs, bool):
+            raise InputError(f"dofs must be 3 (forces only) or 6 (forces and moments), got "
+                             f"{self.dofs!r}", key=f"{key}.dofs")
+        given = [k for k in ("radius", "node_set", "nodes") if getattr(self, k) is not None]
+        if len(given) > 1:
+            raise InputError(f"give one of radius, node_set, nodes (got {given})", key=key)
+        if self.point is None and not ({"node_set", "nodes"} & set(given)):
+            raise InputError("give a point (with an optional radius), a node_set or nodes",
+                             key=key)
+        if self.radius is not None and not (np.isfinite(self.radius) and self.radius > 0):
+            raise InputError(f"radius must be a positive length in m, got {self.radius!r}",
+                             key=f"{key}.radius")
+        if self.nodes is not None:
+            object.__setattr__(self, "nodes",
+                               tuple(int(i) for i in np.asarray(self.nodes).reshape(-1)))
+
+
+def as_mount(m) -> Mount:
+    """A :class:`Mount` from a Mount, a ``(name, point, radius, dofs)`` tuple (radius may be
+    None) or a dict of Mount fields."""
+    if isinstance(m, Mount):
+        return m
+    if isinstance(m, dict):
+        unknown = set(m) - {"name", "point", "radius", "dofs", "node_set", "nodes"}
+        if unknown:
+            raise InputError(f"unknown mount keys {sorted(unknown)}; valid: name, point, "
+                             "radius, dofs, node_set, nodes", key=f"mounts.{m.get('name')}")
+        return Mount(**m)
+    if isinstance(m, (tuple, list)) and 2 <= len(m) <= 4:
+        return Mount(*m)
+    raise InputError(f"a mount is a Mount, a dict or (name, point, radius, dofs), got {m!r}",
+                     key="mounts")
+
+
+def mount_interfaces(mounts, mesh, *, file=None) -> list:
+    """Interfaces of ``mounts`` on ``mesh`` (a :class:`~flexpipe.mesh.Mesh` or an (n, 3)
+    array of node positions), checked to lie on the body.
+
+    Raises
+    ------
+    InputError
+        A point farther than :data:`OFF_BODY_TOL` from every node, a point without
+        radius that is not a node, an unknown node set, duplicate names.
+    """
+    from flexpipe.reduction import Interface
+
+    X = np.asarray(mesh.points if hasattr(mesh, "points") else mesh, dtype=float)
+    sets = getattr(mesh, "node_sets", {}) or {}
+    out, seen = [], set()
+    for m in map(as_mount, mounts):
+        key = f"mounts.{m.name}"
+        if m.name in seen:
+            raise InputError(f"mount name {m.name!r} is used twice", file=file, key=key)
+        seen.add(m.name)
+        point = m.point
+        if m.node_set is not None:
+            if m.node_set not in sets:
+                raise InputError(f"the body mesh has no node set {m.node_set!r}; valid: "
+                                 f"{sorted(sets)[:40]}", file=file, key=f"{key}.node_set")
+            idx = np.asarray(sets[m.node_set], dtype=np.int64)
+        elif m.nodes is not None:
+            idx = np.asarray(m.nodes, dtype=np.int64)
+            if idx.size == 0 or idx.min() < 0 or idx.max() >= len(X):
+                raise InputError(f"node indices must lie in [0, {len(X)}), got "
+                                 f"{list(m.nodes)[:10]}", file=file, key=f"{key}.nodes")
+        else:
+            idx = None
+        if point is None:
+            point = tuple(X[idx].mean(axis=0))
+        d = np.linalg.norm(X - np.asarray(point), axis=1)
+        k = int(d.argmin())
+        if d[k] > OFF_BODY_TOL:
+            raise InputError(
+                f"mount point {tuple(np.round(point, 4))} m is off the body: the nearest body "
+                f"node is {d[k]:.3f} m away at {tuple(np.round(X[k], 4))}; a mount must lie "
+                f"within {OFF_BODY_TOL} m of the structure", file=file, key=f"{key}.point")
+        if idx is None and m.radius is None and d[k] > NODE_TOL:
+            raise InputError(
+                f"mount point {tuple(np.round(point, 4))} m is not a mesh node (nearest "
+                f"{d[k] * 1e3:.1f} mm away); give a radius to tie the nodes around it",
+                file=file, key=f"{key}.radius")
+        if idx is not None:
+            out.append(Interface(point, nodes=idx, name=m.name, dofs=m.dofs))
+        elif m.radius is not None:
+            out.append(Interface(point, radius=m.radius, name=m.name, dofs=m.dofs))
+        else:
+            out.append(Interface(tuple(X[k]), name=m.name, dofs=m.dofs))
+    return out
+
+
+def read_hardpoints(path) -> dict:
+    """``{name: (x, y, z)}`` from the ``$ HARDPOINT name x y z`` comments of a deck."""
+    path = Path(path)
+    out = {}
+    try:
+        lines = path.read_text(errors="replace").splitlines()
+    except OSError as exc:
+        raise InputError(f"cannot read ({exc})", file=path) from None
+    for i, line in enumerate(lines, start=1):
+        hit = _HARDPOINT.match(line.strip())
+        if hit:
+            try:
+                out[hit.group(1)] = tuple(float(v) for v in hit.groups()[1:])
+            except ValueError:
+                raise InputError(f"'{line.strip()}': expected $ HARDPOINT name x y z with "
+                                 "numbers in m", file=path, line=i) from None
+    return out
+
+
+__all__ = ["Mount", "NODE_TOL", "OFF_BODY_TOL", "as_mount", "mount_interfaces",
+           "read_hardpoints"]
