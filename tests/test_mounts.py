@@ -149,6 +149,14 @@ def test_mixed_three_and_six_dof_mounts_round_trip(block, tmp_path):
     assert not np.any(body.interface("a").shapes[3:])
     back = load_body(body.save(tmp_path / "b.npz"))
     assert back == body and back.interface("a").dofs == 3
+    # with interface reduction: a residual compliance per mount, symmetric and >= 0
+    red = flexpipe.reduce(block, itfs, f_max=2000.0, interface_f_max=3000.0)
+    C6, C3 = red.interface("end").residual_compliance, red.interface("a").residual_compliance
+    assert C6.shape == (6, 6) and C3.shape == (3, 3)
+    for C in (C6, C3):
+        np.testing.assert_allclose(C, C.T, atol=1e-12 * np.abs(C).max())
+        assert np.linalg.eigvalsh(C).min() >= -1e-12 * np.abs(C).max() and C.max() > 0
+    assert load_body(red.save(tmp_path / "r.npz")) == red
 
 
 # --------------------------------------------------------------------------- mounts API
@@ -339,3 +347,13 @@ def test_cli_reduce_with_translational_mounts_and_interface_reduction(tmp_path, 
     red = load_body(out)
     assert "3 DOF" in capsys.readouterr().out
     assert full.meta["n_constraint_modes"] == 24 > red.meta["n_constraint_modes"]
+
+
+def test_step_cost_runs_and_names_bad_supports(block):
+    pytest.importorskip("exudyn")
+    from flexpipe.exu.timing import step_cost
+
+    body = flexpipe.reduce(block, _mounts(3), n_modes=2)
+    assert np.isfinite(step_cost(body, ["a", "b", "c", "d"], t_end=0.01))
+    with pytest.raises(InputError, match="no interfaces"):
+        step_cost(body, ["a", "zz"], t_end=0.01)

@@ -25,14 +25,12 @@ import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.exu.body import NODE_TYPE
-from flexpipe.vehicle.suspension.model import BODY, RACK
+from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, BODY, RACK, RACK_MASS
 
 OV = exu.OutputVariableType
 CORNERS = ("fl", "fr", "rl", "rr")
-#: masses given to parts the car file leaves massless, and to rack and bar arms (kg)
+#: mass given to a part the car file leaves massless (kg)
 MIN_PART_MASS = 0.2
-RACK_MASS = 2.0
-ARB_ARM_MASS = 0.5
 #: stiffness of a steering column given as rigid (N/m at the rack)
 RIGID_RACK = 1e8
 
@@ -76,6 +74,8 @@ class LinkageModel:
         self.g = np.asarray(gravity, float)
         self.mount_marker = mount_marker
         self.susp = suspension
+        #: kinematic mode (Adams/Car): every bushing replaced by its joint, links rigid
+        self.kinematic = getattr(suspension, "mode", "compliant") == "kinematic"
         self.corners = suspension.corners()
         self.knuckle_node, self.part_nodes, self.forces = [], [], []
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
@@ -148,7 +148,7 @@ class LinkageModel:
             ma = self._marker(own(lk.a), lk.point_a, False)
             mb = (self.mount_marker(lk.mount, False) if lk.b == BODY
                   else self._marker(b, lk.point_b, False))
-            if lk.axial_stiffness is None:
+            if lk.axial_stiffness is None or self.kinematic:
                 co = mbs.AddObject(eii.ObjectConnectorDistance(
                     markerNumbers=[mb, ma], distance=lk.length,
                     visualization=eii.VObjectConnectorDistance(show=False)))
@@ -171,7 +171,7 @@ class LinkageModel:
     def _joint(self, j, a, b):
         """Joint ``j`` between owners ``a`` and ``b`` (see module docstring)."""
         mbs = self.mbs
-        if j.bushing is not None:
+        if j.bushing is not None and not self.kinematic:
             body_first = b == BODY
             part = a if body_first else b
             m0 = self.mount_marker(j.mount, True)

@@ -105,4 +105,30 @@ def inertia_vectors(M, Psi, interior, factor):
     return X
 
 
-__all__ = ["characteristic_constraint_modes", "inertia_vectors"]
+def reduce_interface(M, K, Psi, b, *, interface_f_max, inertia_f_max=None, factor=None):
+    """Interface-reduce a Craig-Bampton basis ``Psi`` (static constraint modes of the
+    boundary DOF ``b`` first, then fixed-interface modes).
+
+    Returns
+    -------
+    Psi_new : ndarray
+        ``[CC modes to interface_f_max, fixed-interface modes, inertia vectors of the CC
+        modes to inertia_f_max]`` (no inertia vectors when ``inertia_f_max`` or
+        ``factor``, the factor of ``K_ii``, is None).
+    n_cc, n_inertia : int
+    C_res : ndarray (n_b, n_b)
+        Residual flexibility of the deleted CC modes.
+    """
+    Psi_cc, f_cc, C_res = characteristic_constraint_modes(M, K, Psi[:, :b.size],
+                                                          f_max=float(interface_f_max))
+    parts = [Psi_cc, Psi[:, b.size:]]
+    n_inertia = 0
+    if inertia_f_max is not None and factor is not None:
+        low = Psi_cc[:, f_cc <= inertia_f_max]
+        interior = np.setdiff1d(np.arange(K.shape[0]), b)
+        parts.append(inertia_vectors(M, low, interior, factor))
+        n_inertia = low.shape[1]
+    return np.hstack(parts), Psi_cc.shape[1], n_inertia, C_res
+
+
+__all__ = ["characteristic_constraint_modes", "inertia_vectors", "reduce_interface"]

@@ -169,22 +169,14 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
     try:
         Psi, n_rigid_hint = _basis(method, system, b, n_modes, f_max, backend=backend, tol=tol,
                                    timings=timings, cb_factor=cb_factor, factor_out=factor_out)
-        n_constraint = b.size
-        C_res = np.zeros((b.size, b.size))
-        n_inertia = 0
+        n_constraint, n_inertia, C_res = b.size, 0, np.zeros((b.size, b.size))
         if interface_f_max is not None and b.size:
-            from flexpipe.reduction import ccmodes
+            from flexpipe.reduction.ccmodes import reduce_interface
 
-            Psi_cc, f_cc, C_res = ccmodes.characteristic_constraint_modes(
-                system.M, system.K, Psi[:, :b.size], f_max=float(interface_f_max))
-            n_constraint = Psi_cc.shape[1]
-            parts = [Psi_cc, Psi[:, b.size:]]
-            if f_max is not None and factor_out:
-                low = Psi_cc[:, f_cc <= INERTIA_FACTOR * f_max]
-                interior = np.setdiff1d(np.arange(system.K.shape[0]), b)
-                parts.append(ccmodes.inertia_vectors(system.M, low, interior, factor_out[0]))
-                n_inertia = low.shape[1]
-            Psi = np.hstack(parts)
+            Psi, n_constraint, n_inertia, C_res = reduce_interface(
+                system.M, system.K, Psi, b, interface_f_max=interface_f_max,
+                inertia_f_max=None if f_max is None else INERTIA_FACTOR * f_max,
+                factor=factor_out[0] if factor_out else None)
     except ModelError as exc:
         raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
     timings["basis_s"] = time.perf_counter() - t

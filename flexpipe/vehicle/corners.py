@@ -71,7 +71,8 @@ class CornerArrays:
                 + self.rebound_rate * (-jounce > self.rebound_clearance))
 
 
-def static_wheel_loads(car: Car, body_mass: float, body_cg, *, g: float = GRAVITY):
+def static_wheel_loads(car: Car, body_mass: float, body_cg, *, g: float = GRAVITY,
+                       point_masses=None):
     """Vertical ground reactions (4,) of the car at rest on flat ground, N.
 
     Whole-car equilibrium (vertical force, pitch and roll moments about the wheel
@@ -80,9 +81,12 @@ def static_wheel_loads(car: Car, body_mass: float, body_cg, *, g: float = GRAVIT
     design height.
     """
     W = np.array([c.wheel_center for c in car.corners])
-    mu = np.array([c.unsprung_mass for c in car.corners])
-    M = body_mass + mu.sum()
-    G = (body_mass * np.asarray(body_cg, dtype=float) + (mu[:, None] * W).sum(axis=0)) / M
+    if point_masses is None:  # unsprung masses at the wheel centres
+        point_masses = [(c.unsprung_mass, w) for c, w in zip(car.corners, W, strict=True)]
+    m = np.array([pm[0] for pm in point_masses])
+    P = np.array([pm[1] for pm in point_masses], dtype=float)
+    M = body_mass + m.sum()
+    G = (body_mass * np.asarray(body_cg, dtype=float) + (m[:, None] * P).sum(axis=0)) / M
     A = np.vstack([np.ones(4), W[:, 0], W[:, 1], [1.0, -1.0, -1.0, 1.0]])
     b = M * g * np.array([1.0, G[0], G[1], 0.0])
     N = np.linalg.solve(A, b)

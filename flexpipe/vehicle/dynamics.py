@@ -272,8 +272,9 @@ class CarController:
                              tire_moment=carrier_moment, spin_torque=spin_torque,
                              steer=steer, rack_travel=s_rack)
             self._tire_lin = (ts, st, omega)
-            if self.step_no % self.output_every == 0:
-                self._record(st, np.zeros(4), Fw, v, roll, pitch, yaw, F_applied)
+            if self.step_no % self.output_every == 0:  # at t = 0: the tyre force now
+                self._record(st, np.zeros(4), Fw, v, roll, pitch, yaw,
+                             now["force"] if F_applied is None else F_applied)
             self.step_no += 1
             return loads
         # suspension: spring, damper (rate by the sign of the jounce rate) and the stops are

@@ -100,6 +100,25 @@ def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
     return f / fb.omega[sel] ** 2
 
 
+def linkage_statics(car: Car, rb):
+    """Suspension of a linkage car ready to run and its static wheel loads (4,) N.
+
+    The knuckles carry the wheels; the static loads follow from the whole car's mass
+    distribution (body, every part at its centre of mass, rack, anti-roll-bar arms) and
+    every spring is preloaded (virtual work) to hold the design position under them.
+    """
+    from flexpipe.vehicle.corners import static_wheel_loads
+    from flexpipe.vehicle.suspension.statics import point_masses, preloaded, with_wheels
+
+    links = car.suspension.corners()
+    wheels = {c.name: (c.unsprung_mass - sum(p.mass for p in links[c.name].parts),
+                       c.unsprung_inertia) for c in car.corners}
+    susp = with_wheels(car.suspension, wheels)
+    N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY,
+                           point_masses=point_masses(susp))
+    return preloaded(susp, dict(zip(CORNERS, N, strict=True)), g=GRAVITY), N
+
+
 def default_driver(car: Car, mass: float):
     """Pure pursuit and PI speed controller with gains scaled to the car.
 
@@ -292,6 +311,23 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     W = corners.wheel_center
     Pw = np.array([x0, y0, 0.0]) + W @ R0.T
     z0 = float(np.mean(road_obj.height_xy(Pw[:, 0], Pw[:, 1])))
+    susp = None
+    if car.suspension is not None:
+        # springs preloaded for the static wheel loads of the true mass distribution; the
+        # body in its design attitude on tyres carrying those loads: heave and pitch by the
+        # tyres' static loaded radius minus the design wheel-centre height
+        from flexpipe.vehicle.corners import static_loaded_radius
+
+        susp, N = linkage_statics(car, rb)
+        dz = np.array([static_loaded_radius(t, n) for t, n in zip(tires, N, strict=True)]) \
+            - W[:, 2]
+        xf, xr = W[:2, 0].mean(), W[2:, 0].mean()
+        slope = (dz[:2].mean() - dz[2:].mean()) / (xf - xr)
+        theta = -math.atan(slope)  # rotation about the body y axis
+        Ry = np.array([[math.cos(theta), 0.0, math.sin(theta)], [0.0, 1.0, 0.0],
+                       [-math.sin(theta), 0.0, math.cos(theta)]])
+        R0 = R0 @ Ry
+        z0 += dz[:2].mean() - slope * xf
     p0 = np.array([x0, y0, z0])
     re = np.array([float(t.effective_rolling_radius(t.unloaded_radius - wz))
                    for t, wz in zip(tires, W[:, 2], strict=True)])
@@ -326,17 +362,6 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                                  f"lowest is {fb.frequencies_hz[fb.n_rigid]:.4g} Hz; use "
                                  "body='rigid' or a higher max_mode_hz", key="max_mode_hz")
         q0 = None if car.suspension is not None else static_deflection(fb, corners, n_modes)
-    susp = None
-    if car.suspension is not None:
-        from flexpipe.vehicle.corners import static_wheel_loads
-        from flexpipe.vehicle.suspension.statics import preloaded, with_wheels
-
-        N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY)
-        links = car.suspension.corners()
-        wheels = {c.name: (c.unsprung_mass - sum(p.mass for p in links[c.name].parts),
-                           c.unsprung_inertia) for c in car.corners}
-        susp = preloaded(with_wheels(car.suspension, wheels),
-                         dict(zip(CORNERS, N, strict=True)), g=GRAVITY)
     build = CarBuild(
         chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass,
         center_of_mass=rb.center_of_mass,

@@ -20,6 +20,10 @@ RACK = "rack"
 JOINT_KINDS = ("spherical", "revolute", "universal", "inline")
 FORCE_KINDS = ("spring", "damper", "bump_stop", "rebound_stop")
 BUSHING_DOFS = ("x", "y", "z", "rx", "ry", "rz")
+#: masses of parts the car file does not describe (kg): the steering rack and each arm of
+#: an anti-roll bar (their inertia matters little; their weight enters the static loads)
+RACK_MASS = 2.0
+ARB_ARM_MASS = 0.5
 
 
 def _vec(v, n=3) -> np.ndarray:

@@ -24,6 +24,8 @@ from flexpipe.vehicle.suspension.model import (
 from flexpipe.vehicle.suspension.templates import HARDPOINTS, PARTS, SPRING_PART, build
 
 AXLES = ("front", "rear")
+#: Adams/Car's two modes: bushings as bushings, or replaced by the joints they surround
+MODES = ("compliant", "kinematic")
 
 
 @dataclass(frozen=True)
@@ -33,6 +35,7 @@ class Suspension:
     file: Path
     axles: dict
     rack: Rack | None = None
+    mode: str = "compliant"
 
     def corners(self) -> dict:
         """``{"fl": CornerLinkage, "fr": ..., "rl": ..., "rr": ...}``."""
@@ -277,7 +280,12 @@ def load_suspension(path) -> Suspension:
                      rt.number("column_stiffness_N_m_per_rad", None, lo=0, lo_open=True))
         rt.finish()
     axles = {}
+    mode = st.string("mode", "compliant", choices=MODES,
+                     doc="the car in time runs: bushings as given (compliant) or joints "
+                         "(kinematic)")
     for name in list(st.data):
+        if name == "mode":
+            continue
         if name not in AXLES:
             raise st.error(name, f"unknown axle; valid: {', '.join(AXLES)}")
         axles[name] = _axle(st, name, rack_axle)
@@ -287,7 +295,7 @@ def load_suspension(path) -> Suspension:
             raise InputError(f"the rack is on the {rack_axle} axle, which has no "
                              f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
         axles[rack_axle] = replace(axles[rack_axle], rack=rack)
-    return Suspension(path, axles, rack)
+    return Suspension(path, axles, rack, mode)
 
 
 __all__ = ["Suspension", "load_suspension", "ModelError"]

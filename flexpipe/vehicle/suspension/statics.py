@@ -109,3 +109,23 @@ def with_wheels(suspension, wheels: dict):
             sides.append(replace(c, parts=tuple(parts)))
         axles[name] = replace(a, left=sides[0], right=sides[1])
     return replace(suspension, axles=axles)
+
+
+def point_masses(suspension) -> list:
+    """``[(mass, position)]`` of every part of the suspension (body coordinates at design):
+    the corners' parts (with the wheels when :func:`with_wheels` put them in), the rack at
+    the middle of its mounts and each anti-roll-bar arm at the middle of its arm."""
+    from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, RACK_MASS
+
+    out = [(p.mass, np.asarray(p.cm, float)) for c in suspension.corners().values()
+           for p in c.parts]
+    if suspension.rack is not None:
+        out.append((RACK_MASS, np.mean([np.asarray(v, float)
+                                        for v in suspension.rack.mounts.values()], axis=0)))
+    for a in suspension.axles.values():
+        arb = a.anti_roll_bar
+        if arb is not None:
+            for side in (1.0, -1.0):
+                S = np.array([1.0, side, 1.0])
+                out.append((ARB_ARM_MASS, S * 0.5 * (arb.bushing + arb.arm_end)))
+    return out
