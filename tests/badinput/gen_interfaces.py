@@ -47,6 +47,10 @@ BAD_ENTRIES = {
     "nodes-and-set": 'name = "x"\npoint = [0, 1, 0]\nnodes = [1]\nnode_set = "s"',
     "set-number": 'name = "x"\npoint = [0, 1, 0]\nnode_set = 5',
     "set-empty": 'name = "x"\npoint = [0, 1, 0]\nnode_set = ""',
+    "dofs-four": 'name = "x"\npoint = [0, 1, 0]\nradius = 0.1\ndofs = 4',
+    "dofs-text": 'name = "x"\npoint = [0, 1, 0]\nradius = 0.1\ndofs = "6"',
+    "dofs-bool": 'name = "x"\npoint = [0, 1, 0]\nradius = 0.1\ndofs = true',
+    "dofs-float": 'name = "x"\npoint = [0, 1, 0]\nradius = 0.1\ndofs = 6.5',
 }
 
 WHOLE = {
@@ -99,6 +103,7 @@ OK = {
     "integers-as-coordinates": '[[interface]]\nname = "a"\npoint = [0, 1, 2]\nradius = 1\n',
     "unicode-name": '[[interface]]\nname = "Federbeinstütze"\npoint = [0, 0, 0]\n'
                     'radius = 0.1\n',
+    "three-dofs": '[[interface]]\nname = "a"\npoint = [0, 0, 0]\nradius = 0.1\ndofs = 3\n',
     "crlf": '[[interface]]\r\nname = "a"\r\npoint = [0, 0, 0]\r\nradius = 0.1\r\n',
 }
 
