@@ -38,7 +38,9 @@ def test_lowest_modes_equal_arpack(model, k):
                              return_eigenvectors=False))
     scale = ref[-1]
     assert np.abs(lam[:6]).max() < 1e-6 * scale  # six rigid-body modes
-    np.testing.assert_allclose(lam[6:], ref[6:], rtol=1e-6)
+    # typically 3e-9; 1e-5 leaves room for threaded PARDISO/ARPACK rounding under load
+    # (one run reached 1.2e-6) and still fails the old bug (~100 %) by five decades
+    np.testing.assert_allclose(lam[6:], ref[6:], rtol=1e-5)
     np.testing.assert_allclose(X.T @ (M @ X), np.eye(k), atol=1e-8)
     R = K @ X[:, 6:] - (M @ X[:, 6:]) * lam[6:]
     rel = np.linalg.norm(R, axis=0) / np.linalg.norm(K @ X[:, 6:], axis=0)
