@@ -1,8 +1,10 @@
-"""``flexpipe info FILE``: summary of a FlexBody (.npz) or a mesh file.
+"""``flexpipe info FILE``: summary of a FlexBody (.npz), a car file (.toml) or a mesh file.
 
 For a FlexBody it prints the reduced-vs-full frequency table, the MAC matrix and mass
 properties (see :func:`flexpipe.cli_reduce.info_text`) and can write the mode shapes as
-.vtu; for a mesh it lists nodes, element blocks, named sets and carried properties.
+.vtu; for a mesh it lists nodes, element blocks, named sets, carried properties, constraints,
+the solution set-up of a solver deck, and what the reader read, converted (e.g. CQUAD8
+into CQUAD4) and dropped (loads, output requests, unknown cards).
 """
 
 from __future__ import annotations
@@ -39,6 +41,22 @@ def mesh_text(mesh) -> str:
         lines.append(f"  {len(mesh.point_masses)} point masses, {total:.6g} kg in total")
     if mesh.rigid_links:
         lines.append(f"  {len(mesh.rigid_links)} rigid links (RBE2)")
+    if mesh.interpolations:
+        lines.append(f"  {len(mesh.interpolations)} interpolation constraints (RBE3)")
+    for name, rows in sorted(mesh.dof_sets.items()):
+        lines.append(f"  DOF set {name}: {len(rows)} DOF on "
+                     f"{len(set(map(int, rows[:, 0])))} nodes")
+    if mesh.solution:
+        lines.append("  solution set-up: " + ", ".join(
+            f"{k}={v}" for k, v in mesh.solution.items() if v is not None))
+    labels = {"read": "read", "converted": "converted", "dropped": "not used (dropped)"}
+    for key, label in labels.items():
+        items = dict(mesh.info.get(key, {}))
+        if items:
+            lines.append(f"  {label}: " + ", ".join(f"{k} {v}" for k, v in
+                                                     sorted(items.items())))
+        elif key != "read" and "read" in mesh.info:
+            lines.append(f"  {label}: none")
     return "\n".join(lines)
 
 
@@ -49,6 +67,12 @@ def run(args) -> int:
         from flexpipe.cli_reduce import run_info
 
         return run_info(args)
+    if path.suffix.lower() == ".toml":
+        from flexpipe.vehicle.describe import car_text
+        from flexpipe.vehicle.spec import load_car
+
+        print(car_text(load_car(path)))
+        return 0
     from flexpipe.mesh import read_mesh
 
     print(mesh_text(read_mesh(path, args.scale)))

@@ -4,6 +4,12 @@ Prints the frequency table and writes ``modes.vtu`` (all modes as point-data vec
 frequencies as field data) and ``frequencies.csv`` into ``--out`` (default
 ``out/modes/<mesh stem>/``); ``--per-mode`` adds ``mode_01.vtu`` ... for animation.
 
+A Nastran SOL 103 deck runs as Nastran would: its case-control ``SPC = n`` set (with
+``GRID`` ``PS``) is held fixed and its ``METHOD`` ``EIGRL`` (number of roots ``ND``,
+frequency range ``V1..V2``) chooses the modes, unless ``--fixed`` / ``--n`` are given;
+``PARAM, COUPMASS, -1`` (lumped mass, Nastran's default when the deck says so) is
+honoured.
+
 Example::
 
     flexpipe modes meshes/plate_quad.msh --material steel --thickness 0.002 --n 20
@@ -32,7 +38,8 @@ def add_arguments(p) -> None:
     p.add_argument("--rho", type=float, help="density in kg/m^3 (overrides --material)")
     p.add_argument("--thickness", type=float,
                    help="shell thickness in m for shells the file gives none")
-    p.add_argument("--n", type=int, default=20, help="number of modes (default 20)")
+    p.add_argument("--n", type=int, default=None,
+                   help="number of modes (default: the deck's EIGRL, else 20)")
     p.add_argument("--fixed", action="append", default=[], metavar="SET",
                    help="node set or cell set whose nodes are clamped (repeatable)")
     p.add_argument("--scale", type=float, default=1.0,
@@ -81,7 +88,7 @@ def _material(args):
 
 def _check_file_materials(mesh) -> None:
     for bi, b in enumerate(mesh.blocks):
-        if b.type == "vertex" or len(b) == 0:
+        if b.type in ("vertex", "spring", "spring1") or len(b) == 0:
             continue
         covered = np.zeros(len(b), dtype=bool)
         for name, props in mesh.sections.items():
@@ -101,7 +108,7 @@ def run(args) -> int:
     from flexpipe.mesh import read_mesh
     from flexpipe.mesh.vtu import write_modes
 
-    if args.n < 1:
+    if args.n is not None and args.n < 1:
         raise InputError(f"--n must be a positive number of modes, got {args.n}", key="--n")
     material = _material(args)
     path = Path(args.mesh)
@@ -112,14 +119,33 @@ def run(args) -> int:
         _check_file_materials(mesh)
     with _step("assembling", args.quiet):
         fe = assemble(mesh, material, allow_disconnected=args.allow_disconnected,
-                      progress=not args.quiet)
+                      progress=not args.quiet, lumped=bool(mesh.solution.get("lumped_mass")))
     fixed = None
+    sol = dict(mesh.solution)
     if args.fixed:
         nodes = np.unique(np.concatenate([mesh.nodes_of(name) for name in args.fixed]))
         dpn = fe.dofs_per_node
         fixed = (nodes[:, None] * dpn + np.arange(dpn)).ravel()
-    with _step(f"solving for {args.n} modes ({fe.Kr.shape[0]} DOF)", args.quiet):
-        freqs, shapes = eigenmodes(fe, args.n, fixed_dofs=fixed)
+    else:
+        fixed = deck_fixed_dofs(mesh, fe.dofs_per_node)
+        if fixed is not None and not args.quiet:
+            print(f"deck constraints: {', '.join(deck_sets(mesh))} ({len(fixed)} DOF)",
+                  file=sys.stderr)
+    n = args.n if args.n is not None else (sol.get("n_modes") or 20)
+    f_lo, f_hi = (None, None) if args.n is not None else (sol.get("f_min"), sol.get("f_max"))
+    with _step(f"solving for {n} modes ({fe.Kr.shape[0]} DOF)", args.quiet):
+        dirs = None if args.fixed else mesh.solution.get("spc_directions")
+        freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed, directions=dirs)
+        while f_hi is not None and freqs[-1] < f_hi and sol.get("n_modes") is None \
+                and len(freqs) < fe.Kr.shape[0] - (0 if fixed is None else len(fixed)) - 1:
+            n = min(2 * n, fe.Kr.shape[0] - 1 - (0 if fixed is None else len(fixed)))
+            freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed, directions=dirs)
+        keep = np.ones(len(freqs), dtype=bool)
+        if f_lo is not None:
+            keep &= freqs >= f_lo
+        if f_hi is not None:
+            keep &= freqs <= f_hi
+        freqs, shapes = freqs[keep], shapes[:, keep]
     out = Path(args.out) if args.out else Path("out") / "modes" / path.stem
     written = write_modes(out / "modes.vtu", mesh, freqs, shapes,
                           per_mode_dir=out if args.per_mode else None)
@@ -128,10 +154,32 @@ def run(args) -> int:
     counts = ", ".join(f"{b.type} {len(b)}" for b in mesh.blocks)
     print(f"{path}: {mesh.n_nodes} nodes, {counts}; {fe.Kr.shape[0]} DOF; "
           f"mass {fe.total_mass:.6g} kg" + (f"; fixed: {', '.join(args.fixed)}"
-                                             if args.fixed else ""))
+                                             if args.fixed else "")
+          + (f"; deck SPC: {', '.join(deck_sets(mesh))}" if fixed is not None
+             and not args.fixed else ""))
     print(f"{'mode':>5}  {'frequency [Hz]':>16}")
     for k, f in enumerate(freqs):
         print(f"{k + 1:>5}  {f:>16.6g}")
     print(f"wrote {written[0]} ({len(freqs)} modes) and {out / 'frequencies.csv'}"
           + (f" and {len(written) - 1} per-mode files" if args.per_mode else ""))
     return 0
+
+
+def deck_sets(mesh) -> list[str]:
+    """Names of the DOF sets a deck's solution set-up holds fixed (SPC = n, GRID PS)."""
+    names = []
+    if mesh.solution.get("spc"):
+        names.append(mesh.solution["spc"])
+    if "GRID_PS" in mesh.dof_sets:
+        names.append("GRID_PS")
+    return names
+
+
+def deck_fixed_dofs(mesh, dpn: int):
+    """Global DOF held fixed by the deck's case-control SPC set and GRID PS, or None."""
+    names = deck_sets(mesh)
+    if not names:
+        return None if mesh.solution.get("spc_directions") is None else np.zeros(0, np.int64)
+    rows = np.vstack([np.asarray(mesh.dof_sets[k]).reshape(-1, 2) for k in names])
+    rows = rows[rows[:, 1] < dpn]
+    return np.unique(rows[:, 0] * dpn + rows[:, 1])

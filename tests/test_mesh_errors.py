@@ -43,9 +43,9 @@ def test_unsupported_element_types(tmp_path):
                  binary=False)
     with pytest.raises(MeshError, match=r"t6.msh: element type 'triangle6'.*supported: .*quad"):
         read_mesh(p)
-    bdf = _write(tmp_path, "penta.bdf", _deck(*TET, "GRID,5,,1.,1.,0.", "GRID,6,,1.,1.,1.",
-                                              "CPENTA,77,1,1,2,3,4,5,6"))
-    with pytest.raises(MeshError, match=r"penta.bdf, line 8: CPENTA 77: CPENTA is not supported"):
+    bdf = _write(tmp_path, "gap.bdf", _deck(*TET, "GRID,5,,1.,1.,0.", "GRID,6,,1.,1.,1.",
+                                            "CGAP,77,1,1,2"))
+    with pytest.raises(MeshError, match=r"gap.bdf, line 8: CGAP 77: CGAP is not supported"):
         read_mesh(bdf)
     inp = _write(tmp_path, "c20.inp", "*NODE\n1,0,0,0\n*ELEMENT, TYPE=C3D20\n1,1\n")
     with pytest.raises(MeshError, match=r"c20.inp, line 3: element type 'C3D20' is not supported"):
@@ -61,10 +61,16 @@ def test_nan_coordinates_name_node(tmp_path):
 
 
 def test_unreferenced_nodes_error_and_prune(tmp_path):
-    p = _write(tmp_path, "orphan.bdf", _deck(*TET, "GRID,99,,5.,5.,5.", "CTETRA,1,1,1,2,3,4"))
-    with pytest.raises(MeshError, match=r"orphan.bdf: 1 node.*ids \[99\].*prune_unreferenced=True"):
+    p = _write(tmp_path, "orphan.inp", "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n"
+               "99,5,5,5\n*ELEMENT, TYPE=C3D4\n1,1,2,3,4\n")
+    with pytest.raises(MeshError, match=r"orphan.inp: 1 node.*ids \[99\].*prune_unreferenced=True"):
         read_mesh(p)
     mesh = read_mesh(p, prune_unreferenced=True)
+    assert mesh.node_ids.tolist() == [1, 2, 3, 4]
+    # Nastran accepts unreferenced GRIDs (AUTOSPC removes their DOF): a warning, left out
+    p = _write(tmp_path, "orphan.bdf", _deck(*TET, "GRID,99,,5.,5.,5.", "CTETRA,1,1,1,2,3,4"))
+    with pytest.warns(MeshWarning, match=r"orphan.bdf: 1 GRID\(s\) belong to no element.*99"):
+        mesh = read_mesh(p)
     assert mesh.node_ids.tolist() == [1, 2, 3, 4]
     assert mesh.node_ids[mesh.blocks[0].cells].tolist() == [[1, 2, 3, 4]]
 

@@ -391,10 +391,13 @@ class CarSystem:
         self.apply(loads, st.mount_R, st)
         last = {"t": 0.0, "n": 0}
 
+        self.prestep_cpu = 0.0  # CPU seconds spent in the Python step (profile)
+
         def prestep(mbs_, t):
             t0 = t - h  # the state is at the start of the step
             if t0 <= 1e-12:
                 return True
+            c0 = time.process_time()
             st = self.state(t0)
             loads = step(st)
             last["t"] = t0
@@ -404,6 +407,7 @@ class CarSystem:
             if loads is None:
                 return False
             self.apply(loads, st.mount_R, st)
+            self.prestep_cpu += time.process_time() - c0
             return True
 
         from flexpipe._signals import Interrupted, deferred_interrupts  # flexpipe#14

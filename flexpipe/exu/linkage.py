@@ -78,8 +78,11 @@ class LinkageModel:
         self.kinematic = getattr(suspension, "mode", "compliant") == "kinematic"
         self.corners = suspension.corners()
         self.knuckle_node, self.part_nodes, self.forces = [], [], []
+        self._kc = {}  # connector -> (stiffness, damping) last set
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
         self._pos_markers = {}
+        #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
+        self.body_links = []
         self.rack = None
         for i, cn in enumerate(CORNERS):
             self._corner(i, self.corners[cn])
@@ -159,6 +162,9 @@ class LinkageModel:
                     visualization=eii.VObjectConnectorSpringDamper(show=False)))
             if lk.b == RACK:
                 self.to_other.append((i, co, mb, ma))
+            elif lk.b == BODY:
+                kind = "distance" if lk.axial_stiffness is None or self.kinematic else "vector"
+                self.body_links.append((lk.mount, co, kind, (mb, ma), None))
         for f in c.forces:
             mb = self.mount_marker(f.mount, False)
             ma = self._marker(own(f.part), f.point, False)
@@ -167,6 +173,7 @@ class LinkageModel:
                 damping=0.0, force=0.0,
                 visualization=eii.VObjectConnectorSpringDamper(show=False)))
             self.forces.append((i, f, co, mb, ma))
+            self.body_links.append((f.mount, co, "vector", (mb, ma), None))
 
     def _joint(self, j, a, b):
         """Joint ``j`` between owners ``a`` and ``b`` (see module docstring)."""
@@ -178,18 +185,23 @@ class LinkageModel:
             m1 = self._marker(part, j.point, True)
             bu = j.bushing
             A = bu.frame
-            mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+            co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
                 markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
                 damping=np.diag(bu.damping), rotationMarker0=A, rotationMarker1=A,
                 visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False)))
+            self.body_links.append((j.mount, co, "local", (m0, m1), A))
             return
         if j.kind == "spherical":
             m0 = (self.mount_marker(j.mount, False) if a == BODY
                   else self._marker(a, j.point, False))
             m1 = (self.mount_marker(j.mount, False) if b == BODY
                   else self._marker(b, j.point, False))
-            mbs.AddObject(eii.ObjectJointSpherical(
+            co = mbs.AddObject(eii.ObjectJointSpherical(
                 markerNumbers=[m0, m1], visualization=eii.VObjectJointSpherical(show=False)))
+            if BODY in (a, b):
+                sign = 1.0 if a == BODY else -1.0
+                self.body_links.append((j.mount, co, "vector" if sign > 0 else "vector-",
+                                        (m0, m1), None))
             return
         m0 = self.mount_marker(j.mount, True) if a == BODY else self._marker(a, j.point, True)
         m1 = self.mount_marker(j.mount, True) if b == BODY else self._marker(b, j.point, True)
@@ -202,9 +214,12 @@ class LinkageModel:
             ex = np.cross(ey, ez)
             ex /= np.linalg.norm(ex)
             A, axes = np.column_stack([ex, ey, np.cross(ex, ey)]), [1, 1, 1, 1, 0, 0]
-        mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
-                                       rotationMarker0=A, rotationMarker1=A,
-                                       visualization=eii.VGenericJoint(show=False)))
+        co = mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
+                                            rotationMarker0=A, rotationMarker1=A,
+                                            visualization=eii.VGenericJoint(show=False)))
+        if BODY in (a, b):
+            self.body_links.append((j.mount, co, "local" if a == BODY else "local-",
+                                    (m0, m1), A))
 
     # ------------------------------------------------------------------ rack, bars
     def _rack_owner(self):
@@ -223,8 +238,9 @@ class LinkageModel:
         for name, axes in ((left, [1, 0, 1, 0, 1, 0]), (right, [1, 0, 1, 0, 0, 0])):
             m0 = self.mount_marker(name, True)
             m1 = self._marker(owner, rk.mounts[name], True)
-            mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
-                                           visualization=eii.VGenericJoint(show=False)))
+            co = mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
+                                                visualization=eii.VGenericJoint(show=False)))
+            self.body_links.append((name, co, "local", (m0, m1), np.eye(3)))
         # column: a spring along the rack from the left mount to a rack point d to the right
         d = 0.2
         pl = np.asarray(rk.mounts[left], float)
@@ -234,6 +250,7 @@ class LinkageModel:
         col = mbs.AddObject(eii.ObjectConnectorSpringDamper(
             markerNumbers=[mb, mr], referenceLength=d, stiffness=float(k),
             damping=float(2e-3 * k), visualization=eii.VObjectConnectorSpringDamper(show=False)))
+        self.body_links.append((left, col, "vector", (mb, mr), None))
         self.rack = {"owner": owner, "node": node, "column": col, "d": d, "rack": rk}
         return owner
 
@@ -258,10 +275,11 @@ class LinkageModel:
             A = _frame((0.0, 1.0, 0.0))
             m0 = self.mount_marker(name, True)
             m1 = self._marker(owner, bush, True)
-            mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=[1, 1, 1,
-                                                                                    1, 1, 0],
-                                           rotationMarker0=A, rotationMarker1=A,
-                                           visualization=eii.VGenericJoint(show=False)))
+            co = mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1],
+                                                constrainedAxes=[1, 1, 1, 1, 1, 0],
+                                                rotationMarker0=A, rotationMarker1=A,
+                                                visualization=eii.VGenericJoint(show=False)))
+            self.body_links.append((name, co, "local", (m0, m1), A))
             i = CORNERS.index(corner.corner)
             part = self.owners[corner.corner][arb.part]
             ma = self._marker(part, low, False)
@@ -300,10 +318,37 @@ class LinkageModel:
                 P = f.static_force(L)
                 PL = (f.static_force(L + e) - f.static_force(L - e)) / (2 * e)
                 k, c, force = -PL, 0.0, -P
-            so(co, "referenceLength", L)
-            so(co, "stiffness", k)
-            so(co, "damping", c)
+            # F = k (L - L_ref) + c dL/dt + force with L_ref fixed at the design length:
+            # only the force changes every step; k and c only when the tangent changes
+            force += k * (f.design_length - L)
+            last = self._kc.get(co)
+            if last != (k, c):
+                so(co, "stiffness", k)
+                so(co, "damping", c)
+                self._kc[co] = (k, c)
             so(co, "force", force)
+
+    def mount_forces(self) -> dict:
+        """Force (global, N) the suspension applies to the body at each mount, summed over
+        the joints, links, bushings and force elements there.  Exudyn reports every
+        connector's force as the force on its marker 0 (global, or in marker 0's joint
+        frame for joints and bushings)."""
+        mbs = self.mbs
+        go, gm = mbs.GetObjectOutput, mbs.GetMarkerOutput
+        out = {}
+        for mount, co, kind, (m0, m1), A in self.body_links:
+            if kind == "distance":
+                d = np.asarray(gm(m1, OV.Position)) - np.asarray(gm(m0, OV.Position))
+                F = float(go(co, OV.Force)) * d / np.linalg.norm(d)
+            elif kind.startswith("vector"):
+                F = np.asarray(go(co, OV.Force), dtype=float)
+            else:
+                R0 = np.asarray(gm(m0, OV.RotationMatrix), dtype=float).reshape(3, 3)
+                F = R0 @ A @ np.asarray(go(co, OV.ForceLocal), dtype=float)
+            if kind.endswith("-"):  # the body is marker 1: the opposite force
+                F = -F
+            out[mount] = out.get(mount, 0.0) + F
+        return out
 
     def hub_forces(self, F_tire: np.ndarray) -> np.ndarray:
         """Force (4, 3, global) each corner applies to the body through its own mounts:

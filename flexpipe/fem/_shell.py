@@ -221,17 +221,72 @@ def to_global(K: np.ndarray, R: np.ndarray, h: np.ndarray, *,
     return out
 
 
-def in_sub_batches(fn, geometry, E, nu, rho, t, *, size: int = SUB_BATCH):
-    """Run ``fn(R, xy, h, E, nu, rho, t) -> (K, M)`` over cache-sized sub-batches.
+def rigidities(E, nu, t, bend, lam):
+    """Membrane ``C_m`` (ne, 3, 3), bending ``D`` (ne, 3, 3) and shear ``G t`` (ne,).
 
-    Element matrices are written into preallocated outputs, so the temporaries stay
-    small (a few MB) whatever the batch size handed over by the assembler.
+    ``lam`` is None (isotropic: plane stress from ``E, nu, t``, bending scaled by
+    ``bend``) or a laminate ``(A, D, Gt)`` from :mod:`flexpipe.fem.laminate`.
+    """
+    if lam is None:
+        return (plane_stress(E, nu, t), bending_rigidity(E, nu, t) * bend[:, None, None],
+                E / (2 * (1 + nu)) * t)
+    return lam
+
+
+def material_angle(R: np.ndarray, ref: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """Angle (rad) of the material x axis from the element x axis ``e1``: ``theta`` plus,
+    where ``ref`` (ne, 3) is finite, the angle of ``ref`` projected onto the element
+    plane (global Z instead when ``ref`` is within 0.1 degree of the normal, as Abaqus)."""
+    phi = np.array(theta, dtype=float, copy=True)
+    has = np.isfinite(ref).all(axis=1)
+    if has.any():
+        v = np.einsum("eij,ej->ei", R[has], ref[has])
+        along_n = np.hypot(v[:, 0], v[:, 1]) < 1.75e-3 * np.linalg.norm(v, axis=1)
+        if along_n.any():
+            v[along_n] = R[has][along_n][:, :, 2]
+        phi[has] += np.arctan2(v[:, 1], v[:, 0])
+    return phi
+
+
+def oriented(lam, R):
+    """Laminate ``(A, D, Gt[, ref, theta])`` turned into each element's axes."""
+    if lam is None or len(lam) == 3:
+        return lam
+    from flexpipe.fem.laminate import rotate_batch
+
+    A, D, Gt, ref, theta = lam
+    phi = material_angle(R, ref, theta)
+    if not phi.any():
+        return A, D, Gt
+    return rotate_batch(A, phi), rotate_batch(D, phi), Gt
+
+
+def in_sub_batches(fn, geometry, E, nu, rho, t, *, bending=1.0, laminate=None,
+                   size: int = SUB_BATCH):
+    """Run ``fn(R, xy, h, E, nu, rho, t, bending, lam) -> (K, M)`` over sub-batches.
+
+    ``bending`` scales the plate bending rigidity (Nastran PSHELL ``12I/T^3`` times
+    ``E(MID2) / E(MID1)``; 0 = membrane only).  Element matrices are written into
+    preallocated outputs, so the temporaries stay small (a few MB) whatever the batch
+    size handed over by the assembler.
     """
     ne, nn = geometry[1].shape[:2]
-    E, nu, rho, t = (np.broadcast_to(np.asarray(v, dtype=float), (ne,)) for v in (E, nu, rho, t))
+    E, nu, rho, t, bending = (np.broadcast_to(np.asarray(v, dtype=float), (ne,))
+                              for v in (E, nu, rho, t, bending))
     K = np.empty((ne, 6 * nn, 6 * nn))
     M = np.empty((ne, 6 * nn, 6 * nn))
     for s in range(0, ne, size):
         sl = slice(s, s + size)
-        K[sl], M[sl] = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl])
+        lam = None if laminate is None else tuple(np.asarray(a)[sl] for a in laminate)
+        K[sl], M[sl] = fn(*(g[sl] for g in geometry), E[sl], nu[sl], rho[sl], t[sl],
+                          bending[sl], lam)
     return K, M
+
+
+def offset_heights(h: np.ndarray, zoffset) -> np.ndarray:
+    """Heights of the nodes above the element's mid-surface: warping ``h`` minus the
+    shell offset ``zoffset`` (Nastran ZOFFS: mid-surface at ``node + zoffs n``)."""
+    if zoffset is None:
+        return h
+    z = np.asarray(zoffset, dtype=float).reshape(-1)
+    return h - z[:, None] if np.any(z) else h

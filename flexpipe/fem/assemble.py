@@ -14,6 +14,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from flexpipe.errors import InputError, MeshError, ModelError
+from flexpipe.fem import interpolation
 from flexpipe.fem._element import BadElements
 from flexpipe.fem.material import Material
 from flexpipe.fem.model import FEModel
@@ -38,6 +39,10 @@ FAMILIES = {
     "triangle": "flexpipe.fem.shell_tri3",
     "quad": "flexpipe.fem.shell_quad4",
     "line": "flexpipe.fem.beam3d",
+    "wedge": "flexpipe.fem.wedge6",
+    "pyramid": "flexpipe.fem.pyramid5",
+    "spring": "flexpipe.fem.spring",
+    "spring1": "flexpipe.fem.spring",
 }
 CHUNK = 100_000  # most cells per vectorized batch (bounds peak memory)
 BATCH_BYTES = 16 * 2**20  # target size of one batch of element matrices
@@ -50,6 +55,15 @@ def _batch_size(nd: int) -> int:
     for every batch, which on a 1M-DOF mesh saves more time than the batching costs.
     """
     return int(max(256, min(CHUNK, BATCH_BYTES // (8 * nd * nd))))
+
+
+class _Stacked(tuple):
+    """A tuple of per-cell arrays that slices element-wise like one array."""
+
+    def __getitem__(self, sl):
+        if isinstance(sl, slice):
+            return tuple(a[sl] for a in self)
+        return tuple.__getitem__(self, sl)
 
 
 def _family(cell_type: str):
@@ -182,6 +196,9 @@ def _check_connectivity(mesh: Mesh, *, allow_disconnected: bool):
     for link in mesh.rigid_links:
         rows.append(np.full(len(link.slaves), link.master))
         cols.append(np.asarray(link.slaves))
+    for it in mesh.interpolations:
+        rows.append(np.full(len(it.nodes), it.ref))
+        cols.append(np.asarray(it.nodes, dtype=np.int64))
     used = np.zeros(n, dtype=bool)
     for b in mesh.blocks:
         used[b.cells.ravel()] = True
@@ -190,6 +207,9 @@ def _check_connectivity(mesh: Mesh, *, allow_disconnected: bool):
         used[np.asarray(link.slaves)] = True
     for pm in mesh.point_masses:
         used[pm.node] = True
+    for it in mesh.interpolations:
+        used[it.ref] = True
+        used[np.asarray(it.nodes, dtype=np.int64)] = True
     if not used.all():
         idx = np.flatnonzero(~used)
         raise MeshError(
@@ -226,7 +246,9 @@ def _point_mass_matrix(mesh, dpn, n_dof):
                             f"{m}; must be >= 0 kg", file=mesh.source or None)
         blk = np.zeros((dpn, dpn))
         blk[:3, :3] = m * np.eye(3)
-        if dpn == 6:
+        if pm.matrix is not None:
+            blk = np.asarray(pm.matrix, dtype=float)[:dpn, :dpn]
+        elif dpn == 6:
             r = np.asarray(pm.offset, dtype=float)
             S = np.array([[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]])
             blk[:3, 3:] = -m * S
@@ -282,22 +304,48 @@ def _constraint_map(mesh, dpn, n_dof, K, M):
                             dep_cols.append(mb + 3 + k)
                             dep_vals.append(cross[c, k])
             touched[link.master * dpn: link.master * dpn + dpn] = True
+    for it in mesh.interpolations:
+        ref, cols_i, coef = interpolation.rows(it, mesh.points, mesh.node_ids)
+        for j, c in enumerate(ref):
+            g = it.ref * dpn + c
+            if dependent[g]:
+                raise ModelError(f"RBE3 {it.id}: reference {mesh.describe_node(it.ref)} "
+                                 f"component {c + 1} is already dependent (another RBE2/RBE3)")
+            dependent[g] = True
+            nz = coef[j] != 0
+            dep_rows.extend([g] * int(nz.sum()))
+            dep_cols.extend((cols_i[nz, 0] * dpn + cols_i[nz, 1]).tolist())
+            dep_vals.extend(coef[j][nz].tolist())
     indep = np.flatnonzero(touched & ~dependent)
     col_of = np.full(n_dof, -1, dtype=np.int64)
     col_of[indep] = np.arange(len(indep))
-    rows, cols, vals = indep, np.arange(len(indep)), np.ones(len(indep))
-    if dep_rows:
-        dc = col_of[np.asarray(dep_cols)]
-        if (dc < 0).any():
-            raise ModelError("an RBE2 master DOF is not an independent DOF")
-        rows = np.concatenate([rows, np.asarray(dep_rows, dtype=np.int64)])
-        cols = np.concatenate([cols, dc])
-        vals = np.concatenate([vals, np.asarray(dep_vals, dtype=float)])
-    return sp.csr_matrix((vals, (rows, cols)), shape=(n_dof, len(indep)))
+    P = sp.csr_matrix((np.ones(len(indep)), (indep, np.arange(len(indep)))),
+                      shape=(n_dof, len(indep)))
+    if not dep_rows:
+        return P
+    dc = np.asarray(dep_cols, dtype=np.int64)
+    free = ~(dependent[dc] | (col_of[dc] >= 0))
+    if free.any():
+        bad = int(dc[np.flatnonzero(free)[0]])
+        raise ModelError(
+            f"a rigid element (RBE2 master or RBE3 independent node) uses "
+            f"{mesh.describe_node(bad // dpn)} component {bad % dpn + 1}, which no element "
+            "gives stiffness (e.g. a rotation of a solid node); use components it has")
+    D = sp.csr_matrix((np.asarray(dep_vals, dtype=float), (np.asarray(dep_rows), dc)),
+                      shape=(n_dof, n_dof))
+    T = P
+    for _ in range(16):  # chains: a dependent DOF expressed through other dependent DOF
+        T_new = (P + D @ T).tocsr()
+        if (T_new != T).nnz == 0:
+            return T_new
+        T = T_new
+    raise ModelError("rigid elements (RBE2/RBE3) depend on each other in a loop or a chain "
+                     "deeper than 16; merge them")
 
 
 def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
-             allow_disconnected: bool = False, progress: bool = False) -> FEModel:
+             allow_disconnected: bool = False, progress: bool = False,
+             lumped: bool = False) -> FEModel:
     """Assemble mass and stiffness matrices of a mesh.
 
     Parameters
@@ -314,6 +362,9 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
         Accept a structure made of several unconnected parts.
     progress : bool
         Show a progress bar over element batches.
+    lumped : bool
+        Lumped (diagonal, translational) element masses instead of consistent ones, as
+        Nastran's default ``PARAM COUPMASS -1`` (see :mod:`flexpipe.fem.lumped`).
 
     Returns
     -------
@@ -336,9 +387,21 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
         if block.type == "vertex" or len(block) == 0:
             continue
         fam = _family(block.type)
-        E, nu, rho = material_arrays(mesh, bi, block, material)
-        if block.type in SHELL_TYPES:
+        if getattr(fam, "FROM_DATA", False):  # springs: matrices computed by the reader
+            E = nu = rho = np.zeros(len(block))
+            props = {k: np.asarray(v) for k, v in block.data.items()}
+        else:
+            E, nu, rho = material_arrays(mesh, bi, block, material)
+        if getattr(fam, "FROM_DATA", False):
+            pass
+        elif block.type in SHELL_TYPES:
             props = shell_props(mesh, bi, block, thickness)
+            if "laminate_rows" in props:   # composite sections (PCOMP): A, D, Gt per cell
+                from flexpipe.fem.properties import laminate_arrays
+
+                lam = laminate_arrays(props.pop("laminate_rows"), E, nu, props["thickness"],
+                                      props.pop("laminate_ref"), props.pop("laminate_theta"))
+                props["laminate"] = _Stacked(lam)
         elif block.type in BEAM_TYPES:
             props = beam_props(mesh, bi, block, beam_section)
         else:
@@ -354,6 +417,8 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
     pattern = _Pattern(mesh, dpn)
     Kdata = np.zeros(pattern.nnz)
     Mdata = np.zeros(pattern.nnz)
+    damped = any("B" in b.data for b in mesh.blocks)
+    Cdata = np.zeros(pattern.nnz) if damped else None
     for _bi, block, fam, E, nu, rho, props, sl in iterator:
         conn = block.cells[sl]
         X = mesh.points[conn]
@@ -367,6 +432,10 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
                 f"ids {ids}; fix the node order/coordinates of these elements",
                 file=mesh.source or None,
             ) from None
+        if lumped:
+            from flexpipe.fem.lumped import lump
+
+            Me = lump(Me, fam.DOFS_PER_NODE)
         # exact symmetry of the element matrices makes the assembled ones exactly symmetric
         # (both triangles receive the same values in the same order)
         if not getattr(fam, "SYMMETRIC", False):
@@ -378,17 +447,28 @@ def assemble(mesh: Mesh, material=None, thickness=None, beam_section=None, *,
         pos = pattern.positions(conn, de)
         pattern.add(Kdata, pos, Ke)
         pattern.add(Mdata, pos, Me)
+        if damped and "B" in props:
+            pattern.add(Cdata, pos, fam.damping(X, **{k: v[sl] for k, v in props.items()}))
         del Ke, Me, pos
     Mp = _point_mass_matrix(mesh, dpn, n_dof)
     pattern.add_sparse(Mdata, (Mp + Mp.T) * 0.5)
+    C = None
+    if damped:   # before K takes over (and compresses) the shared index arrays
+        C = pattern.matrix(Cdata, copy_structure=True)
+        C.eliminate_zeros()
     K = pattern.matrix(Kdata, copy_structure=False)
     M = pattern.matrix(Mdata, copy_structure=True)
     # drop exact zeros (unused rotation entries of solid nodes in a 6-DOF model, couplings
     # that vanish on regular grids): less work for the factorization
     K.eliminate_zeros()
     M.eliminate_zeros()
-    T = _constraint_map(mesh, dpn, n_dof, K, M)
+    try:
+        T = _constraint_map(mesh, dpn, n_dof, K, M)
+    except ModelError as exc:
+        if mesh.source and mesh.source not in str(exc):
+            raise ModelError(f"{mesh.source}: {exc}") from None
+        raise
     # the property arguments, so that stresses (flexpipe.fem.stress) use the same values
     info = {"material": material, "thickness": thickness, "beam_section": beam_section}
     return FEModel(M=M, K=K, nodes=np.array(mesh.points), dofs_per_node=dpn, T=T, mesh=mesh,
-                   info=info)
+                   C=C, info=info)

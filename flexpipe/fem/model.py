@@ -33,6 +33,8 @@ class FEModel:
         touches and expresses rigid-link (RBE2) slave DOF through their master.
     mesh : Mesh, optional
         The mesh the model was assembled from.
+    C : scipy.sparse.csr_matrix, optional
+        Viscous damping of discrete dampers (Nastran CBUSH/PBUSH B), when the mesh has any.
     """
 
     M: sp.csr_matrix
@@ -42,6 +44,7 @@ class FEModel:
     T: sp.csr_matrix | None = None
     mesh: Mesh | None = None
     info: dict = field(default_factory=dict)
+    C: sp.csr_matrix | None = None
 
     def __post_init__(self):
         if self.T is None:

@@ -123,7 +123,13 @@ def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol
         # M may be singular (massless DOF): solve M x = mu (K - sigma M) x, whose
         # B-matrix is positive definite, and map back with lambda = sigma + 1/mu
         A = Kd - sigma * Md
-        mu, X = sla.eigh(Md, A, subset_by_index=[ndof - n, ndof - 1])
+        try:
+            mu, X = sla.eigh(Md, A, subset_by_index=[ndof - n, ndof - 1])
+        except np.linalg.LinAlgError:
+            raise ModelError(
+                "K - sigma M is not positive definite: the shift is not below the lowest "
+                "eigenvalue, or DOF have neither stiffness nor mass (check materials, "
+                "densities and supports)") from None
         lam = sigma + 1.0 / mu[::-1]
         X = X[:, ::-1]
         mm = np.einsum("ij,ij->j", X, Md @ X)
@@ -174,8 +180,47 @@ def solve_eigen(K, M, n: int, *, sigma: float = DEFAULT_SIGMA, backend=None, tol
     return lam, X
 
 
+def _direction_basis(fe: FEModel, keep: np.ndarray, directions) -> sp.csr_matrix:
+    """Orthonormal basis Z (len(keep), m) of the kept coordinates in which every
+    ``(node, group, d)`` row of ``directions`` has zero displacement (group 0) or
+    rotation (group 1) along ``d``."""
+    import scipy.linalg as sla
+
+    d = np.asarray(directions, dtype=float).reshape(-1, 5)
+    dpn = fe.dofs_per_node
+    groups: dict = {}
+    for row in d:
+        groups.setdefault((int(row[0]), int(row[1])), []).append(row[2:])
+    replaced = np.zeros(len(keep), dtype=bool)
+    rows, cols, vals = [], [], []
+    m = 0
+    for (node, g), dirs in groups.items():
+        if 3 * g + 3 > dpn:
+            raise InputError(f"a rotation constraint at node index {node} in a model without "
+                             "rotational DOF")
+        c3 = fe.independent_of_dof[node * dpn + 3 * g + np.arange(3)]
+        pos = np.searchsorted(keep, c3)
+        if (c3 < 0).any() or (pos >= len(keep)).any() or (keep[np.minimum(
+                pos, len(keep) - 1)] != c3).any():
+            where = fe.mesh.describe_node(node) if fe.mesh else f"node index {node}"
+            raise InputError(f"directional constraint at {where}: its DOF are fixed, tied by "
+                             "a rigid link or carry no stiffness")
+        B = sla.null_space(np.array(dirs), rcond=1e-10)        # (3, r) allowed directions
+        replaced[pos] = True
+        for j in range(B.shape[1]):
+            rows += pos.tolist()
+            cols += [m] * 3
+            vals += B[:, j].tolist()
+            m += 1
+    same = np.flatnonzero(~replaced)
+    rows += same.tolist()
+    cols += list(range(m, m + len(same)))
+    vals += [1.0] * len(same)
+    return sp.csr_matrix((vals, (rows, cols)), shape=(len(keep), m + len(same)))
+
+
 def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_SIGMA,
-               backend: str | None = None, deflate_rigid: bool = True):
+               backend: str | None = None, deflate_rigid: bool = True, directions=None):
     """Lowest ``n`` natural modes of a free or constrained structure.
 
     Parameters
@@ -196,6 +241,11 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
         :func:`solve_eigen`); they are returned as the first modes.  Zero-energy modes
         that are not rigid-body motions (mechanisms, hourglass modes) are still found
         by the iteration.
+    directions : array_like, shape (m, 5), optional
+        Directional constraints, rows ``(node index, group, dx, dy, dz)``: the node's
+        translation (group 0) or rotation (group 1) along ``d`` is held at zero (e.g. a
+        Nastran SPC on a component of a cylindrical displacement system).  Applied exactly,
+        by an orthonormal change of the node's coordinates.
 
     Returns
     -------
@@ -207,6 +257,10 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
     if not isinstance(n, (int, np.integer)) or n < 1:
         raise InputError(f"n must be a positive integer, got {n!r}")
     Kr, Mr = fe.Kr, fe.Mr
+    where = f"{fe.mesh.source}: " if fe.mesh is not None and fe.mesh.source else ""
+    if not (Mr.diagonal() > 0).any():
+        raise ModelError(f"{where}the model has no mass (every density and point mass is "
+                         "zero, e.g. MAT1 without RHO); give densities to compute modes")
     keep = np.arange(Kr.shape[0])
     R = rigid_body_modes(fe) if deflate_rigid else None
     if fixed_dofs is not None and len(np.atleast_1d(fixed_dofs)):
@@ -219,12 +273,18 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
             import scipy.linalg as sla
 
             R = R @ sla.null_space(R[cols], rcond=1e-10)
+    Z = None
+    if directions is not None and len(np.atleast_1d(directions)):
+        Z = _direction_basis(fe, keep, directions)
+        Kr = sp.csr_matrix(Z.T @ Kr @ Z)
+        Mr = sp.csr_matrix(Z.T @ Mr @ Z)
     if n > Kr.shape[0]:
         raise InputError(f"asked for {n} modes but the model has only {Kr.shape[0]} free DOF")
-    rigid = zero_energy_basis(Kr, Mr, R[keep]) if R is not None else None
+    Rk = None if R is None else (R[keep] if Z is None else Z.T @ R[keep])
+    rigid = zero_energy_basis(Kr, Mr, Rk) if Rk is not None else None
     lam, X = solve_eigen(Kr, Mr, n, sigma=sigma, backend=backend, rigid=rigid)
     Q = np.zeros((fe.T.shape[1], n))
-    Q[keep] = X
+    Q[keep] = X if Z is None else Z @ X
     shapes = fe.expand(Q)
     freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
     return freqs, shapes

@@ -33,6 +33,12 @@ class BeamSection:
     orientation : (3,) array_like, optional
         Vector lying in the local x-y plane (Nastran CBAR convention); local
         z = x cross v.  Default: global z, or global y for beams parallel to z.
+    k1, k2 : float
+        Transverse-shear area factors (Nastran PBAR K1, K2): shear stiffness ``k1 G A``
+        in the x-y plane (with ``Iz``), ``k2 G A`` in x-z (with ``Iy``).  0 (default):
+        no shear deformation, Euler-Bernoulli.
+    theta : float
+        Angle (rad) of the principal section axes from the local y axis about x.
     """
 
     A: float
@@ -40,6 +46,9 @@ class BeamSection:
     Iz: float
     J: float
     orientation: tuple[float, float, float] | None = None
+    k1: float = 0.0
+    k2: float = 0.0
+    theta: float = 0.0
 
     @classmethod
     def rectangle(cls, b: float, h: float, **kw) -> BeamSection:
@@ -134,13 +143,61 @@ def shell_props(mesh, bi, block, thickness):
             f"{ids}; pass thickness=<m> (or a mapping by cell set) or give PSHELL T",
             file=mesh.source or None,
         )
-    return {"thickness": np.asarray(t, dtype=float)}
+    def bend(p):
+        return float(p["bending"]) if "bending" in p else None
+
+    b = per_cell(mesh, bi, len(block), None, "bending", bend)
+    out = {"thickness": np.asarray(t, dtype=float),
+           "bending": np.array([1.0 if v is None else v for v in b], dtype=float)}
+    if "zoffset" in block.data:
+        out["zoffset"] = np.asarray(block.data["zoffset"], dtype=float)
+
+    def lam(p):
+        return p if "A11" in p else None
+
+    lams = per_cell(mesh, bi, len(block), None, "laminate", lam)
+    if any(v is not None for v in lams):
+        out["laminate_rows"] = lams
+        n = len(block)
+        out["laminate_ref"] = np.asarray(block.data.get("mat_ref", np.full((n, 3), np.nan)),
+                                         dtype=float)
+        out["laminate_theta"] = np.asarray(block.data.get("mat_theta", np.zeros(n)),
+                                           dtype=float)
+    return out
+
+
+_IJ = ((0, 0, "11"), (0, 1, "12"), (0, 2, "16"), (1, 1, "22"), (1, 2, "26"), (2, 2, "66"))
+
+
+def laminate_arrays(rows, E, nu, t, ref=None, theta=None):
+    """``(A, D, Gt, ref, theta)`` arrays of a shell block: laminate sections (PCOMP) where
+    given, the isotropic plane-stress values elsewhere; ``ref``/``theta`` orient the
+    material axes per cell (see :func:`flexpipe.fem._shell.material_angle`)."""
+    from flexpipe.fem import _shell
+
+    n = len(rows)
+    ones = np.ones(n)
+    A, D, Gt = _shell.rigidities(np.asarray(E, float), np.asarray(nu, float),
+                                 np.asarray(t, float), ones, None)
+    A, D, Gt = A.copy(), D.copy(), np.array(Gt, dtype=float)
+    for c, p in enumerate(rows):
+        if p is None:
+            continue
+        for i, j, ij in _IJ:
+            A[c, i, j] = A[c, j, i] = float(p["A" + ij])
+            D[c, i, j] = D[c, j, i] = float(p["D" + ij])
+        Gt[c] = float(p["Gt"])
+    ref = np.full((n, 3), np.nan) if ref is None else ref
+    theta = np.zeros(n) if theta is None else theta
+    return A, D, Gt, ref, theta
 
 
 def beam_props(mesh, bi, block, beam_section):
     def from_section(p):
         if all(k in p for k in ("A", "Iy", "Iz", "J")):
-            return BeamSection(float(p["A"]), float(p["Iy"]), float(p["Iz"]), float(p["J"]))
+            return BeamSection(float(p["A"]), float(p["Iy"]), float(p["Iz"]), float(p["J"]),
+                               k1=float(p.get("k1", 0.0)), k2=float(p.get("k2", 0.0)),
+                               theta=float(p.get("theta", 0.0)))
         return None
 
     secs = per_cell(mesh, bi, len(block), beam_section, "beam_section", from_section)
@@ -153,7 +210,17 @@ def beam_props(mesh, bi, block, beam_section):
             file=mesh.source or None,
         )
     props = {k: np.array([getattr(s, k) for s in secs], dtype=float)
-             for k in ("A", "Iy", "Iz", "J")}
+             for k in ("A", "Iy", "Iz", "J", "k1", "k2", "theta")}
+    bad = [i for i, s in enumerate(secs)
+           if not all(np.isfinite(getattr(s, k)) for k in ("A", "Iy", "Iz", "J", "k1", "k2"))
+           or s.A <= 0 or s.Iy < 0 or s.Iz < 0 or s.J < 0 or s.k1 < 0 or s.k2 < 0]
+    if bad:
+        ids = block.ids[bad[:10]].tolist()
+        s = secs[bad[0]]
+        raise MeshError(
+            f"{len(bad)} beam element(s) have an invalid cross-section, e.g. ids {ids} with "
+            f"A={s.A:g}, Iy={s.Iy:g}, Iz={s.Iz:g}, J={s.J:g}, k1={s.k1:g}, k2={s.k2:g}; "
+            "valid: A > 0 and Iy, Iz, J, k1, k2 >= 0 (finite)", file=mesh.source or None)
     orient = np.array([s.orientation if s.orientation is not None else (np.nan,) * 3
                        for s in secs], dtype=float)
     if "orientation" in block.data:
@@ -161,4 +228,9 @@ def beam_props(mesh, bi, block, beam_section):
         use = np.isfinite(given).all(axis=1) & np.isnan(orient).any(axis=1)
         orient[use] = given[use]
     props["orientation"] = orient
+    for key in ("offset_a", "offset_b"):
+        if key in block.data:
+            props[key] = np.asarray(block.data[key], dtype=float)
+    if "release" in block.data:
+        props["release"] = np.asarray(block.data["release"], dtype=np.int64)
     return props

@@ -154,15 +154,14 @@ def _plate(xy, Db, kGt, detG, invG, dNdx):
     return Kb + Ks
 
 
-def _batch(R, xy, h, E, nu, rho, t):
+def _batch(R, xy, h, E, nu, rho, t, bend, lam=None):
     """Global (K, M) of elements whose geometry has been checked."""
     _, detG, invG = _jacobian(_DN_G, xy)
     dNdx = _grad(invG, _DN_G)
-    G = E / (2 * (1 + nu))
-    Kp = _plate(xy, _shell.bending_rigidity(E, nu, t), _shell.SHEAR_FACTOR * G * t,
-                detG, invG, dNdx)
-    Km, omega = _membrane_allman(xy, _shell.plane_stress(E, nu, t))
-    k_drill = DRILL_ALPHA * G * t * detG.sum(axis=1) / 4
+    Cm, Db, Gt = _shell.rigidities(E, nu, t, bend, _shell.oriented(lam, R))
+    Kp = _plate(xy, Db, _shell.SHEAR_FACTOR * Gt, detG, invG, dNdx)
+    Km, omega = _membrane_allman(xy, Cm)
+    k_drill = DRILL_ALPHA * Cm[:, 2, 2] * detG.sum(axis=1) / 4
     Km = _shell.add_drilling(Km, omega, k_drill)
     K = _shell.combine(Km, Kp)
     NN = np.einsum("ga,gb,eg->eab", _N_G, _N_G, detG)
@@ -170,7 +169,7 @@ def _batch(R, xy, h, E, nu, rho, t):
     return _shell.to_global(K, R, h), _shell.to_global(M, R, h, isotropic=True)
 
 
-def matrices(X, *, E, nu, rho, thickness, **_):
+def matrices(X, *, E, nu, rho, thickness, bending=1.0, zoffset=None, laminate=None, **_):
     """Stiffness and consistent mass of quad4 shells, see :mod:`flexpipe.fem._element`."""
     X = np.asarray(X, dtype=float)
     R, xy, h = _shell.local_frame(X)
@@ -181,4 +180,5 @@ def matrices(X, *, E, nu, rho, thickness, **_):
     if bad.any():
         raise BadElements(np.flatnonzero(bad),
                           "inverted, non-convex or degenerate (det J <= 0 at a corner)")
-    return _shell.in_sub_batches(_batch, (R, xy, h), E, nu, rho, thickness)
+    return _shell.in_sub_batches(_batch, (R, xy, _shell.offset_heights(h, zoffset)), E, nu,
+                                 rho, thickness, bending=bending, laminate=laminate)

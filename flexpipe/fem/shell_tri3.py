@@ -100,7 +100,7 @@ def _allman_map(xy):
     return A
 
 
-def _batch(R, xy, h, E, nu, rho, t):
+def _batch(R, xy, h, E, nu, rho, t, bend, lam=None):
     """Global (K, M) of elements whose geometry has been checked."""
     x, y = xy[..., 0], xy[..., 1]
     # b_i = y_j - y_k, c_i = x_k - x_j (i, j, k cyclic); grad L_i = (b_i, c_i) / (2 area)
@@ -109,7 +109,7 @@ def _batch(R, xy, h, E, nu, rho, t):
     two_area = b[:, 0] * c[:, 1] - b[:, 1] * c[:, 0]
     area = 0.5 * two_area
     gradL = np.stack([b, c], axis=-1) / two_area[:, None, None]      # (ne, 3, 2)
-    G = E / (2 * (1 + nu))
+    Cm, Db, Gt = _shell.rigidities(E, nu, t, bend, _shell.oriented(lam, R))
     # bending (DKT): curvature of the quadratic rotation field at 3 mid-side points
     dN6 = np.einsum("gki,eic->egkc", _DT6, gradL)                    # (ne, 3, 6, 2)
     Bq = np.zeros((len(xy), 3, 3, 12))
@@ -118,12 +118,11 @@ def _batch(R, xy, h, E, nu, rho, t):
     Bq[..., 2, 0::2] = dN6[..., 1]
     Bq[..., 2, 1::2] = dN6[..., 0]
     Bb = np.einsum("egik,ekj->egij", Bq, _dkt_map(xy))
-    Db = _shell.bending_rigidity(E, nu, t)
     Kb = _shell.btdb(Bb, Db, np.repeat(area[:, None] / 3, 3, 1))
     # membrane (Allman): LST field from corner u, v, theta_z, exact 3-point rule
     Amap = _allman_map(xy)
     Bm = _shell.membrane_B(dN6)                                      # (ne, 3, 3, 12)
-    Km = _shell.btdb(Bm, _shell.plane_stress(E, nu, t), np.repeat(area[:, None] / 3, 3, 1))
+    Km = _shell.btdb(Bm, Cm, np.repeat(area[:, None] / 3, 3, 1))
     Km = np.matmul(Amap.transpose(0, 2, 1), np.matmul(Km, Amap))
     # drilling penalty about the in-plane rotation of the quadratic field at the corners
     dNc = np.einsum("cki,eil->eckl", _DT6_CORNERS, gradL)           # (ne, corner, 6, 2)
@@ -131,14 +130,15 @@ def _batch(R, xy, h, E, nu, rho, t):
     omega[..., 0::2] = -0.5 * dNc[..., 1]
     omega[..., 1::2] = 0.5 * dNc[..., 0]
     omega = np.matmul(omega, Amap)
-    k_drill = DRILL_ALPHA * G * t * area / 3
+    k_drill = DRILL_ALPHA * Cm[:, 2, 2] * area / 3
     K = _shell.combine(_shell.add_drilling(Km, omega, k_drill), Kb)
     NN = (area / 12)[:, None, None] * (np.ones((3, 3)) + np.eye(3))
     M = _shell.consistent_mass(NN, rho, t)
     return _shell.to_global(K, R, h), _shell.to_global(M, R, h, isotropic=True)
 
 
-def matrices(X, *, E, nu, rho, thickness, **_):
+def matrices(X, *, E, nu, rho, thickness, bending=1.0, zoffset=None, laminate=None, **_):
     """Stiffness and lumped-consistent mass of tri3 shells (see :mod:`flexpipe.fem._element`)."""
     R, xy, h = _shell.local_frame(np.asarray(X, dtype=float))
-    return _shell.in_sub_batches(_batch, (R, xy, h), E, nu, rho, thickness)
+    return _shell.in_sub_batches(_batch, (R, xy, _shell.offset_heights(h, zoffset)), E, nu,
+                                 rho, thickness, bending=bending, laminate=laminate)

@@ -27,28 +27,46 @@ def _unique_faces(faces: np.ndarray) -> np.ndarray:
     return counts[inv.ravel()] == 1
 
 
+# wedge (CPENTA) and pyramid (CPYRAM) faces: triangles and quads, outward (VTK order)
+_WEDGE_TRIS, _WEDGE_QUADS = [[0, 2, 1], [3, 4, 5]], [[0, 1, 4, 3], [1, 2, 5, 4], [2, 0, 3, 5]]
+_PYRAMID_TRIS, _PYRAMID_QUADS = [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]], [[0, 3, 2, 1]]
+
+
 def surface_triangles(mesh: Mesh) -> np.ndarray:
     """Triangles (t, 3) covering the outer surface of solids plus all shell cells.
 
-    Solid faces shared by two cells are interior and dropped; tet10 faces use the
-    corner nodes.  Beams and point masses draw nothing.
+    Solid faces shared by two cells (of any solid types) are interior and dropped; tet10
+    faces use the corner nodes; a quadrilateral solid face is two triangles.  Beams,
+    springs and point masses draw nothing.
     """
-    tris = []
+    solid_tris, solid_quads, shells = [], [], []
     for block in mesh.blocks:
         c = block.cells
         if len(c) == 0:
             continue
         if block.type in ("tetra", "tetra10"):
-            f = c[:, np.array(_SOLID_FACES[block.type])].reshape(-1, 3)
-            tris.append(f[_unique_faces(f)])
+            solid_tris.append(c[:, np.array(_SOLID_FACES[block.type])].reshape(-1, 3))
         elif block.type == "hexahedron":
-            q = c[:, np.array(_HEX_QUADS)].reshape(-1, 4)
-            q = q[_unique_faces(q)]
-            tris.append(np.vstack([q[:, [0, 1, 2]], q[:, [0, 2, 3]]]))
+            solid_quads.append(c[:, np.array(_HEX_QUADS)].reshape(-1, 4))
+        elif block.type == "wedge":
+            solid_tris.append(c[:, np.array(_WEDGE_TRIS)].reshape(-1, 3))
+            solid_quads.append(c[:, np.array(_WEDGE_QUADS)].reshape(-1, 4))
+        elif block.type == "pyramid":
+            solid_tris.append(c[:, np.array(_PYRAMID_TRIS)].reshape(-1, 3))
+            solid_quads.append(c[:, np.array(_PYRAMID_QUADS)].reshape(-1, 4))
         elif block.type == "triangle":
-            tris.append(c)
+            shells.append(c)
         elif block.type == "quad":
-            tris.append(np.vstack([c[:, [0, 1, 2]], c[:, [0, 2, 3]]]))
+            shells.append(np.vstack([c[:, [0, 1, 2]], c[:, [0, 2, 3]]]))
+    tris = []
+    if solid_tris:
+        f = np.vstack(solid_tris)
+        tris.append(f[_unique_faces(f)])
+    if solid_quads:
+        q = np.vstack(solid_quads)
+        q = q[_unique_faces(q)]
+        tris.append(np.vstack([q[:, [0, 1, 2]], q[:, [0, 2, 3]]]))
+    tris += shells
     if not tris:
         return np.zeros((0, 3), dtype=np.int64)
     return np.ascontiguousarray(np.vstack(tris), dtype=np.int64)

@@ -9,6 +9,8 @@ exponent (``7.85-9``, ``1.+5``) or ``D`` exponents.
 
 from __future__ import annotations
 
+import bisect
+import itertools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,6 +31,7 @@ class Card:
     fields: list[str] = field(default_factory=list)
     file: str = ""
     line: int = 0
+    seq: int = 0
 
     def error(self, message: str) -> MeshError:
         """A :class:`MeshError` located at this card."""
@@ -91,8 +94,8 @@ def _split(line: str) -> tuple[str, list[str]]:
         first = parts[0]
         width = 4 if (first.endswith("*") or first.startswith("*")) else 8
         data = parts[1:]
-        if len(data) == width + 1:          # trailing continuation marker
-            data = data[:width]
+        if len(data) == width + 1 or (len(data) > width and data[-1][:1] in ("+", "*")):
+            data = data[:-1]                # trailing continuation marker
         elif len(data) < width:
             data = data + [""] * (width - len(data))
         return first, data
@@ -117,9 +120,43 @@ def _include_target(line: str, path: Path, lineno: int) -> Path:
     return target
 
 
-def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
-    """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order."""
+#: cards taken by the vectorized fast path when written in plain small-field format
+FAST_CARDS = ("GRID", "CQUAD4", "CTRIA3")
+
+
+class FastLines:
+    """Plain small-field lines of the :data:`FAST_CARDS`, kept as text (no Card objects).
+
+    ``lines[name]`` are the raw lines, ``where[name]`` their (file, line, sequence) - the
+    sequence number orders them among all cards of the deck.  :meth:`card` builds the
+    :class:`Card` of one line when a message needs it.
+    """
+
+    def __init__(self):
+        self.lines: dict[str, list[str]] = {n: [] for n in FAST_CARDS}
+        self.where: dict[str, list[tuple]] = {n: [] for n in FAST_CARDS}
+
+    def card(self, name: str, i: int) -> Card:
+        """The Card of fast line ``i`` of ``name``."""
+        first, data = _split(self.lines[name][i])
+        f, ln, seq = self.where[name][i]
+        c = Card(name, data, f, ln, seq)
+        while c.fields and not c.fields[-1]:
+            c.fields.pop()
+        return c
+
+
+def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
+               _seq: list | None = None) -> list[Card]:
+    """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order.
+
+    With ``fast``, plain small-field GRID/CQUAD4/CTRIA3 lines without continuation go
+    to ``fast`` as text instead (see :class:`FastLines`).  Every card and fast line gets
+    a sequence number (``Card.seq``): file order, the cards of an included file
+    following those of the file that includes it.
+    """
     path = Path(path)
+    seq = _seq if _seq is not None else [0]
     if path.resolve() in _stack:
         raise MeshError("INCLUDE loop: the file includes itself", file=str(path))
     try:
@@ -134,32 +171,101 @@ def read_cards(path: Path, *, _stack: tuple = ()) -> list[Card]:
         if ln.lstrip().upper().startswith("BEGIN BULK"):
             start = i + 1
             break
+    base = seq[0]
+    seq[0] = base + len(lines) + 1
+    fpath = str(path)
+    fast_at: list[int] = []
+    if fast is not None:       # plain small-field lines of the fast cards, in one pass
+        heads = {f"{n:<8}" for n in FAST_CARDS}
+        fast_at = [i for i, ln in enumerate(lines) if ln[:8] in heads and "," not in ln
+                   and "\t" not in ln and "$" not in ln and i >= start]
+    is_fast = bytearray(len(lines))
+    for i in fast_at:
+        is_fast[i] = 1
+    others = [i for i in range(start, len(lines)) if not is_fast[i]] if fast_at else \
+        range(start, len(lines))
     cards: list[Card] = []
     current: Card | None = None
-    for i in range(start, len(lines)):
-        s = lines[i].split("$", 1)[0].rstrip()
+    last = -1                    # index of the last card line read card by card
+    includes = []
+    for i in others:
+        if fast_at:              # a fast line since the last card: it is the current card
+            p = bisect.bisect_left(fast_at, i) - 1
+            if p >= 0 and fast_at[p] > last:
+                last, current = fast_at[p], None
+        s = lines[i]
+        if "$" in s:
+            s = s.split("$", 1)[0]
+        s = s.rstrip()
         if not s.strip():
             continue
         if "\t" in s:
             s = s.expandtabs(8)
         head = s.lstrip()[:7].upper() if s[0] in "EeIi " else ""
         if head == "ENDDATA":
+            for j in fast_at[bisect.bisect_left(fast_at, i):]:
+                is_fast[j] = 0
             break
         if head == "INCLUDE":
-            current = None
-            target = _include_target(s, path, i + 1)
-            cards.extend(read_cards(target, _stack=_stack + (path.resolve(),)))
+            current, last = None, -1
+            includes.append((i, _include_target(s, path, i + 1)))
             continue
         first, data = _split(s)
         if first == "" or first[0] in "+*":
+            if current is None and last >= 0 and is_fast[last]:   # a fast line continued
+                is_fast[last] = 0
+                f0, d0 = _split(lines[last])
+                current = Card(f0.upper(), d0, fpath, last + 1, base + last)
+                cards.append(current)
             if current is None:
                 raise MeshError("continuation line without a preceding card",
                                 file=str(path), line=i + 1)
             current.fields.extend(data)
             continue
-        current = Card(first.rstrip("*").upper(), data, str(path), i + 1)
+        current = Card(first.rstrip("*").upper(), data, fpath, i + 1, base + i)
+        last = i
         cards.append(current)
+    if fast_at:
+        kept = [i for i in fast_at if is_fast[i]]
+        code = [lines[i][1] for i in kept]           # R: GRID, Q: CQUAD4, T: CTRIA3
+        for name in FAST_CARDS:
+            idx = list(itertools.compress(kept, [ch == name[1] for ch in code]))
+            fast.lines[name].extend([lines[i] for i in idx])
+            fast.where[name].extend(zip(itertools.repeat(fpath), [i + 1 for i in idx],
+                                        [base + i for i in idx]))
+    for _line, target in includes:
+        cards.extend(read_cards(target, fast=fast, _stack=_stack + (path.resolve(),),
+                                _seq=seq))
     for c in cards:
         while c.fields and not c.fields[-1]:
             c.fields.pop()
     return cards
+
+
+_CASE = re.compile(r"^\s*(SPC|METHOD|SOL)\s*=?\s*(\d+)\s*$", re.IGNORECASE)
+
+
+def case_control(path: Path) -> dict:
+    """``SOL``, ``SPC`` and ``METHOD`` set ids of the executive/case control section.
+
+    The first occurrence wins (global case control, else the first subcase); each value
+    is ``(set id, line number)``.  Empty when the file has no ``BEGIN BULK`` line.
+    """
+    out: dict = {}
+    try:
+        text = Path(path).read_text(encoding="latin-1")
+    except OSError:
+        return out
+    lines = text.splitlines()
+    if not any(ln.lstrip().upper().startswith("BEGIN BULK") for ln in lines):
+        return out
+    for i, ln in enumerate(lines):
+        s = ln.split("$", 1)[0]
+        if s.lstrip().upper().startswith("BEGIN BULK"):
+            break
+        m = _CASE.match(s.replace("=", " = ", 1) if "=" in s else s)
+        if m is None and s.strip().upper().startswith("SOL "):
+            m = re.match(r"^\s*(SOL)\s+(\d+)", s, re.IGNORECASE)
+        if m:
+            out.setdefault(m.group(1).upper(), (int(m.group(2)), i + 1))
+    return out

@@ -5,19 +5,28 @@ Keywords read
 ``*NODE`` (``NSET=``), ``*ELEMENT`` (``TYPE=``, ``ELSET=``), ``*NSET``/``*ELSET``
 (lists, set names, ``GENERATE``), ``*SOLID SECTION``, ``*SHELL SECTION`` (thickness),
 ``*BEAM GENERAL SECTION`` (``SECTION=GENERAL``: A, I11, I12, I22, J; n1; E, G;
-``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``; n1),
-``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``, ``MASS``/``ROTARYI``
-elements with ``*MASS``/``*ROTARY INERTIA``, ``*KINEMATIC COUPLING`` (a rigid spider,
-like Nastran RBE2), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
-positioning.  Reading stops at the first ``*STEP``.
+``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``, ``BOX``, ``I``,
+``L``; n1), ``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``,
+``MASS``/``ROTARYI`` elements with ``*MASS``/``*ROTARY INERTIA``, ``*KINEMATIC
+COUPLING`` and ``*COUPLING`` + ``*KINEMATIC`` (rigid spiders, like Nastran RBE2),
+``*COUPLING`` + ``*DISTRIBUTING`` on a ``*SURFACE, TYPE=NODE`` (= Nastran RBE3, weights
+from the surface), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connectors with
+``*CONNECTOR SECTION`` / ``*CONNECTOR BEHAVIOR`` (linear uncoupled elasticity and
+damping: Nastran CBUSH), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
+positioning.  Reading stops at the first ``*STEP``; keywords that do not change M or K
+are listed in one warning and in ``Mesh.info["dropped"]``.  Helpers in
+:mod:`flexpipe.mesh._abaqus_extra`.
 
 Element types: ``C3D4*`` -> tetra, ``C3D10*`` -> tetra10, ``C3D8*`` -> hexahedron,
-``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad, ``B31*``/``B33*`` -> line (beam local
-1-axis = Abaqus n1 = flexpipe local y; an optional third beam node gives n1 and is
-dropped after use).  Every ``*ELSET`` is a cell set, every
-``*NSET`` a node set; sections are stored under their ``ELSET`` name.  Other element
-types and constraints (``*MPC``, ``*TIE``, ``*EQUATION``, ``*COUPLING``) raise
-:class:`~flexpipe.errors.MeshError`: dropping them would change the structure.
+``C3D6*`` -> wedge, ``C3D5*`` -> pyramid, ``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad,
+``B31*``/``B33*`` -> line (Euler-Bernoulli; beam local 1-axis = Abaqus n1 = flexpipe local
+y; an optional third beam node gives n1 and is dropped after use).  An element line that
+does not end with a comma ends its element: too few nodes is an error, never a silently
+shifted connectivity.  Every ``*ELSET`` is a cell set, every ``*NSET`` a node set;
+sections are stored under their ``ELSET`` name.  Other element types and constraints
+(``*MPC``, ``*TIE``, ``*EQUATION``, ``*TRANSFORM``, ``*NGEN`` ...) and near misses of the
+keywords read (``*ELEMNT``) raise :class:`~flexpipe.errors.MeshError`: dropping them
+would change the structure.
 """
 
 from __future__ import annotations
@@ -29,8 +38,17 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import MeshError
+from flexpipe.mesh._abaqus_extra import (
+    _beam_section,
+    _connectors,
+    _couplings,
+    _couplings2,
+    _masses,
+    _springs,
+)
+from flexpipe.mesh._abaqus_extra import values as _values
 from flexpipe.mesh._bulk import parse_real
-from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
+from flexpipe.mesh.mesh import CellBlock, Mesh
 from flexpipe.mesh.nastran import drop_orientation_nodes
 from flexpipe.mesh.validate import MeshWarning
 
@@ -40,12 +58,30 @@ _TYPES = {"tetra": ("C3D4", "C3D4H"),
           "triangle": ("S3", "S3R", "S3RS", "STRI3"),
           "quad": ("S4", "S4R", "S4RS", "S4R5", "S4RSW"),
           "line": ("B31", "B31H", "B33", "B33H"),
+          "wedge": ("C3D6", "C3D6H"),
+          "pyramid": ("C3D5", "C3D5H"),
+          "spring1": ("SPRING1",),
+          "spring": ("SPRING2",),
+          "connector": ("CONN3D2",),
           "mass": ("MASS", "ROTARYI")}
 TYPE_OF = {a: t for t, names in _TYPES.items() for a in names}
 NODES = {"tetra": 4, "tetra10": 10, "hexahedron": 8, "triangle": 3, "quad": 4, "line": 2,
-         "mass": 1}
-UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "COUPLING", "DISTRIBUTING COUPLING",
-                        "RIGID BODY", "MEMBRANE SECTION", "CONNECTOR SECTION")
+         "wedge": 6, "pyramid": 5, "spring1": 1, "spring": 2, "connector": 2, "mass": 1}
+UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "DISTRIBUTING COUPLING", "RIGID BODY",
+                        "MEMBRANE SECTION", "TRANSFORM", "SYSTEM", "CONNECTOR PLASTICITY",
+                        "NGEN", "NFILL", "NCOPY", "NMAP", "ELGEN", "ELCOPY", "BEAM ADDED INERTIA",
+                        "NONSTRUCTURAL MASS")
+#: keywords this reader acts on (a near miss of one of these is taken as a typo)
+HANDLED_KEYWORDS = ("NODE", "ELEMENT", "NSET", "ELSET", "SOLID SECTION", "SHELL SECTION",
+                    "BEAM SECTION", "BEAM GENERAL SECTION", "MATERIAL", "ELASTIC", "DENSITY",
+                    "MASS", "ROTARY INERTIA", "KINEMATIC COUPLING", "COUPLING",
+                    "DISTRIBUTING", "KINEMATIC", "SURFACE", "SPRING", "INSTANCE", "STEP",
+                    "INCLUDE", "CONNECTOR SECTION", "CONNECTOR BEHAVIOR",
+                    "CONNECTOR ELASTICITY", "CONNECTOR DAMPING")
+#: keywords that do not change M or K (listed in ``Mesh.info["dropped"]``)
+IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY",
+                    "END INSTANCE", "BOUNDARY", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
+                    "NODE OUTPUT", "ELEMENT OUTPUT", "RESTART", "SURFACE INTERACTION")
 
 
 class _Lines:
@@ -99,21 +135,6 @@ def _params(line: str) -> dict[str, str]:
     return out
 
 
-def _values(file, line, text, what, *, count=None):
-    vals = [v.strip() for v in text.split(",")]
-    while vals and not vals[-1]:
-        vals.pop()
-    out = []
-    for v in vals:
-        x = parse_real(v) if v else 0.0
-        if x is None:
-            raise MeshError(f"{what}: '{v}' is not a number", file=file, line=line)
-        out.append(x)
-    if count is not None and len(out) < count:
-        raise MeshError(f"{what}: expected {count} values, got {len(out)}", file=file, line=line)
-    return out
-
-
 class _Deck:
     def __init__(self, path: Path):
         self.path = path
@@ -130,6 +151,14 @@ class _Deck:
         self.couplings = []     # (ref node id, [(node or set, first, last)], file, line)
         self.instances = 0
         self.n1_node: dict[int, int] = {}   # beam element id -> orientation node id
+        self.surfaces: dict[str, list] = {}
+        self.pending = None     # (ref node, surface, file, line) of an open *COUPLING
+        self.couplings2 = []    # (KINEMATIC|DISTRIBUTING, ref, surface, file, line, dofs)
+        self.springs = []       # (elset, rows, file, line)
+        self.connectors = []    # (elset, connection types, behavior, file, line)
+        self.behaviors: dict[str, dict] = {}
+        self.behavior = None
+        self.dropped: dict[str, int] = {}
 
     def set_key(self, table: dict, name: str):
         """Key of set ``name`` in ``table`` (case-insensitive; ``Instance.name`` allowed)."""
@@ -151,7 +180,11 @@ def _members(deck, table, params, lines, what):
             except ValueError:
                 raise MeshError(f"{what} GENERATE: expected 'first, last[, step]' integers, "
                                 f"got '{text}'", file=f, line=ln) from None
-            out.extend(range(a, b + 1, step[0] if step else 1))
+            st = step[0] if step else 1
+            if st < 1 or b < a or (b - a) // st > 10_000_000:
+                raise MeshError(f"{what} GENERATE {a}, {b}, {st}: need step >= 1, last >= first "
+                                "and at most 10 million members", file=f, line=ln)
+            out.extend(range(a, b + 1, st))
             continue
         for tok in toks:
             if tok.lstrip("-").isdigit():
@@ -165,40 +198,12 @@ def _members(deck, table, params, lines, what):
     return out
 
 
-def _beam_section(params, lines, f, ln):
-    rows = [(lf, lln, t) for lf, lln, t in lines.data()]
-    if not rows:
-        raise MeshError("beam section without data lines", file=f, line=ln)
-    sec = params.get("SECTION", "GENERAL").upper()
-    v = _values(*rows[0], "beam section dimensions")
-    props, mat = {}, None
-    if sec == "GENERAL":
-        A, I11, I12, I22, J = (v + [0.0] * 5)[:5]
-        if I12:
-            warnings.warn(MeshWarning(f"{f} line {ln}: product of inertia I12 ignored"),
-                          stacklevel=4)
-        props = {"A": A, "Iy": I11, "Iz": I22, "J": J}
-        if len(rows) > 2:
-            E, G = (_values(*rows[2], "beam E, G") + [0.0, 0.0])[:2]
-            rho = parse_real(params.get("DENSITY", "0")) or 0.0
-            props.update(E=E, nu=E / (2 * G) - 1 if G else 0.3, rho=rho)
-    elif sec == "RECT":
-        a, b = (v + [0.0, 0.0])[:2]
-        lo, hi = min(a, b), max(a, b)
-        J = hi * lo**3 * (1 / 3 - 0.21 * lo / hi * (1 - lo**4 / (12 * hi**4)))
-        props = {"A": a * b, "Iy": a * b**3 / 12, "Iz": b * a**3 / 12, "J": J}
-    elif sec in ("CIRC", "PIPE"):
-        r = v[0]
-        ri = r - v[1] if sec == "PIPE" else 0.0
-        I = np.pi * (r**4 - ri**4) / 4
-        props = {"A": np.pi * (r**2 - ri**2), "Iy": I, "Iz": I, "J": 2 * I}
-    else:
-        raise MeshError(f"beam SECTION={sec} is not supported; use GENERAL, RECT, CIRC or PIPE",
-                        file=f, line=ln)
-    if sec != "GENERAL":
-        mat = params.get("MATERIAL")
-    n1 = _values(*rows[1], "beam n1 direction")[:3] if len(rows) > 1 else None
-    return props, mat, n1
+def _rows(lines, f, ln, what, n=1):
+    """The data lines of a keyword block; an error naming the keyword when too few."""
+    rows = list(lines.data())
+    if len(rows) < n:
+        raise MeshError(f"{what} needs a data line", file=f, line=ln)
+    return rows
 
 
 def _parse(path: Path) -> _Deck:
@@ -212,6 +217,11 @@ def _parse(path: Path) -> _Deck:
             raise MeshError(f"data line outside a keyword block: '{text[:40]}'", file=f, line=ln)
         kw = text[1:].split(",")[0].strip().upper()
         p = _params(text)
+        if deck.pending is not None and kw not in ("DISTRIBUTING", "KINEMATIC"):
+            raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
+                            file=deck.pending[2], line=deck.pending[3])
+        if kw not in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING"):
+            deck.behavior = None            # connector behaviour options end here
         if kw == "STEP":
             break
         if kw == "NODE":
@@ -239,14 +249,20 @@ def _parse(path: Path) -> _Deck:
                     raise MeshError(f"element line '{dt[:60]}' must hold integer ids",
                                     file=lf, line=lln) from None
                 first = first or (lf, lln)
+                if dt.rstrip().endswith(",") and len(buf) < NODES[t] + 1 + (t == "line"):
+                    continue            # a trailing comma continues the element
                 if t == "line" and len(buf) == 4:  # optional third node: the n1 direction
                     deck.n1_node[buf[0]] = buf.pop()
-                if len(buf) >= NODES[t] + 1:
-                    deck.eids[t].append(buf[0])
-                    deck.conn[t].append(buf[1:NODES[t] + 1])
-                    deck.ewhere[t].append(first)
-                    new.append(buf[0])
-                    buf, first = [], None
+                if len(buf) != NODES[t] + 1:
+                    raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has "
+                                    f"{len(buf) - 1} nodes, expected {NODES[t]} (end a line "
+                                    "with a comma to continue an element)", file=first[0],
+                                    line=first[1])
+                deck.eids[t].append(buf[0])
+                deck.conn[t].append(buf[1:])
+                deck.ewhere[t].append(first)
+                new.append(buf[0])
+                buf, first = [], None
             if buf:
                 raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has {len(buf) - 1} "
                                 f"nodes, expected {NODES[t]}", file=first[0], line=first[1])
@@ -266,10 +282,17 @@ def _parse(path: Path) -> _Deck:
             rows = list(lines.data())
             props = {}
             if kw == "SHELL SECTION":
+                if "COMPOSITE" in p:
+                    deck.sections.append((p.get("ELSET"), {"composite": _plies(rows, p, f, ln)},
+                                          None, None, f, ln))
+                    continue
                 if not rows:
                     raise MeshError("*SHELL SECTION needs a data line with the thickness",
                                     file=f, line=ln)
                 props["thickness"] = _values(*rows[0], "shell thickness", count=1)[0]
+                if not (np.isfinite(props["thickness"]) and props["thickness"] > 0):
+                    raise MeshError(f"*SHELL SECTION thickness {props['thickness']}; valid: "
+                                    "> 0", file=rows[0][0], line=rows[0][1])
             deck.sections.append((p.get("ELSET"), props, p.get("MATERIAL"), None, f, ln))
         elif kw in ("BEAM GENERAL SECTION", "BEAM SECTION"):
             props, mat, n1 = _beam_section(p, lines, f, ln)
@@ -277,22 +300,46 @@ def _parse(path: Path) -> _Deck:
         elif kw == "MATERIAL":
             material = p.get("NAME", "")
             deck.materials[material.upper()] = {}
+        elif kw == "ELASTIC" and p.get("TYPE", "").upper() == "LAMINA":
+            rows = _rows(lines, f, ln, "*ELASTIC, TYPE=LAMINA")
+            v = _values(*rows[0], "*ELASTIC, TYPE=LAMINA E1, E2, nu12, G12, G13, G23",
+                        count=4)
+            v = (v + [v[3], v[3]])[:6] if len(v) < 6 else v[:6]
+            if not all(np.isfinite(x) and 0 < x < 1e20 for x in (v[0], v[1], v[3], v[4])) \
+                    or not (np.isfinite(v[2]) and v[2] ** 2 * v[1] / v[0] < 1):
+                raise MeshError(f"*ELASTIC, TYPE=LAMINA of material '{material}': {v}; valid: "
+                                "E1, E2, G12, G13 > 0 and nu12^2 E2 / E1 < 1",
+                                file=rows[0][0], line=rows[0][1])
+            deck.materials.setdefault((material or "").upper(), {}).update(lamina=v)
         elif kw == "ELASTIC":
             if p.get("TYPE", "ISOTROPIC").upper() != "ISOTROPIC":
-                raise MeshError(f"*ELASTIC TYPE={p['TYPE']} is not supported (isotropic only)",
-                                file=f, line=ln)
-            rows = list(lines.data())
+                raise MeshError(f"*ELASTIC TYPE={p['TYPE']} is not supported (ISOTROPIC or "
+                                "LAMINA)", file=f, line=ln)
+            rows = _rows(lines, f, ln, "*ELASTIC")
             E, nu = _values(*rows[0], "*ELASTIC E, nu", count=2)[:2]
+            mname = f"material '{material}'"
+            if not (np.isfinite(E) and 0 < E < 1e20):
+                raise MeshError(f"*ELASTIC of {mname}: E = {E:g}; valid: 0 < E < 1e20 (file "
+                                "units)", file=rows[0][0], line=rows[0][1])
+            if not (np.isfinite(nu) and -1 < nu < 0.5):
+                raise MeshError(f"*ELASTIC of {mname}: nu = {nu:g}; valid: -1 < nu < 0.5",
+                                file=rows[0][0], line=rows[0][1])
             deck.materials.setdefault((material or "").upper(), {}).update(E=E, nu=nu)
         elif kw == "DENSITY":
-            rows = list(lines.data())
+            rows = _rows(lines, f, ln, "*DENSITY")
             rho = _values(*rows[0], "*DENSITY", count=1)[0]
+            if not (np.isfinite(rho) and 0 <= rho < 1e20):
+                raise MeshError(f"*DENSITY of material '{material}': {rho:g}; valid: >= 0",
+                                file=rows[0][0], line=rows[0][1])
             deck.materials.setdefault((material or "").upper(), {}).update(rho=rho)
         elif kw == "MASS":
-            rows = list(lines.data())
-            deck.masses.append((p.get("ELSET"), _values(*rows[0], "*MASS", count=1)[0], f, ln))
+            rows = _rows(lines, f, ln, "*MASS")
+            m = _values(*rows[0], "*MASS", count=1)[0]
+            if not (np.isfinite(m) and m >= 0):
+                raise MeshError(f"*MASS {m:g}; valid: >= 0", file=rows[0][0], line=rows[0][1])
+            deck.masses.append((p.get("ELSET"), m, f, ln))
         elif kw == "ROTARY INERTIA":
-            rows = list(lines.data())
+            rows = _rows(lines, f, ln, "*ROTARY INERTIA")
             v = (_values(*rows[0], "*ROTARY INERTIA", count=3) + [0.0] * 3)[:6]
             I = np.array([[v[0], v[3], v[4]], [v[3], v[1], v[5]], [v[4], v[5], v[2]]])
             deck.inertias.append((p.get("ELSET"), I, f, ln))
@@ -306,21 +353,146 @@ def _parse(path: Path) -> _Deck:
                 first = int(tok[1]) if len(tok) > 1 and tok[1] else 1
                 last = int(tok[2]) if len(tok) > 2 and tok[2] else (first if len(tok) > 1
                                                                     and tok[1] else 6)
+                if not 1 <= first <= last <= 6:
+                    raise MeshError(f"*KINEMATIC COUPLING DOF range {first}..{last}; valid: "
+                                    "first <= last within 1..6", file=lf, line=lln)
                 rows.append((tok[0], first, last, lf, lln))
             deck.couplings.append((int(ref), rows, f, ln))
+        elif kw == "SURFACE":
+            name = p.get("NAME", "")
+            if p.get("TYPE", "ELEMENT").upper() != "NODE":
+                raise MeshError(f"*SURFACE {name}: only TYPE=NODE surfaces are supported "
+                                "(for *COUPLING)", file=f, line=ln)
+            deck.surfaces[name.upper()] = [(lf, lln, t) for lf, lln, t in lines.data()]
+        elif kw == "COUPLING":
+            ref, surf = p.get("REF NODE", ""), p.get("SURFACE", "")
+            if not ref.isdigit() or not surf:
+                raise MeshError("*COUPLING needs REF NODE=<node id> and SURFACE=<name>",
+                                file=f, line=ln)
+            deck.pending = (int(ref), surf, f, ln)
+        elif kw in ("DISTRIBUTING", "KINEMATIC") and deck.pending is not None:
+            if p.get("WEIGHTING METHOD", "UNIFORM").upper() != "UNIFORM":
+                raise MeshError("*DISTRIBUTING: only WEIGHTING METHOD=UNIFORM is supported",
+                                file=f, line=ln)
+            dofs = ""
+            for lf, lln, t in lines.data():
+                v = [int(x) for x in _values(lf, lln, t, f"*{kw} DOF range")]
+                if not 1 <= v[0] <= 6:
+                    raise MeshError(f"*{kw} DOF {v[0]}; valid: 1..6", file=lf, line=lln)
+                last = v[1] if len(v) > 1 and v[1] else v[0]
+                if not v[0] <= last <= 6:
+                    raise MeshError(f"*{kw} DOF range {v[0]}..{last}; valid: within 1..6",
+                                    file=lf, line=lln)
+                dofs += "".join(str(d) for d in range(v[0], last + 1))
+            deck.couplings2.append((kw, *deck.pending, "".join(sorted(set(dofs or "123456")))))
+            deck.pending = None
+        elif kw == "CONNECTOR SECTION":
+            rows = _rows(lines, f, ln, "*CONNECTOR SECTION")
+            types = [t.strip().upper() for t in rows[0][2].split(",") if t.strip()]
+            if len(rows) > 1:
+                raise MeshError("*CONNECTOR SECTION with an orientation line is not supported "
+                                "(connector axes are the global axes)", file=rows[1][0],
+                                line=rows[1][1])
+            deck.connectors.append((p.get("ELSET"), types, p.get("BEHAVIOR", "").upper(), f,
+                                    ln))
+        elif kw == "CONNECTOR BEHAVIOR":
+            deck.behavior = p.get("NAME", "").upper()
+            deck.behaviors.setdefault(deck.behavior, {"K": {}, "B": {}})
+        elif kw in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING"):
+            if deck.behavior is None:
+                raise MeshError(f"*{kw} outside a *CONNECTOR BEHAVIOR", file=f, line=ln)
+            if "NONLINEAR" in p or "RIGID" in p or "COMPONENT" not in p:
+                raise MeshError(f"*{kw}: only linear, uncoupled COMPONENT=<1..6> data is "
+                                "supported", file=f, line=ln)
+            comp = p["COMPONENT"]
+            if not comp.isdigit() or not 1 <= int(comp) <= 6:
+                raise MeshError(f"*{kw}: COMPONENT={comp}; valid: 1..6", file=f, line=ln)
+            rows = _rows(lines, f, ln, f"*{kw}")
+            v = _values(*rows[0], f"*{kw}", count=1)[0]
+            if not (np.isfinite(v) and v >= 0):
+                raise MeshError(f"*{kw} {v:g}; valid: finite and >= 0", file=rows[0][0],
+                                line=rows[0][1])
+            key = "K" if kw == "CONNECTOR ELASTICITY" else "B"
+            deck.behaviors[deck.behavior][key][int(comp)] = v
+        elif kw == "SPRING":
+            if "ORIENTATION" in p or "NONLINEAR" in p:
+                raise MeshError("*SPRING with ORIENTATION= or NONLINEAR is not supported",
+                                file=f, line=ln)
+            rows = _rows(lines, f, ln, "*SPRING", 2)
+            deck.springs.append((p.get("ELSET"), rows, f, ln))
         elif kw == "INSTANCE":
             deck.instances += 1
             if deck.instances > 1 or list(lines.data()):
                 raise MeshError("several or positioned *INSTANCEs are not supported; write the "
                                 "deck flat (Abaqus: input file without parts and assemblies)",
                                 file=f, line=ln)
-        elif kw in UNSUPPORTED_KEYWORDS:
-            raise MeshError(f"*{kw} is not supported (only *KINEMATIC COUPLING rigid spiders "
-                            "are); remove or convert it", file=f, line=ln)
+        elif kw in UNSUPPORTED_KEYWORDS or kw in ("DISTRIBUTING", "KINEMATIC"):
+            raise MeshError(f"*{kw} is not supported (rigid spiders: *KINEMATIC COUPLING or "
+                            "*COUPLING + *KINEMATIC; RBE3-type: *COUPLING + *DISTRIBUTING); "
+                            "remove or convert it", file=f, line=ln)
         else:
+            if kw not in IGNORED_KEYWORDS:
+                import difflib
+
+                close = difflib.get_close_matches(kw, HANDLED_KEYWORDS, n=1, cutoff=0.8)
+                if close:
+                    raise MeshError(f"unknown keyword *{kw}: a misspelt *{close[0]}? (a "
+                                    "keyword that is not read could change the structure)",
+                                    file=f, line=ln)
+            deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
             for _ in lines.data():
                 pass
+    if deck.pending is not None:
+        raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
+                        file=deck.pending[2], line=deck.pending[3])
     return deck
+
+
+def _plies(rows, p, f, ln) -> list:
+    """Plies (thickness, material, angle) of a composite *SHELL SECTION."""
+    plies = []
+    for lf, lln, t in rows:
+        tok = [x.strip() for x in t.split(",")]
+        if len(tok) < 3 or not tok[2]:
+            raise MeshError("*SHELL SECTION, COMPOSITE ply line needs 'thickness, points, "
+                            "material[, angle]'", file=lf, line=lln)
+        th = parse_real(tok[0])
+        ang = parse_real(tok[3]) if len(tok) > 3 and tok[3] else 0.0
+        if ang is None:
+            raise MeshError(f"ply orientation '{tok[3]}' is not an angle; named *ORIENTATIONs "
+                            "are not supported", file=lf, line=lln)
+        if th is None or not (np.isfinite(th) and th > 0) or not np.isfinite(ang):
+            raise MeshError(f"ply thickness '{tok[0]}'; valid: > 0", file=lf, line=lln)
+        plies.append((th, tok[2], ang, lf, lln))
+    if not plies:
+        raise MeshError("*SHELL SECTION, COMPOSITE has no ply lines", file=f, line=ln)
+    if "SYMMETRIC" in p:
+        plies = plies + plies[::-1]
+    return plies
+
+
+def _composite(deck, plies, f, ln) -> dict:
+    """Section of a composite shell by classical lamination (see flexpipe.fem.laminate)."""
+    from flexpipe.fem.laminate import ply_q
+    from flexpipe.fem.laminate import section as lam_section
+
+    out = []
+    for th, name, ang, lf, lln in plies:
+        m = deck.materials.get(name.upper())
+        if m is None or not ("lamina" in m or "E" in m):
+            raise MeshError(f"ply material '{name}' is not defined (with *ELASTIC)", file=lf,
+                            line=lln)
+        if "lamina" in m:
+            E1, E2, nu12, G12, G13, _ = m["lamina"]
+            Q, Gz = ply_q(E1, E2, nu12, G12), G13
+        else:
+            G = m["E"] / (2 * (1 + m["nu"]))
+            Q, Gz = ply_q(m["E"], m["E"], m["nu"], G), G
+        out.append((Q, th, ang, Gz, m.get("rho", 0.0)))
+    try:
+        return lam_section(out)
+    except ValueError as exc:
+        raise MeshError(f"*SHELL SECTION, COMPOSITE: {exc}", file=f, line=ln) from None
 
 
 def _dup(ids, where, what):
@@ -390,7 +562,7 @@ def read_abaqus(path) -> Mesh:
             cell_sets[name] = members
     node_sets = {name: index(ids, lambda k: (str(path), None), f"NSET '{name}'")
                  for name, ids in deck.nsets.items()}
-    sections, orient = {}, {}
+    sections, orient, mat_ref = {}, {}, {}
     for elset, props, mat, n1, f, ln in deck.sections:
         key, members = cells_of(elset, f, ln, "section")
         sec = dict(props)
@@ -402,14 +574,32 @@ def read_abaqus(path) -> Mesh:
             if "E" not in m:
                 raise MeshError(f"material '{mat}' has no *ELASTIC data", file=f, line=ln)
             sec.update(E=m["E"], nu=m["nu"], rho=m.get("rho", 0.0))
+        if "composite" in sec:
+            sec = _composite(deck, sec.pop("composite"), f, ln)
+            for t in ("quad", "triangle"):
+                for c in members.get(t, []):
+                    mat_ref.setdefault(t, {})[c] = (1.0, 0.0, 0.0)   # Abaqus: global X
         sections[key] = sec
         if n1 is not None and "line" in members:
             orient.update({c: n1 for c in members["line"]})
     masses = _masses(deck, cells_of, index, where_e)
     links = _couplings(deck, index)
+    more_links, interp = _couplings2(deck, index)
+    spring_k = _springs(deck, cells_of, blocks)
+    conn_data = _connectors(deck, cells_of, blocks, np.asarray(deck.coords, dtype=float),
+                            index)
     out_blocks, n1_nodes = [], np.zeros(0, dtype=np.int64)
     for t, conn, eids in blocks:
         data = {}
+        if t in ("spring", "spring1"):
+            data["K"] = spring_k[t]
+        if t == "connector":
+            data = conn_data
+        if t in mat_ref:
+            ref = np.full((len(eids), 3), np.nan)
+            for c, v in mat_ref[t].items():
+                ref[c] = v
+            data["mat_ref"] = ref
         if t == "line":
             ori = np.full((len(eids), 3), np.nan)
             for c, v in orient.items():
@@ -422,55 +612,17 @@ def read_abaqus(path) -> Mesh:
                 ori[k] = np.asarray(deck.coords)[g] - np.asarray(deck.coords)[conn[k, 0]]
                 n1_nodes = g
             data["orientation"] = ori
-        out_blocks.append(CellBlock(t, conn, eids, np.zeros(len(eids), np.int64), data))
+        out_blocks.append(CellBlock("spring" if t == "connector" else t, conn, eids,
+                                    np.zeros(len(eids), np.int64), data))
     mesh = Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
                 node_ids=gid, node_sets=node_sets, cell_sets=cell_sets, point_masses=masses,
-                rigid_links=links, sections=sections, source=str(path))
+                rigid_links=links + more_links, sections=sections, source=str(path),
+                interpolations=interp,
+                info={"read": {t: len(e) for t, _, e in blocks}, "converted": {},
+                      "dropped": dict(deck.dropped)})
+    if deck.dropped:
+        warnings.warn(MeshWarning(f"{path}: keywords not used for M and K: "
+                                  + ", ".join(f"*{k} x{n}" for k, n in deck.dropped.items())),
+                      stacklevel=3)
     return drop_orientation_nodes(mesh, n1_nodes)
 
-
-def _masses(deck, cells_of, index, where_e):
-    """Point masses: MASS and ROTARYI elements on the same node are combined into one."""
-    acc: dict[int, list] = {}
-    for kind, items in (("mass", deck.masses), ("inertia", deck.inertias)):
-        for elset, value, f, ln in items:
-            _, members = cells_of(elset, f, ln, f"*{kind.upper()}")
-            for k in members.get("mass", []):
-                node = int(index([deck.conn["mass"][k][0]], lambda _, f=f, ln=ln: (f, ln),
-                                 "*MASS")[0])
-                entry = acc.setdefault(node, [0.0, np.zeros((3, 3)), deck.eids["mass"][k]])
-                if kind == "mass":
-                    entry[0] += float(value)
-                else:
-                    entry[1] = entry[1] + value
-    return tuple(PointMass(node, m, I, id=eid) for node, (m, I, eid) in acc.items())
-
-
-def _couplings(deck, index):
-    links = []
-    for ref, rows, f, ln in deck.couplings:
-        master = int(index([ref], lambda _, f=f, ln=ln: (f, ln),
-                           "*KINEMATIC COUPLING REF NODE")[0])
-        by_dofs = defaultdict(list)
-        for tok, first, last, lf, lln in rows:
-            if tok.isdigit():
-                nodes = [int(tok)]
-            else:
-                key = deck.set_key(deck.nsets, tok)
-                if key is None:
-                    raise MeshError(f"*KINEMATIC COUPLING refers to NSET '{tok}', which is "
-                                    "not defined", file=lf, line=lln)
-                nodes = deck.nsets[key]
-            dofs = "".join(str(d) for d in range(first, last + 1))
-            by_dofs[dofs].extend(nodes)
-        node_dofs = defaultdict(str)
-        for dofs, nodes in by_dofs.items():
-            for n in nodes:
-                node_dofs[n] = "".join(sorted(set(node_dofs[n] + dofs)))
-        groups = defaultdict(list)
-        for n, dofs in node_dofs.items():
-            groups[dofs].append(n)
-        for dofs, nodes in groups.items():
-            slaves = index(nodes, lambda _, f=f, ln=ln: (f, ln), "*KINEMATIC COUPLING")
-            links.append(RigidLink(master, slaves, dofs, 0))
-    return tuple(links)

@@ -18,9 +18,9 @@ from flexpipe.mesh.mesh import Mesh
 from flexpipe.mesh.validate import MeshWarning
 
 ELEMENT_OF = {"tetra": "C3D4", "tetra10": "C3D10", "hexahedron": "C3D8", "triangle": "S3",
-              "quad": "S4", "line": "B31"}
+              "quad": "S4", "line": "B31", "wedge": "C3D6", "pyramid": "C3D5"}
 KIND = {"tetra": "solid", "tetra10": "solid", "hexahedron": "solid", "triangle": "shell",
-        "quad": "shell", "line": "beam"}
+        "quad": "shell", "line": "beam", "wedge": "solid", "pyramid": "solid"}
 
 
 def _q(name: str) -> str:
@@ -72,8 +72,30 @@ def _section_groups(mesh: Mesh, eids_of_block):
     return groups
 
 
+def _not_written(mesh: Mesh) -> list[str]:
+    """Model data the .inp writer cannot carry (written to .bdf only)."""
+    lost = set()
+    for sec in mesh.sections.values():
+        if float(sec.get("bending", 1.0)) != 1.0:
+            lost.add("PSHELL bending ratio")
+        if sec.get("k1") or sec.get("k2"):
+            lost.add("beam shear factors (Timoshenko)")
+        if sec.get("theta"):
+            lost.add("beam principal-axis angle")
+    for b in mesh.blocks:
+        for key, what in (("zoffset", "shell offsets ZOFFS"), ("offset_a", "beam offsets"),
+                          ("release", "beam pin flags"), ("mat_theta", "material angles")):
+            if key in b.data and np.any(np.nan_to_num(b.data[key])):
+                lost.add(what)
+    return sorted(lost)
+
+
 def abaqus_text(mesh: Mesh) -> str:
     """Abaqus input text of ``mesh``."""
+    lost = _not_written(mesh)
+    if lost:
+        warnings.warn(MeshWarning(f"not written to .inp (write .bdf to keep them): "
+                                  f"{', '.join(lost)}"), stacklevel=3)
     out = ["*HEADING", f"written by flexpipe from {mesh.source or 'an in-memory mesh'}"]
     nid = unique_ids(mesh.node_ids)
     out.append("*NODE")
@@ -113,6 +135,12 @@ def abaqus_text(mesh: Mesh) -> str:
         mpar = f", MATERIAL={mat}" if mat else ""
         if kind == "solid":
             out.append(f"*SOLID SECTION, ELSET={_q(elset)}{mpar}")
+        elif kind == "shell" and "A11" in sec:
+            from flexpipe.errors import InputError
+
+            raise InputError(f"section {name} is a laminate (PCOMP); the .inp writer has no "
+                             "composite section - keep the original deck",
+                             file=mesh.source or None)
         elif kind == "shell" and "thickness" in sec:
             out.append(f"*SHELL SECTION, ELSET={_q(elset)}{mpar}")
             out.append(_r(sec["thickness"]))
@@ -127,6 +155,11 @@ def abaqus_text(mesh: Mesh) -> str:
     for (E, nu, rho), name in materials.items():
         out += [f"*MATERIAL, NAME={name}", "*ELASTIC", f"{_r(E)}, {_r(nu)}", "*DENSITY", _r(rho)]
     for pm in mesh.point_masses:
+        if pm.matrix is not None:
+            from flexpipe.errors import InputError
+
+            raise InputError(f"point mass {pm.id} is a full 6x6 mass matrix (CONM1), which "
+                             "Abaqus MASS/ROTARYI elements cannot hold; write .bdf instead")
         if np.any(np.asarray(pm.offset) != 0):
             warnings.warn(MeshWarning(f"point mass {pm.id}: Abaqus MASS elements have no "
                                       "offset; the offset is not written"), stacklevel=3)
@@ -150,4 +183,19 @@ def abaqus_text(mesh: Mesh) -> str:
                 s0 = b
         for s in np.asarray(lk.slaves):
             out += [f"{int(nid[s])}, {a}, {b}" for a, b in runs]
+    for k, it in enumerate(mesh.interpolations):       # RBE3: distributing coupling
+        if any(c != "123" for c in (it.node_dofs or ("123",))):
+            from flexpipe.errors import InputError
+
+            raise InputError(f"RBE3 {it.id} ties independent components other than 123, "
+                             "which *DISTRIBUTING coupling cannot express; write .bdf")
+        name = f"RBE3_{k + 1}"
+        out.append(f"*SURFACE, TYPE=NODE, NAME={name}")
+        out += [f"{int(nid[n])}, {_r(w)}" for n, w in zip(np.asarray(it.nodes),
+                                                          np.asarray(it.weights), strict=True)]
+        out += [f"*COUPLING, REF NODE={int(nid[it.ref])}, SURFACE={name}", "*DISTRIBUTING"]
+        out += [f"{c}, {c}" for c in sorted(it.ref_dofs)]
+    if mesh.dof_sets or mesh.solution:
+        warnings.warn(MeshWarning("SPC sets and the solution set-up (EIGRL) are not written "
+                                  "to .inp (only to .bdf)"), stacklevel=3)
     return "\n".join(out) + "\n"

@@ -1,7 +1,10 @@
 """The :class:`Mesh` data object: nodes, typed cell blocks, named sets, point masses, links.
 
 Element type names follow meshio: ``vertex``, ``line`` (2-node beam), ``triangle``,
-``quad``, ``tetra``, ``tetra10``, ``hexahedron``.  Node indices in cells are 0-based
+``quad``, ``tetra``, ``tetra10``, ``hexahedron``, ``wedge`` (6-node pentahedron),
+``pyramid`` (5 nodes); ``spring`` / ``spring1`` are two-node / grounded springs whose
+6-DOF-per-node element matrices the reader computed (see :data:`SPRING_TYPES`).
+Node indices in cells are 0-based
 positions in :attr:`Mesh.points`; the ids users see in their files are kept in
 :attr:`Mesh.node_ids` and :attr:`CellBlock.ids` so that every error names them.
 """
@@ -23,10 +26,17 @@ NODES_PER_CELL = {
     "tetra": 4,
     "tetra10": 10,
     "hexahedron": 8,
+    "wedge": 6,
+    "pyramid": 5,
+    "spring": 2,
+    "spring1": 1,
 }
-SOLID_TYPES = ("tetra", "tetra10", "hexahedron")
+SOLID_TYPES = ("tetra", "tetra10", "hexahedron", "wedge", "pyramid")
 SHELL_TYPES = ("triangle", "quad")
 BEAM_TYPES = ("line",)
+#: springs/dampers (Nastran CELAS/CBUSH): element matrices carried in ``block.data``
+#: (``"K"``, optional ``"B"``, shape (n, 6 nn, 6 nn), global DOF); ``spring1`` is grounded
+SPRING_TYPES = ("spring", "spring1")
 
 
 def _ro(a, dtype) -> np.ndarray:
@@ -83,7 +93,8 @@ class PointMass:
 
     ``inertia`` is the 3x3 rotary inertia tensor about the mass centre (kg m^2; the
     assembler adds the parallel-axis term for the offset); ``offset`` the position of
-    the mass centre relative to the node (m).
+    the mass centre relative to the node (m).  ``matrix`` (6 x 6, Nastran CONM1), when
+    given, is the complete nodal mass matrix and replaces the other three.
     """
 
     node: int
@@ -91,6 +102,7 @@ class PointMass:
     inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
     id: int = 0
+    matrix: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -103,6 +115,23 @@ class RigidLink:
     master: int
     slaves: np.ndarray
     dofs: str = "123456"
+    id: int = 0
+
+
+@dataclass(frozen=True)
+class Interpolation:
+    """An interpolation constraint (Nastran RBE3, Abaqus distributing coupling).
+
+    The ``ref`` node's components ``ref_dofs`` follow the weighted least-squares rigid
+    motion of the independent nodes ``nodes`` (components ``node_dofs[k]``, weights
+    ``weights[k]``); see :mod:`flexpipe.fem.interpolation`.
+    """
+
+    ref: int
+    ref_dofs: str
+    nodes: np.ndarray
+    weights: np.ndarray
+    node_dofs: tuple = ()
     id: int = 0
 
 
@@ -126,9 +155,20 @@ class Mesh:
     rigid_links : tuple of RigidLink
     sections : mapping of str to mapping
         Properties carried by the file, keyed by cell-set name: ``thickness``,
-        ``E``, ``nu``, ``rho``, beam ``A``, ``Iy``, ``Iz``, ``J``.
+        ``E``, ``nu``, ``rho``, beam ``A``, ``Iy``, ``Iz``, ``J`` (and optionally shear
+        area factors ``ky``, ``kz``, principal-axis angle ``theta``), shell ``bending``
+        (PSHELL 12I/T^3 times E2/E).
     source : str
         The file the mesh came from ("" when built in memory).
+    interpolations : tuple of Interpolation
+        RBE3-type constraints.
+    dof_sets : mapping of str to ndarray, shape (k, 2)
+        Named sets of (node index, component 0..5), e.g. Nastran SPC sets ``"SPC1"``.
+    solution : mapping
+        Solution set-up read from the file: ``"spc"`` (name of the DOF set held at zero),
+        ``"n_modes"``, ``"f_min"``, ``"f_max"`` (EIGRL), ``"lumped_mass"`` (COUPMASS).
+    info : mapping
+        What the reader read, converted and dropped (card/keyword -> count or note).
     """
 
     points: np.ndarray
@@ -140,6 +180,10 @@ class Mesh:
     rigid_links: tuple[RigidLink, ...] = ()
     sections: Mapping[str, Mapping[str, float]] = field(default_factory=dict)
     source: str = ""
+    interpolations: tuple[Interpolation, ...] = ()
+    dof_sets: Mapping[str, np.ndarray] = field(default_factory=dict)
+    solution: Mapping = field(default_factory=dict)
+    info: Mapping = field(default_factory=dict)
 
     def __post_init__(self):
         pts = np.asarray(self.points, dtype=float)
@@ -164,6 +208,14 @@ class Mesh:
         )
         object.__setattr__(self, "point_masses", tuple(self.point_masses))
         object.__setattr__(self, "rigid_links", tuple(self.rigid_links))
+        object.__setattr__(self, "interpolations", tuple(self.interpolations))
+        object.__setattr__(
+            self, "dof_sets",
+            MappingProxyType({k: _ro(np.reshape(v, (-1, 2)), np.int64)
+                              for k, v in dict(self.dof_sets).items()}),
+        )
+        object.__setattr__(self, "solution", MappingProxyType(dict(self.solution)))
+        object.__setattr__(self, "info", MappingProxyType(dict(self.info)))
         object.__setattr__(
             self, "sections",
             MappingProxyType({k: MappingProxyType(dict(v))
@@ -186,9 +238,8 @@ class Mesh:
 
     def has_rotations(self) -> bool:
         """True when any element carries rotational DOF (shells, beams)."""
-        return any(b.type in SHELL_TYPES + BEAM_TYPES for b in self.blocks) or bool(
-            self.rigid_links
-        )
+        return any(b.type in SHELL_TYPES + BEAM_TYPES + SPRING_TYPES for b in self.blocks) \
+            or bool(self.rigid_links) or bool(self.interpolations)
 
     def describe_node(self, index: int) -> str:
         """Human-readable name of node ``index`` for messages: its file id and position."""

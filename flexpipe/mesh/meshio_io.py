@@ -361,7 +361,10 @@ def write_vtk(mesh: Mesh, path, *, file_format: str = "vtu", point_data=None,
     """Write ``mesh`` (plus optional point/field data) as ``.vtu``/``.vtk`` to ``path``."""
     import meshio
 
-    cells = [meshio.CellBlock(b.type, b.cells) for b in mesh.blocks]
+    # springs have no VTK cell type of their own: two-node springs as lines, grounded
+    # ones as vertices
+    as_vtk = {"spring": "line", "spring1": "vertex"}
+    cells = [meshio.CellBlock(as_vtk.get(b.type, b.type), b.cells) for b in mesh.blocks]
     pd = {"node_id": np.asarray(mesh.node_ids)}
     pd.update(point_data or {})
     cd = {"element_id": [np.asarray(b.ids) for b in mesh.blocks],

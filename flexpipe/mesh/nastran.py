@@ -2,177 +2,158 @@
 
 Cards read
 ----------
-``GRID`` (``CP`` = 0 or a ``CORD2R`` system), ``CTETRA`` (4 or 10 nodes), ``CHEXA`` (8),
-``CQUAD4``, ``CTRIA3``, ``CBAR``/``CBEAM`` (orientation vector ``X1 X2 X3`` or node
-``G0``), ``CONM2``, ``RBE2``, ``PSHELL`` (``T``, ``MID1``), ``PSOLID``, ``PBAR``,
-``PBEAM`` (end-A values ``A, I1, I2, J``), ``MAT1`` (``E, G, NU, RHO``), ``CORD2R``,
-``SET1`` (grid ids, ``THRU`` ranges) as the node set ``"SET<id>"``, also named ``name``
-when the line before the card is the comment ``$ SET name``.
+Grids and systems: ``GRID`` (``CP`` and ``CD`` in any ``CORD1R/1C/1S/2R/2C/2S``, ``PS``).
+Elements: ``CTETRA`` (4/10), ``CHEXA`` (8), ``CPENTA`` (6), ``CPYRAM`` (5), ``CQUAD4``,
+``CTRIA3`` (``ZOFFS`` applied), ``CQUAD8``/``CTRIA6`` (converted: each split into four
+CQUAD4/CTRIA3 through its mid-side grids - a CQUAD8 gains a centre grid - conforming with
+split neighbours; second-order CHEXA/CPENTA/CPYRAM become linear on their corner grids,
+with a warning), ``CBAR``/``CBEAM`` (orientation ``X`` or ``G0`` in the ``CD`` system
+of GA, end offsets ``WA``/``WB`` applied), ``CROD``/``CONROD``, ``CELAS1``/``CELAS2``,
+``CBUSH``, ``CONM1``, ``CONM2``, ``RBE2``, ``RBE3``, ``RBAR``.
+Properties and materials: see :mod:`flexpipe.mesh._nastran_props` (``PSHELL``,
+``PSOLID``, ``PBAR``, ``PBEAM``, ``PBARL``, ``PBEAML``, ``PROD``, ``PELAS``, ``PBUSH``,
+``PCOMP``/``PCOMPG`` with ``MAT8``/``MAT1`` plies, ``MAT1``); ``SET1`` lists of grids
+become node sets ``"SET<sid>"``.  Constraints and
+set-up: see :mod:`flexpipe.mesh._nastran_extra` (``SPC``,
+``SPC1``, ``SPCADD``, ``EIGRL``, case control ``SPC``/``METHOD``, ``PARAM WTMASS``,
+``PARAM COUPMASS``).
 
-GRIDs used only as CBAR/CBEAM ``G0`` orientation nodes are dropped after use.  Every
-element gets the cell set ``"PID<n>"`` of its property id, and
-``Mesh.sections["PID<n>"]`` holds ``thickness`` (PSHELL T), beam ``A, Iy, Iz, J``
-(Nastran ``I1`` bends in the x-y plane of the element and becomes ``Iz``, ``I2`` becomes
-``Iy``) and ``E, nu, rho`` of the referenced MAT1, in the units of the file (see
+Strictness and tolerance (as Nastran)
+-------------------------------------
+* GRIDs no element uses are accepted with a warning and left out (their DOF would be
+  removed by AUTOSPC).
+* Two cards of one kind with the same id (GRID, element, property, material, coordinate
+  system, EIGRL) are an error naming both lines.
+* Cards this reader does not use are listed in **one** warning at the end (count and
+  first line per name) and recorded in ``Mesh.info["dropped"]``; a name that looks like a
+  misspelt element/property/material card (``CQAUD4``) is an error; elements this reader
+  cannot model (``CQUADR``, ``CGAP``, ``MPC``, ...) raise
+  :class:`~flexpipe.errors.MeshError`, because dropping them would change the structure.
+* A vectorized fast path parses plain small-field GRID/CQUAD4/CTRIA3 lines (most of a
+  body deck); anything it cannot convert exactly is parsed card by card.
+
+Every element gets the cell set ``"PID<n>"`` (``"CONROD<eid>"`` for CONRODs) and
+``Mesh.sections`` holds the resolved section and material, in the units of the file (see
 :mod:`flexpipe.mesh.units`).
-
-Not read
---------
-Loads, constraints (``SPC``, ``GRID`` PS), case control; ``CD`` displacement systems
-(orientation vectors and RBE2 components are taken in the basic system - a warning says
-so).  Elements this parser does not know (``CPENTA``, ``CQUAD8``, ``RBE3``, ``CBUSH``, ...)
-raise :class:`~flexpipe.errors.MeshError`, because dropping them would silently change
-the structure; ``PBARL``/``PBEAML``/``PCOMP`` are skipped with a warning (pass the section
-to :func:`~flexpipe.fem.assemble` instead).
 """
 
 from __future__ import annotations
 
+import difflib
 import warnings
-from collections import defaultdict
+from collections import Counter, defaultdict
 from pathlib import Path
 
 import numpy as np
 
 from flexpipe.errors import MeshError
-from flexpipe.mesh._bulk import Card, read_cards
-from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass, RigidLink
+from flexpipe.fem import spring
+from flexpipe.mesh import _nastran_extra as extra
+from flexpipe.mesh import _nastran_fast as _fast
+from flexpipe.mesh import _nastran_props as nprops
+from flexpipe.mesh._bulk import Card, FastLines, case_control, read_cards
+from flexpipe.mesh._nastran_coords import KINDS as CORD_CARDS
+from flexpipe.mesh._nastran_coords import Systems
+from flexpipe.mesh._nastran_elements import (
+    ELEMENTS,
+    cell_arrays,
+    conm1,
+    conm2,
+    element,
+    line_data,
+    rbe2,
+    split_second_order,
+)
+from flexpipe.mesh._nastran_elements import index_of as _index_of
+from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass
 from flexpipe.mesh.validate import MeshWarning, prune, referenced
 
-SUPPORTED = ("CTETRA (4/10 nodes)", "CHEXA (8)", "CQUAD4", "CTRIA3", "CBAR", "CBEAM",
-             "CONM2", "RBE2")
+SUPPORTED = tuple(ELEMENTS) + ("CELAS1", "CELAS2", "CBUSH", "CONM1", "CONM2", "RBE2", "RBE3",
+                               "RBAR")
 UNSUPPORTED_ELEMENTS = {
-    "CPENTA", "CPYRAM", "CQUAD8", "CTRIA6", "CQUADR", "CTRIAR", "CQUAD", "CTRIAX", "CTRIAX6",
-    "CQUADX", "CROD", "CONROD", "CTUBE", "CELAS1", "CELAS2", "CELAS3", "CELAS4", "CBUSH",
-    "CBUSH1D", "CBEND", "CSHEAR", "CGAP", "CWELD", "CFAST", "CSEAM", "CDAMP1", "CDAMP2",
-    "CVISC", "CONM1", "CMASS1", "CMASS2", "RBE1", "RBE3", "RBAR", "RBAR1", "RROD", "RTRPLT",
-    "RSPLINE", "MPC", "GENEL", "DMIG",
+    "CQUADR", "CTRIAR", "CQUAD", "CTRIAX", "CTRIAX6", "CQUADX", "CTUBE", "CELAS3", "CELAS4",
+    "CBUSH1D", "CBUSH2D", "CBEND", "CSHEAR", "CGAP", "CWELD", "CFAST", "CSEAM", "CDAMP1",
+    "CDAMP2", "CVISC", "CMASS1", "CMASS2", "RBE1", "RBAR1", "RROD", "RTRPLT", "RSPLINE",
+    "MPC", "GENEL", "DMIG", "CBEAM3", "CSPOT", "GRDSET", "CONM3",
 }
-SKIPPED_PROPERTIES = {"PBARL", "PBEAML", "PCOMP", "PCOMPG"}
-OTHER_MATERIALS = {"MAT2", "MAT8", "MAT9", "MAT3", "MATS1"}
-#: element card -> (meshio type by node count, index of first node field, max nodes)
-ELEMENTS = {
-    "CTETRA": ({4: "tetra", 10: "tetra10"}, 2, 10),
-    "CHEXA": ({8: "hexahedron"}, 2, 20),
-    "CQUAD4": ({4: "quad"}, 2, 4),
-    "CTRIA3": ({3: "triangle"}, 2, 3),
-    "CBAR": ({2: "line"}, 2, 2),
-    "CBEAM": ({2: "line"}, 2, 2),
+UNSUPPORTED_PROPERTIES = {"PSHEAR", "PGAP", "PWELD", "PFAST", "PBEAM3",
+                          "PBUSH1D", "PCOMPLS", "PLPLANE"}
+#: cards that do not change M or K (loads, output, other solutions): listed as ignored
+NOT_STRUCTURAL = {
+    "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD", "PLOAD1", "PLOAD2",
+    "PLOAD4", "GRAV", "LOAD", "TEMP", "TEMPD", "DLOAD", "RLOAD1", "RLOAD2", "TLOAD1",
+    "TLOAD2", "FREQ", "FREQ1", "FREQ2", "TSTEP", "EIGR", "EIGRL", "DAREA", "TABDMP1",
+    "TABLED1", "TABLED2", "TABLEM1", "PLOTEL", "ASET", "ASET1", "QSET1", "BSET1", "CSET1",
+    "SUPORT", "SUPORT1", "SPOINT", "NLPARM", "DESVAR", "DRESP1", "DCONSTR", "MAT4",
+    "PARAM", "SPC", "SPC1", "SPCADD", "SPCD", "MPCADD", "ENDDATA", "DTI", "MDLPRM",
+    "PBUSHT", "PELAST",
 }
+_KNOWN = set(ELEMENTS) | set(SUPPORTED) | UNSUPPORTED_ELEMENTS | UNSUPPORTED_PROPERTIES | \
+    set(nprops.PROPERTIES) | {"MAT1", "GRID", "SET1"} | nprops.OTHER_MATERIALS | set(CORD_CARDS)
+#: names a misspelling is checked against (element, property, material, grid cards)
+_SPELLED = sorted(set(SUPPORTED) | set(nprops.PROPERTIES) | {"MAT1", "GRID", "MAT8"})
 
 
-class _Elements:
-    """Per-type accumulators of element cards."""
+class _Deck:
+    """Cards sorted by kind, with duplicate-id checks per kind."""
 
     def __init__(self):
-        self.eid = defaultdict(list)
-        self.pid = defaultdict(list)
-        self.nodes = defaultdict(list)
-        self.cards = defaultdict(list)
-        self.orient = []      # (X1, X2, X3) or None, for line cells
-        self.g0 = []          # G0 node id or 0
-        self.offsets = []     # (WA, WB) for line cells
-        self.zoffs = defaultdict(list)
+        self.grids: list[Card] = []
+        self.elements: dict = defaultdict(list)      # card name -> cards
+        self.props: dict[int, Card] = {}
+        self.mats: dict[int, Card] = {}
+        self.coords: dict[int, Card] = {}
+        self.eigrl: dict[int, Card] = {}
+        self.spc: dict = defaultdict(list)
+        self.params: dict[str, Card] = {}
+        self.sets: dict[int, Card] = {}
+        self.dropped: Counter = Counter()
+        self.first: dict[str, Card] = {}
 
+    @staticmethod
+    def unique(table: dict, key: int, card: Card, what: str):
+        old = table.get(key)
+        if old is not None:
+            raise MeshError(
+                f"{what} id {key} is defined twice: {old.name} at {Path(old.file).name} line "
+                f"{old.line} and {card.name} at {Path(card.file).name} line {card.line}; ids "
+                "must be unique", file=card.file, line=card.line)
+        table[key] = card
 
-def _element(card: Card, els: _Elements) -> None:
-    types, first, nmax = ELEMENTS[card.name]
-    eid = card.int(0, "EID")
-    pid = card.int(1, "PID", eid)
-    if card.name in ("CBAR", "CBEAM"):
-        g = [card.int(2, "GA"), card.int(3, "GB")]
-    else:
-        raw = card.fields[first:first + nmax]
-        try:  # fast path; on a bad field fall back to the checked parser for its message
-            g = [int(x) if x else 0 for x in raw]
-        except ValueError:
-            g = [card.int(first + k, f"G{k + 1}", 0) for k in range(nmax)]
-        g += [0] * (nmax - len(g))
-        if card.name in ("CTETRA", "CHEXA"):
-            g = [x for x in g if x]
-    n = len(g)
-    if n not in types or 0 in g:
-        if card.name == "CHEXA" and n > 8:
-            raise card.error(f"CHEXA with {n} nodes (hexahedron20) is not supported; "
-                             "use 8-node CHEXA or 10-node CTETRA")
-        raise card.error(f"{card.name} with {n} nodes is not supported; valid: "
-                         f"{sorted(types)} node(s)")
-    cell_type = types[n]
-    els.eid[cell_type].append(eid)
-    els.pid[cell_type].append(pid)
-    els.nodes[cell_type].append(g)
-    els.cards[cell_type].append(card)
-    if cell_type == "line":
-        if card.is_int(4) and not card.raw(5) and not card.raw(6):
-            els.g0.append(card.int(4, "G0"))
-            els.orient.append(None)
+    def add(self, c: Card) -> None:
+        n = c.name
+        if n == "GRID":
+            self.grids.append(c)
+        elif n in ELEMENTS or n in SUPPORTED:
+            self.elements[n].append(c)
+        elif n in nprops.PROPERTIES or n in UNSUPPORTED_PROPERTIES:
+            self.unique(self.props, c.int(0, "PID"), c, "property")
+            if n == "PELAS" and c.raw(4):
+                self.unique(self.props, c.int(4, "PID2"), c, "property")
+        elif n == "MAT1" or n in nprops.OTHER_MATERIALS:
+            self.unique(self.mats, c.int(0, "MID"), c, "material")
+        elif n in CORD_CARDS:
+            self.unique(self.coords, c.int(0, "CID"), c, "coordinate system")
+        elif n == "EIGRL":
+            self.unique(self.eigrl, c.int(0, "SID"), c, "EIGRL")
+        elif n in ("SPC", "SPC1", "SPCADD"):
+            self.spc[n].append(c)
+        elif n == "SET1":
+            self.unique(self.sets, c.int(0, "SID"), c, "SET1")
+        elif n == "PARAM":
+            self.params[c.raw(0).upper()] = c
+        elif n in UNSUPPORTED_ELEMENTS:
+            raise c.error(f"{n} is not supported; supported element cards: "
+                          f"{', '.join(SUPPORTED)}. Remove or convert it")
         else:
-            els.g0.append(0)
-            vals = [card.real(4 + k, f"X{k + 1}", None) for k in range(3)]
-            els.orient.append(None if all(v is None for v in vals)
-                              else [0.0 if v is None else v for v in vals])
-        if card.raw(8) or card.raw(9):
-            warnings.warn(MeshWarning(f"{card.file} line {card.line}: {card.name} {eid} pin "
-                                      "flags PA/PB are not modelled (ends stay rigid)"),
-                          stacklevel=4)
-        w = [card.real(10 + k, "W", 0.0) for k in range(6)]
-        els.offsets.append(w)
-    elif cell_type in ("quad", "triangle"):
-        z = card.real(7 if cell_type == "quad" else 6, "ZOFFS", 0.0)
-        els.zoffs[cell_type].append(z)
-        tcols = range(10, 14) if cell_type == "quad" else range(11, 14)
-        if any(card.raw(k) for k in tcols):
-            warnings.warn(MeshWarning(f"{card.file} line {card.line}: {card.name} {eid} corner "
-                                      "thicknesses T1.. are ignored; the PSHELL T applies"),
-                          stacklevel=4)
-
-
-def _material(card: Card) -> dict:
-    E = card.real(1, "E", None)
-    G = card.real(2, "G", None)
-    nu = card.real(3, "NU", None)
-    rho = card.real(4, "RHO", None)
-    if E is None and G is not None and nu is not None:
-        E = 2.0 * (1.0 + nu) * G
-    if nu is None and E is not None and G is not None:
-        nu = E / (2.0 * G) - 1.0
-    if E is None or nu is None:
-        raise card.error("needs E and NU (or two of E, G, NU)")
-    if rho is None:
-        warnings.warn(MeshWarning(f"{card.file} line {card.line}: MAT1 {card.label()} has no "
-                                  "RHO: its elements are massless"), stacklevel=4)
-        rho = 0.0
-    return {"E": E, "nu": nu, "rho": rho}
-
-
-def _cord2r(cards: dict[int, Card], cid: int, cache: dict, user: Card):
-    """Origin and rotation (columns = local axes in basic) of a CORD2R system."""
-    if cid == 0:
-        return np.zeros(3), np.eye(3)
-    if cid in cache:
-        return cache[cid]
-    card = cards.get(cid)
-    if card is None:
-        raise user.error(f"refers to coordinate system {cid}, which is not defined")
-    if card.name != "CORD2R":
-        raise user.error(f"refers to coordinate system {cid} ({card.name}); only CORD2R "
-                         "(rectangular) systems are supported")
-    cache[cid] = None  # loop guard
-    rid = card.int(1, "RID", 0)
-    if rid in cache and cache[rid] is None:
-        raise card.error("coordinate systems refer to each other in a loop")
-    o, R = _cord2r(cards, rid, cache, card)
-    pts = np.array([[card.real(2 + 3 * p + k, "A/B/C", 0.0) for k in range(3)]
-                    for p in range(3)])
-    A, B, C = o + pts @ R.T
-    ez = B - A
-    ey = np.cross(ez, C - A)
-    if np.linalg.norm(ez) == 0 or np.linalg.norm(ey) == 0:
-        raise card.error("points A, B, C are collinear or coincide")
-    ez /= np.linalg.norm(ez)
-    ey /= np.linalg.norm(ey)
-    cache[cid] = (A, np.column_stack([np.cross(ey, ez), ey, ez]))
-    return cache[cid]
+            if n not in NOT_STRUCTURAL and n not in _KNOWN:
+                close = difflib.get_close_matches(n, _SPELLED, n=1, cutoff=0.7)
+                if close:
+                    raise c.error(f"unknown card '{n}': a misspelt {close[0]}? (an element "
+                                  "or property card that is not read would change the "
+                                  "structure)")
+            self.dropped[n] += 1
+            self.first.setdefault(n, c)
 
 
 def _check_unique(ids: np.ndarray, cards: list[Card], what: str) -> None:
@@ -187,164 +168,360 @@ def _check_unique(ids: np.ndarray, cards: list[Card], what: str) -> None:
             "unique", file=b.file, line=b.line)
 
 
-def _index_of(grid_ids, sorter, wanted, cards, label):
-    """0-based node indices of grid ids ``wanted`` (n, k); error names the card."""
-    wanted = np.asarray(wanted, dtype=np.int64)
-    pos = np.searchsorted(grid_ids, wanted.ravel(), sorter=sorter)
-    pos = np.clip(pos, 0, len(grid_ids) - 1)
-    idx = sorter[pos] if len(grid_ids) else pos
-    ok = grid_ids[idx] == wanted.ravel() if len(grid_ids) else np.zeros(wanted.size, bool)
-    if not ok.all():
-        bad = int(np.flatnonzero(~ok)[0])
-        card = cards[bad // max(wanted.shape[1], 1)] if wanted.ndim == 2 else cards[bad]
-        raise card.error(f"{label} refers to GRID {int(wanted.ravel()[bad])}, which is not "
-                         "defined")
-    return idx.reshape(wanted.shape)
-
-
 def read_nastran(path) -> Mesh:
     """Read a Nastran bulk-data deck into a :class:`Mesh` (units of the file)."""
     path = Path(path)
-    cards = read_cards(path)
-    grids, coords, mats, props = [], {}, {}, {}
-    other_mats, conm2, rbe2, set1 = {}, [], [], []
-    els = _Elements()
+    deck = _Deck()
+    fast = FastLines()
+    cards = read_cards(path, fast=fast)
+    fgrid = _fast.grids(fast.lines["GRID"], [w[2] for w in fast.where["GRID"]])
+    fshell = {}
+    for name, ct, k in (("CQUAD4", "quad", 4), ("CTRIA3", "triangle", 3)):
+        fshell[ct] = _fast.shells(fast.lines[name], [w[2] for w in fast.where[name]], k)
+    for name, ok in (("GRID", fgrid is not None), ("CQUAD4", fshell["quad"] is not None),
+                     ("CTRIA3", fshell["triangle"] is not None)):
+        if not ok and fast.lines[name]:   # not exactly parsable: card by card, with messages
+            cards += [fast.card(name, i) for i in range(len(fast.lines[name]))]
+            fast.lines[name], fast.where[name] = [], []
+    if fgrid is None:
+        fgrid = _fast.grids([], [])
+    cards.sort(key=lambda c: c.seq)
     for c in cards:
-        n = c.name
-        if n == "GRID":
-            grids.append(c)
-        elif n in ELEMENTS:
-            _element(c, els)
-        elif n == "CONM2":
-            conm2.append(c)
-        elif n == "RBE2":
-            rbe2.append(c)
-        elif n == "SET1":
-            set1.append(c)
-        elif n in ("PSHELL", "PSOLID", "PBAR", "PBEAM") or n in SKIPPED_PROPERTIES:
-            props[c.int(0, "PID")] = c
-        elif n == "MAT1":
-            mats[c.int(0, "MID")] = c
-        elif n in OTHER_MATERIALS:
-            other_mats[c.int(0, "MID")] = c
-        elif n.startswith("CORD"):
-            coords[c.int(0, "CID")] = c
-        elif n in UNSUPPORTED_ELEMENTS:
-            raise c.error(f"{n} is not supported; supported element cards: "
-                          f"{', '.join(SUPPORTED)}. Remove or convert it")
-    if not grids:
+        deck.add(c)
+    n_fast_el = {ct: 0 if a is None else len(a["eid"]) for ct, a in fshell.items()}
+    if not deck.grids and not len(fgrid["gid"]):
         raise MeshError("no GRID cards found: not a Nastran bulk-data deck?", file=str(path))
+    case = case_control(path)
+    wtmass = 1.0
+    if "WTMASS" in deck.params:
+        wtmass = deck.params["WTMASS"].real(1, "WTMASS")
+        if not (np.isfinite(wtmass) and wtmass > 0):
+            raise deck.params["WTMASS"].error(f"WTMASS = {wtmass:g}; valid: > 0")
+    read = Counter(c.name for c in cards if c.name not in deck.dropped)
+    for name in ("GRID", "CQUAD4", "CTRIA3"):
+        read[name] += len(fast.lines[name])
+    info = {"read": {k: v for k, v in read.items() if v}, "converted": {},
+            "dropped": dict(deck.dropped)}
 
-    # ---- nodes
-    gid = np.array([c.int(0, "ID") for c in grids], dtype=np.int64)
+    # ---- grids: ids, positions in basic (CP), displacement systems (CD)
+    slow = deck.grids
+    ns = len(slow)
+    gid = np.concatenate([np.array([c.int(0, "ID") for c in slow], dtype=np.int64),
+                          fgrid["gid"]])
+    cp = np.concatenate([np.array([c.int(1, "CP", 0) if c.raw(1) else 0 for c in slow],
+                                  dtype=np.int64), fgrid["cp"]])
+    X = np.concatenate([np.array([[c.real(2 + k, f"X{k + 1}", 0.0) for k in range(3)]
+                                  for c in slow]).reshape(-1, 3), fgrid["X"]])
+    cd = np.concatenate([np.array([c.int(5, "CD", 0) if c.raw(5) else 0 for c in slow],
+                                  dtype=np.int64), fgrid["cd"]])
+    has_ps = np.concatenate([np.array([bool(c.raw(6)) for c in slow], dtype=bool),
+                             fgrid["has_ps"]])
+    order = np.argsort(np.concatenate([np.array([c.seq for c in slow], dtype=np.int64),
+                                       fgrid["seq"]]), kind="stable")
+    gid, cp, X, cd, has_ps = gid[order], cp[order], X[order], cd[order], has_ps[order]
+
+    def grid_card(k):
+        i = int(order[k])
+        return slow[i] if i < ns else fast.card("GRID", i - ns)
+
+    grids = _fast.Lazy(grid_card, len(gid))
     _check_unique(gid, grids, "GRID")
-    cp = np.array([c.int(1, "CP", 0) for c in grids], dtype=np.int64)
-    X = np.array([[c.real(2 + k, f"X{k + 1}", 0.0) for k in range(3)] for c in grids])
-    cache: dict = {}
-    for sys_id in np.unique(cp[cp != 0]):
-        rows = np.flatnonzero(cp == sys_id)
-        o, R = _cord2r(coords, int(sys_id), cache, grids[rows[0]])
-        X[rows] = o + X[rows] @ R.T
-    if any(c.int(5, "CD", 0) for c in grids):
-        warnings.warn(MeshWarning(f"{path}: GRID CD (displacement coordinate systems) are "
-                                  "ignored: RBE2 components and CBAR vectors are read in the "
-                                  "basic system"), stacklevel=3)
     sorter = np.argsort(gid, kind="stable")
+    done = cp == 0
 
-    # ---- element ids unique across elements, masses and rigid links
-    all_cards = [c for t in els.cards for c in els.cards[t]] + conm2 + rbe2
-    all_ids = np.array([e for t in els.cards for e in els.eid[t]]
-                       + [c.int(0, "EID") for c in conm2 + rbe2], dtype=np.int64)
-    _check_unique(all_ids, all_cards, "element")
+    def grid_xyz(g, user, stack):
+        i = int(_index_of(gid, sorter, [g], [user], "G")[0])
+        if not done[i]:
+            X[i] = systems.to_basic(int(cp[i]), X[i], grids[i], stack)[0]
+            done[i] = True
+        return X[i]
 
-    # ---- cell blocks, PID cell sets, sections
+    systems = Systems(deck.coords, grid_xyz)
+    for sys_id in np.unique(cp[~done]):
+        rows = np.flatnonzero((cp == sys_id) & ~done)
+        X[rows] = systems.to_basic(int(sys_id), X[rows], grids[rows[0]])
+        done[rows] = True
+    frame_cache: dict = {}
+
+    def cd_frames(nodes, user):
+        nodes = np.asarray(nodes).ravel()
+        out = np.broadcast_to(np.eye(3), (len(nodes), 3, 3)).copy()
+        if not cd[nodes].any():
+            return out
+        for k, nd in enumerate(nodes):
+            if cd[nd]:
+                if nd not in frame_cache:
+                    frame_cache[nd] = systems.frames(int(cd[nd]), X[nd:nd + 1], user)[0]
+                out[k] = frame_cache[nd]
+        return out
+
+    def index(ids, card):
+        return _index_of(gid, sorter, ids, [card] * len(ids), "a grid point")
+
+    # ---- element ids unique across every element-like card (fast shells included)
+    el_cards = [c for cs in deck.elements.values() for c in cs]
+    fast_ids = [a["eid"] for a in fshell.values() if a is not None]
+    n_slow = len(el_cards)
+    offsets = np.cumsum([n_slow] + [n_fast_el["quad"], n_fast_el["triangle"]])
+
+    def el_card(i):
+        if i < n_slow:
+            return el_cards[i]
+        name, base = ("CQUAD4", offsets[0]) if i < offsets[1] else ("CTRIA3", offsets[1])
+        return fast.card(name, i - base)
+
+    _check_unique(np.concatenate([np.array([c.int(0, "EID") for c in el_cards],
+                                           dtype=np.int64)] + fast_ids),
+                  _fast.Lazy(el_card, int(offsets[-1])), "element")
+
+    # ---- cells
+    els: dict = defaultdict(list)
+    second: dict = {}
+    for c in cards:               # file order: blocks appear in the order of the deck
+        if c.name in ELEMENTS:
+            element(c, els, second)
+    if second:
+        listing = ", ".join(f"{k} x{v}" for k, v in second.items())
+        warnings.warn(MeshWarning(f"{path}: second-order solids converted to their linear "
+                                  f"forms on the corner grids (mid-side grids dropped; "
+                                  f"curved edges become straight, bending is stiffer): "
+                                  f"{listing}"), stacklevel=3)
+    for cell_type in list(els):   # grid ids -> node indices
+        items = els[cell_type]
+        conn = _index_of(gid, sorter, [it[3] for it in items], [it[0] for it in items],
+                         "a node")
+        els[cell_type] = [(it[0], it[1], it[2], list(row))
+                          for it, row in zip(items, conn, strict=True)]
+    new_pts, info["converted"] = split_second_order(els, X, int(gid.max()))
+    for k, v in second.items():
+        info["converted"][k] = f"{v} second-order -> linear (corner grids)"
+    if new_pts:
+        gid = np.concatenate([gid, [p[0] for p in new_pts]])
+        X = np.vstack([X, [p[1] for p in new_pts]])
+        cd = np.concatenate([cd, np.zeros(len(new_pts), dtype=np.int64)])
+        sorter = np.argsort(gid, kind="stable")
     blocks, cell_sets, sections = [], {}, {}
-    g0_nodes = np.zeros(0, dtype=np.int64)
-    for cell_type in els.eid:
-        eid = np.array(els.eid[cell_type], dtype=np.int64)
-        pid = np.array(els.pid[cell_type], dtype=np.int64)
-        conn = _index_of(gid, sorter, els.nodes[cell_type], els.cards[cell_type], "a node")
+    g0_nodes: list = []
+    for ct in ("quad", "triangle"):
+        if fshell[ct] is not None and ct not in els:
+            els[ct] = []
+
+    def first_seq(ct):             # blocks in the order their types first appear
+        s0 = [els[ct][0][0].seq] if els[ct] else []
+        fa = fshell.get(ct)
+        return min(s0 + ([int(fa["seq"][0])] if fa is not None else []))
+
+    for cell_type in sorted(els, key=first_seq):
+        items = els[cell_type]
+        cols = cell_arrays(cell_type, items, fshell.get(cell_type), fast, gid, sorter)
+        eid, pid, conn, zoff, theta, user_of = cols
         data = {}
         if cell_type == "line":
-            ori = np.array([o if o is not None else [np.nan] * 3 for o in els.orient])
-            g0 = np.array(els.g0, dtype=np.int64)
-            has = np.flatnonzero(g0 > 0)
-            if has.size:
-                gi = _index_of(gid, sorter, g0[has], [els.cards["line"][i] for i in has], "G0")
-                ori[has] = X[gi] - X[conn[has, 0]]
-                g0_nodes = gi
+            ori, w, g0, rel = line_data(items, X, conn, cd_frames, gid, sorter)
             data["orientation"] = ori
-            w = np.array(els.offsets, dtype=float)
+            if rel.any():
+                data["release"] = rel
+            g0_nodes += g0
             if np.any(w):
                 data["offset_a"], data["offset_b"] = w[:, :3], w[:, 3:]
-                warnings.warn(MeshWarning(f"{path}: CBAR/CBEAM end offsets WA/WB are stored in "
-                                          "block.data but not modelled by the beam element"),
-                              stacklevel=3)
-        elif cell_type in els.zoffs and np.any(els.zoffs[cell_type]):
-            data["zoffset"] = np.array(els.zoffs[cell_type], dtype=float)
-            warnings.warn(MeshWarning(f"{path}: shell ZOFFS offsets are stored in block.data "
-                                      "but not modelled by the shell elements"), stacklevel=3)
+        else:
+            if zoff is not None and np.any(zoff):
+                data["zoffset"] = zoff
+            if theta is not None and any(theta):
+                data["mat_theta"], data["mat_ref"] = _orientation(theta, conn, X, systems,
+                                                                  user_of)
         bi = len(blocks)
-        blocks.append(CellBlock(cell_type, conn, eid, pid, data))
+        blocks.append(CellBlock(cell_type, conn, eid, np.abs(pid), data))
         for p in np.unique(pid):
-            cell_sets.setdefault(f"PID{p}", {})[bi] = np.flatnonzero(pid == p)
-            card = props.get(int(p))
-            if card is not None and f"PID{p}" not in sections:
-                sec = _section(card, cell_type, mats, other_mats,
-                               els.cards[cell_type][int(np.argmax(pid == p))])
-                if sec:
-                    sections[f"PID{p}"] = sec
-
-    # ---- concentrated masses and rigid links
-    masses = []
-    for c in conm2:
-        node = int(_index_of(gid, sorter, [c.int(1, "G")], [c], "G")[0])
-        cid = c.int(2, "CID", 0)
-        off = np.array([c.real(4 + k, f"X{k + 1}", 0.0) for k in range(3)])
-        i11, i21, i22, i31, i32, i33 = (c.real(8 + k, "I", 0.0) for k in range(6))
-        inertia = np.array([[i11, -i21, -i31], [-i21, i22, -i32], [-i31, -i32, i33]])
-        if cid == -1:
-            off = off - X[node]
-        elif cid > 0:
-            _, R = _cord2r(coords, cid, cache, c)
-            off, inertia = R @ off, R @ inertia @ R.T
-        masses.append(PointMass(node, c.real(3, "M"), inertia, off, c.int(0, "EID")))
-    links = [_rbe2(c, gid, sorter) for c in rbe2]
-    node_sets = _node_sets(set1, gid, sorter)
-    mesh = Mesh(points=X, blocks=tuple(blocks), node_ids=gid, cell_sets=cell_sets,
-                point_masses=tuple(masses), rigid_links=tuple(links), sections=sections,
-                node_sets=node_sets, source=str(path))
-    return drop_orientation_nodes(mesh, g0_nodes)
-
-
-def _node_sets(set1: list, gid, sorter) -> dict:
-    """SET1 cards as node sets ``"SET<id>"``, plus the names of ``$ SET name`` comments."""
-    out, names, text = {}, {}, {}
-    for c in set1:
-        sid = c.int(0, "SID")
-        ids, k = [], 1
-        while k < len(c.fields):
-            f = c.raw(k).upper()
-            if f == "THRU":
-                lo, hi = ids[-1], c.int(k + 1, "THRU end")
-                ids.extend(range(lo + 1, hi + 1))
-                k += 2
+            name = f"PID{p}" if p > 0 else f"CONROD{-p}"
+            members = np.flatnonzero(pid == p)
+            cell_sets.setdefault(name, {})[bi] = members
+            user = user_of(int(members[0]))
+            if p < 0:
+                sections[name] = nprops.conrod_section(user, deck.mats, wtmass)
                 continue
-            if f:
-                ids.append(c.int(k, f"ID{k}"))
-            k += 1
-        idx = _index_of(gid, sorter, ids, [c] * len(ids), "a grid") if ids else []
-        out[f"SET{sid}"] = np.asarray(idx, dtype=np.int64)
-        if c.file not in text:
-            try:
-                text[c.file] = Path(c.file).read_text(errors="replace").splitlines()
-            except OSError:
-                text[c.file] = []
-        lines = text[c.file]
-        prev = lines[c.line - 2].strip() if 2 <= c.line <= len(lines) + 1 else ""
-        if prev.startswith("$ SET ") and len(prev.split()) == 3:
-            names[prev.split()[2]] = out[f"SET{sid}"]
-    return {**out, **names}
+            card = deck.props.get(int(p))
+            if card is None:
+                continue     # the assembler reports cells without section/material
+            if cell_type not in nprops.KIND.get(card.name, ()):
+                raise user.error(f"refers to {card.name} {card.label()} (line {card.line}), "
+                                 f"which is not a property of {user.name} elements")
+            if card.name in UNSUPPORTED_PROPERTIES:
+                raise card.error(f"{card.name} is not supported; give an equivalent PSHELL "
+                                 "or pass thickness and material to assemble() for this PID")
+            if name not in sections:
+                sections[name] = (nprops.composite(card, deck.mats, wtmass)
+                                  if card.name in ("PCOMP", "PCOMPG")
+                                  else nprops.section(card, deck.mats, wtmass))
+
+    # ---- springs
+    pelas = {}
+    for c in deck.props.values():
+        if c.name == "PELAS":
+            pelas.update(nprops.pelas(c))
+    springs2, springs1 = extra.celas(deck.elements.get("CELAS1", [])
+                                     + deck.elements.get("CELAS2", []), pelas, index, cd_frames)
+    nan = np.full(6, np.nan)
+    for sp_ in (springs2, springs1):   # + CBUSH parameters (k6, b6, frame, s) for writing
+        n_c = len(sp_[0])
+        sp_ += ([nan] * n_c, [nan] * n_c, [np.eye(3)] * n_c, [np.nan] * n_c)
+    for c in deck.elements.get("CBUSH", []):
+        pidb = c.int(1, "PID", c.int(0, "EID"))
+        pc = deck.props.get(pidb)
+        if pc is None or pc.name != "PBUSH":
+            raise c.error(f"refers to PBUSH {pidb}, which is not defined")
+        pb = nprops.pbush(pc)
+        if c.raw(9) not in ("", "-1") or any(c.raw(10 + j) for j in range(3)):
+            raise c.error("spring offsets OCID/S1-S3 are not supported; leave them blank")
+        ga, gb = c.int(2, "GA"), c.int(3, "GB", 0)
+        idx = index([ga] + ([gb] if gb else []), c)
+        XA = X[idx[0]]
+        XB = X[idx[1]] if gb else XA
+        orient = None
+        if c.is_int(4) and not c.raw(5) and not c.raw(6):
+            orient = X[index([c.int(4, "GO")], c)[0]] - XA
+        elif any(c.raw(4 + j) for j in range(3)):
+            orient = cd_frames(idx[:1], c)[0] @ [c.real(4 + j, "X", 0.0) for j in range(3)]
+        R = extra.bush_frame(c, XA, XB, systems, orient)
+        s = c.real(8, "S", 0.5)
+        if gb:
+            Kb = spring.bush(XA[None], XB[None], R[None], pb["K"][None], s)[0]
+            Bb = spring.bush(XA[None], XB[None], R[None], pb["B"][None], s)[0]
+            target = springs2
+        else:
+            Kb = spring.grounded_bush(R[None], pb["K"][None])[0]
+            Bb = spring.grounded_bush(R[None], pb["B"][None])[0]
+            target = springs1
+        for lst, v in zip(target, (idx, Kb, c.int(0, "EID"), Bb, pb["K"], pb["B"], R, s),
+                          strict=True):
+            lst.append(v)
+    for cell_type, (cells, Ks, ids, Bs, k6, b6, frames, ss) in (("spring", springs2),
+                                                                 ("spring1", springs1)):
+        if cells:
+            data = {"K": np.array(Ks), "k6": np.array(k6), "b6": np.array(b6),
+                    "frame": np.array(frames), "s": np.array(ss, dtype=float)}
+            if np.any(Bs):
+                data["B"] = np.array(Bs)
+            blocks.append(CellBlock(cell_type, np.array(cells), np.array(ids), None, data))
+    # ---- masses, rigid elements
+    masses = [conm2(c, index, X, systems) for c in deck.elements.get("CONM2", [])]
+    masses += [conm1(c, index, X, systems) for c in deck.elements.get("CONM1", [])]
+    if wtmass != 1.0:
+        masses = [PointMass(m.node, m.mass * wtmass, m.inertia * wtmass, m.offset, m.id,
+                            None if m.matrix is None else m.matrix * wtmass) for m in masses]
+    links = [rbe2(c, gid, sorter) for c in deck.elements.get("RBE2", [])]
+    links += [extra.rbar(c, index) for c in deck.elements.get("RBAR", [])]
+    for lk, c in zip(links, deck.elements.get("RBE2", []) + deck.elements.get("RBAR", []),
+                     strict=True):
+        if not extra.invariant(lk.dofs) and cd[np.asarray(lk.slaves)].any():
+            raise c.error(f"components {lk.dofs} at a grid with a CD system: only 123, 456 or "
+                          "123456 are supported there")
+    interp = [extra.rbe3(c, index, lambda nd: bool(cd[nd]))
+              for c in deck.elements.get("RBE3", [])]
+
+    # ---- constraints and solution set-up
+    dof_sets, spc_dirs = extra.spc_sets(deck.spc["SPC"], deck.spc["SPC1"], deck.spc["SPCADD"],
+                                        index, lambda nd: bool(cd[nd]), cd_frames)
+    ps = [(int(k), ch) for k in np.flatnonzero(has_ps) for ch in extra.components(
+        grids[k], 6, "PS", allow_zero=True)]
+    if ps:
+        dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
+    solution = _solution(case, deck, dof_sets, path)
+    if solution.get("spc") in spc_dirs:
+        solution["spc_directions"] = spc_dirs[solution["spc"]]
+
+    node_sets = {}
+    gid_set = set(gid.tolist()) if deck.sets else set()
+    for sid, c in deck.sets.items():        # SET1 of grid ids -> node set "SET<sid>"
+        ids, _ = extra.grid_list(c, 1)
+        if ids and all(g in gid_set for g in ids):
+            node_sets[f"SET{sid}"] = index(ids, c)
+            name = _set_name(c)
+            if name:  # the comment line "$ SET name" right before the card names the set
+                node_sets[name] = node_sets[f"SET{sid}"]
+        else:
+            info["dropped"][f"SET{sid}"] = "lists ids that are not all GRIDs"
+    mesh = Mesh(points=X, blocks=tuple(blocks), node_ids=gid, cell_sets=cell_sets,
+                node_sets=node_sets,
+                point_masses=tuple(masses), rigid_links=tuple(links), sections=sections,
+                source=str(path), interpolations=tuple(interp), dof_sets=dof_sets,
+                solution=solution, info=info)
+    mesh = drop_orientation_nodes(mesh, np.array(g0_nodes, dtype=np.int64))
+    used = referenced(mesh)
+    if not used.all():
+        ids = mesh.node_ids[~used]
+        warnings.warn(MeshWarning(
+            f"{path}: {len(ids)} GRID(s) belong to no element, e.g. {ids[:10].tolist()}; "
+            "left out (Nastran removes their DOF by AUTOSPC)"), stacklevel=3)
+        info["dropped"][f"unreferenced GRID ({len(ids)})"] = ids[:20].tolist()
+        mesh = prune(mesh, used)
+    if deck.dropped:
+        listing = "; ".join(f"{n} x{k} (first at line {deck.first[n].line})"
+                            for n, k in sorted(deck.dropped.items()))
+        warnings.warn(MeshWarning(f"{path}: cards not used for M and K (loads, output, "
+                                  f"other solutions or unknown): {listing}"), stacklevel=3)
+    return mesh
+
+
+def _orientation(theta, conn, X, systems, user_of):
+    """Material orientation of shells: THETA (degrees from the element x axis) or MCID
+    (x axis of that coordinate system, projected onto the element)."""
+    n = len(theta)
+    ang = np.zeros(n)
+    ref = np.full((n, 3), np.nan)
+    for j in np.flatnonzero(np.array([bool(t) for t in theta])):
+        s = theta[j]
+        if s.lstrip("+-").isdigit():
+            c = user_of(int(j))
+            ref[j] = systems.frames(int(s), X[conn[j]].mean(axis=0)[None], c)[0][:, 0]
+        else:
+            from flexpipe.mesh._bulk import parse_real
+
+            v = parse_real(s)
+            if v is None or not np.isfinite(v):
+                raise user_of(int(j)).error(f"THETA = '{s}' is not a number (or MCID id)")
+            ang[j] = np.radians(v)
+    return ang, ref
+
+
+def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:
+    out: dict = {}
+    if "SPC" in case:
+        sid, line = case["SPC"]
+        if f"SPC{sid}" not in dof_sets:
+            raise MeshError(f"case control SPC = {sid}, but no SPC/SPC1/SPCADD card has SID "
+                            f"{sid}; defined: {sorted(dof_sets)}", file=str(path), line=line)
+        out["spc"] = f"SPC{sid}"
+    if "METHOD" in case:
+        sid, line = case["METHOD"]
+        if sid not in deck.eigrl:
+            raise MeshError(f"case control METHOD = {sid}, but no EIGRL card has SID {sid}; "
+                            f"defined: {sorted(deck.eigrl)}", file=str(path), line=line)
+        out.update(extra.eigrl(deck.eigrl[sid]))
+    elif len(deck.eigrl) == 1:
+        out.update(extra.eigrl(next(iter(deck.eigrl.values()))))
+    if "COUPMASS" in deck.params:
+        c = deck.params["COUPMASS"]
+        out["lumped_mass"] = c.int(1, "COUPMASS") <= 0
+    return out
+
+
+_TEXT_CACHE: dict = {}
+
+
+def _set_name(c) -> str | None:
+    """Name given to a SET1 card by a ``$ SET name`` comment on the line before it."""
+    lines = _TEXT_CACHE.get(c.file)
+    if lines is None:
+        try:
+            lines = Path(c.file).read_text(errors="replace").splitlines()
+        except OSError:
+            lines = []
+        _TEXT_CACHE.clear()
+        _TEXT_CACHE[c.file] = lines
+    prev = lines[c.line - 2].strip() if 2 <= c.line <= len(lines) + 1 else ""
+    parts = prev.split()
+    return parts[2] if prev.startswith("$ SET ") and len(parts) == 3 else None
 
 
 def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:
@@ -357,67 +534,3 @@ def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:
     only &= ~referenced(mesh)
     return prune(mesh, ~only) if only.any() else mesh
 
-
-def _rbe2(c: Card, gid, sorter) -> RigidLink:
-    gn = c.int(1, "GN")
-    cm = c.raw(2)
-    if not cm or not cm.isdigit() or set(cm) - set("123456"):
-        raise c.error(f"component field CM = '{cm}' must be digits 1-6, e.g. 123456")
-    slaves, k = [], 3
-    while k < len(c.fields):
-        s = c.raw(k)
-        if s.upper() == "THRU" and slaves:
-            hi = c.int(k + 1, "GMi THRU")
-            slaves.extend(range(slaves[-1] + 1, hi + 1))
-            k += 2
-            continue
-        if s and not c.is_int(k):
-            break  # ALPHA (thermal expansion) ends the node list
-        if s:
-            slaves.append(int(s))
-        k += 1
-    if not slaves:
-        raise c.error("has no dependent grid points GMi")
-    idx = _index_of(gid, sorter, [gn] + slaves, [c] * (len(slaves) + 1), "a grid point")
-    return RigidLink(int(idx[0]), idx[1:], "".join(sorted(set(cm))), c.int(0, "EID"))
-
-
-def _section(card: Card, cell_type: str, mats: dict, other_mats: dict, user: Card) -> dict:
-    """Section properties of property card ``card`` used by element card ``user``."""
-    kind = {"PSHELL": ("triangle", "quad"), "PSOLID": ("tetra", "tetra10", "hexahedron"),
-            "PBAR": ("line",), "PBEAM": ("line",), "PBARL": ("line",), "PBEAML": ("line",),
-            "PCOMP": ("triangle", "quad"), "PCOMPG": ("triangle", "quad")}[card.name]
-    if cell_type not in kind:
-        raise user.error(f"refers to {card.name} {card.label()} (line {card.line}), which is "
-                         f"not a property of {user.name} elements")
-    if card.name in SKIPPED_PROPERTIES:
-        warnings.warn(MeshWarning(f"{card.file} line {card.line}: {card.name} {card.label()} is "
-                                  "not read; pass the section/thickness to assemble() for cell "
-                                  f"set 'PID{card.label()}'"), stacklevel=4)
-        return {}
-    out = {}
-    mid = card.int(1, "MID", None)
-    if card.name == "PSHELL":
-        t = card.real(2, "T", None)
-        if t is not None:
-            out["thickness"] = t
-        if mid is None:
-            mid = card.int(3, "MID2", None)
-        ratio = card.real(4, "12I/T**3", 1.0)
-        if abs(ratio - 1.0) > 1e-9:
-            warnings.warn(MeshWarning(f"{card.file} line {card.line}: PSHELL {card.label()} "
-                                      f"bending ratio 12I/T^3 = {ratio} is ignored (1.0 used)"),
-                          stacklevel=4)
-    elif card.name in ("PBAR", "PBEAM"):
-        A, I1, I2 = (card.real(k, n, 0.0) for k, n in ((2, "A"), (3, "I1"), (4, "I2")))
-        J = card.real(5 if card.name == "PBAR" else 6, "J", 0.0)
-        out.update(A=A, Iz=I1, Iy=I2, J=J)
-    if mid is not None:
-        if mid in mats:
-            out.update(_material(mats[mid]))
-        elif mid in other_mats:
-            raise card.error(f"material {mid} is {other_mats[mid].name}; only isotropic MAT1 "
-                             "is supported")
-        else:
-            raise card.error(f"refers to material MID {mid}, which has no MAT1 card")
-    return out

@@ -3,7 +3,10 @@
 Integers go in small-field (8 character) cards; cards with reals use large field
 (16 characters) with up to 13 significant digits, so a round trip changes coordinates by
 at most ~1e-13 relative.  Named node/cell sets other than the property ids have no place
-in bulk data and are not written.
+in bulk data and are not written.  Also written: CPENTA/CPYRAM, CBAR offsets WA/WB, PBAR
+shear factors K1/K2 and I12 (from the principal axes), PSHELL MID2 with 12I/T^3, ZOFFS,
+RBE3, CONM1, springs (see :mod:`flexpipe.mesh._nastran_write_extra`), SPC1 sets and the
+solution set-up (case control ``SPC``/``METHOD`` with EIGRL).
 """
 
 from __future__ import annotations
@@ -15,11 +18,12 @@ import numpy as np
 
 from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh._common import cell_section_index, default_orientation, unique_ids
-from flexpipe.mesh.mesh import Mesh
+from flexpipe.mesh.mesh import SOLID_TYPES, Mesh
 from flexpipe.mesh.validate import MeshWarning
 
 CARD_OF = {"tetra": "CTETRA", "tetra10": "CTETRA", "hexahedron": "CHEXA",
-           "triangle": "CTRIA3", "quad": "CQUAD4", "line": "CBAR"}
+           "triangle": "CTRIA3", "quad": "CQUAD4", "line": "CBAR", "wedge": "CPENTA",
+           "pyramid": "CPYRAM"}
 _PID = re.compile(r"^PID(\d+)$")
 
 
@@ -94,7 +98,7 @@ def _property_ids(mesh: Mesh):
     out = []
     for b, sidx in zip(mesh.blocks, sec_idx, strict=True):
         pids = np.zeros(len(b), dtype=np.int64)
-        kind = "solid" if b.type in ("tetra", "tetra10", "hexahedron") else b.type
+        kind = "solid" if b.type in SOLID_TYPES else b.type
         kind = "shell" if b.type in ("triangle", "quad") else kind
         for key in {(int(t), int(s)) for t, s in zip(b.tags, sidx, strict=True)}:
             full = (kind,) + key
@@ -115,9 +119,26 @@ def _property_ids(mesh: Mesh):
     return out, section_of_pid, kind_of_pid
 
 
+def _theta_degrees(mesh: Mesh, b):
+    """Material angle (degrees from the element x axis) of shells that carry one."""
+    if b.type not in ("quad", "triangle") or not ("mat_theta" in b.data
+                                                  or "mat_ref" in b.data):
+        return None
+    from flexpipe.fem._shell import local_frame, material_angle
+
+    n = len(b)
+    R, _, _ = local_frame(mesh.points[b.cells])
+    phi = material_angle(R, np.asarray(b.data.get("mat_ref", np.full((n, 3), np.nan))),
+                         np.asarray(b.data.get("mat_theta", np.zeros(n))))
+    return np.degrees(phi)
+
+
 def nastran_text(mesh: Mesh) -> str:
     """Bulk-data text of ``mesh`` (values as stored: SI for a mesh read by flexpipe)."""
-    parts = [f"$ written by flexpipe from {mesh.source or 'an in-memory mesh'}\n"]
+    from flexpipe.mesh._nastran_write_extra import header
+
+    head, tail = header(mesh)
+    parts = [head + f"$ written by flexpipe from {mesh.source or 'an in-memory mesh'}\n"]
     nid = unique_ids(mesh.node_ids)
     for i, (x, y, z) in enumerate(mesh.points):
         parts.append(card("GRID", [int(nid[i]), None, float(x), float(y), float(z)]))
@@ -142,13 +163,29 @@ def nastran_text(mesh: Mesh) -> str:
             ori = np.asarray(b.data.get("orientation", np.full((len(b), 3), np.nan)), float)
             miss = ~np.isfinite(ori).all(axis=1)
             ori[miss] = default_orientation(mesh.points[b.cells[miss]])
+            wa = np.asarray(b.data.get("offset_a", np.zeros((len(b), 3))), dtype=float)
+            wb = np.asarray(b.data.get("offset_b", np.zeros((len(b), 3))), dtype=float)
+            rel = np.asarray(b.data.get("release", np.zeros(len(b))), dtype=np.int64)
             for k in range(len(b)):
+                pins = ["".join(str(d + 1) for d in range(6) if int(rel[k]) >> (e + d) & 1)
+                        or None for e in (0, 6)]
+                off = ([None, *pins, *map(float, wa[k]), *map(float, wb[k])]
+                       if np.any(wa[k]) or np.any(wb[k]) or rel[k] else [])
                 parts.append(card("CBAR", [int(e[k]), int(pids[bi][k]), *map(int, conn[k]),
-                                           *map(float, ori[k])]))
+                                           *map(float, ori[k]), *off]))
+        elif b.type in ("spring", "spring1"):
+            from flexpipe.mesh._nastran_write_extra import spring_cards
+
+            parts.extend(spring_cards(b, e, nid, mesh.source))
         else:
             name = CARD_OF[b.type]
+            z = np.asarray(b.data.get("zoffset", np.zeros(len(b))), dtype=float)
+            th = _theta_degrees(mesh, b)
             for k in range(len(b)):
-                parts.append(card(name, [int(e[k]), int(pids[bi][k]), *map(int, conn[k])]))
+                t_k = None if th is None or th[k] == 0 else float(th[k])
+                zo = [t_k, float(z[k])] if z[k] else ([t_k] if t_k is not None else [])
+                parts.append(card(name, [int(e[k]), int(pids[bi][k]), *map(int, conn[k]),
+                                         *zo]))
     mids: dict = {}
     for pid in sorted(section_of_pid):
         sec = mesh.sections.get(section_of_pid[pid] or "", {})
@@ -160,14 +197,36 @@ def nastran_text(mesh: Mesh) -> str:
         if kind == "solid":
             parts.append(card("PSOLID", [pid, mid]))
         elif kind == "shell":
+            if "A11" in sec:
+                from flexpipe.errors import InputError
+
+                raise InputError(f"section {section_of_pid[pid]} is a laminate (PCOMP); the "
+                                 "writer has no PCOMP card - keep the original deck",
+                                 file=mesh.source or None)
             t = sec.get("thickness")
-            parts.append(card("PSHELL", [pid, mid, None if t is None else float(t), mid]))
+            bend = float(sec.get("bending", 1.0))
+            parts.append(card("PSHELL", [pid, mid, None if t is None else float(t),
+                                         mid if bend else None,
+                                         None if bend in (0.0, 1.0) else bend]))
         elif kind == "line" and all(k in sec for k in ("A", "Iy", "Iz", "J")):
-            parts.append(card("PBAR", [pid, mid, float(sec["A"]), float(sec["Iz"]),
-                                       float(sec["Iy"]), float(sec["J"])]))
+            th = float(sec.get("theta", 0.0))
+            c, s_ = np.cos(th), np.sin(th)
+            Ip1, Ip2 = float(sec["Iz"]), float(sec["Iy"])
+            I1, I2 = Ip1 * c * c + Ip2 * s_ * s_, Ip1 * s_ * s_ + Ip2 * c * c
+            I12 = (Ip1 - Ip2) * c * s_
+            k1, k2 = float(sec.get("k1", 0.0)), float(sec.get("k2", 0.0))
+            shear = ([None] * 10 + [k1 or None, k2 or None, I12 or None]
+                     if k1 or k2 or I12 else [])
+            parts.append(card("PBAR", [pid, mid, float(sec["A"]), I1, I2, float(sec["J"]),
+                                       *shear]))
     for (E, nu, rho), mid in mids.items():
         parts.append(card("MAT1", [mid, E, None, nu, rho]))
     for k, pm in enumerate(mesh.point_masses):
+        if pm.matrix is not None:
+            Mm = np.asarray(pm.matrix, dtype=float)
+            parts.append(card("CONM1", [int(eids[n_cells + k]), int(nid[pm.node]), 0,
+                                        *map(float, Mm[np.tril_indices(6)])]))
+            continue
         I = np.asarray(pm.inertia, dtype=float)
         parts.append(card("CONM2", [int(eids[n_cells + k]), int(nid[pm.node]), 0,
                                     float(pm.mass), *map(float, pm.offset), None,
@@ -177,7 +236,12 @@ def nastran_text(mesh: Mesh) -> str:
     for k, lk in enumerate(mesh.rigid_links):
         parts.append(card("RBE2", [int(eids[off + k]), int(nid[lk.master]), lk.dofs,
                                    *map(int, nid[np.asarray(lk.slaves)])]))
-    if mesh.node_sets or any(not _PID.match(n) for n in mesh.cell_sets):
+    from flexpipe.mesh._nastran_write_extra import constraint_cards
+
+    nxt = int(eids.max(initial=0)) + 1
+    parts.extend(constraint_cards(mesh, nid, nxt))
+    if any(not re.match(r"^SET\d+$", n) for n in mesh.node_sets) or any(
+            not _PID.match(n) for n in mesh.cell_sets):
         warnings.warn(MeshWarning("named node/cell sets are not written to Nastran bulk data "
                                   "(only property ids are)"), stacklevel=3)
-    return "".join(parts)
+    return "".join(parts) + tail

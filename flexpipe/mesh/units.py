@@ -9,6 +9,8 @@ decks (Nastran, Abaqus) also carry materials, masses and inertias:
     area (``scale**2``) and second moments / torsion constant (``scale**4``).  It does
     **not** touch Young's modulus, density, concentrated masses or rotary inertias: a
     millimetre deck whose MAT1 holds E in MPa and rho in t/mm^3 needs ``units``.
+Springs and dampers (``spring`` cells) convert with ``units`` only (force per length,
+per radian ...), like the materials.
 ``units`` (``"SI"``, ``"mm-t-s"``, ``"mm-kg-s"``, ``"mm-kg-ms"``, ``"mm-g-ms"``,
 ``"cm-g-s"``, ... any ``LENGTH-MASS-TIME`` from the tables below)
     converts everything consistently: lengths as above, E and G by
@@ -34,6 +36,10 @@ ALIASES = {"si": "m-kg-s", "mks": "m-kg-s", "mmns": "mm-t-s", "cgs": "cm-g-s"}
 SECTION_DIMENSIONS = {
     "thickness": (1, 0, 0), "A": (2, 0, 0), "Iy": (4, 0, 0), "Iz": (4, 0, 0),
     "J": (4, 0, 0), "E": (-1, 1, -2), "G": (-1, 1, -2), "rho": (-3, 1, 0),
+    # laminate rigidities (PCOMP): A and Gt force per length, D force times length
+    **{f"A{ij}": (0, 1, -2) for ij in ("11", "12", "16", "22", "26", "66")},
+    **{f"D{ij}": (2, 1, -2) for ij in ("11", "12", "16", "22", "26", "66")},
+    "Gt": (0, 1, -2),
 }
 
 
@@ -115,13 +121,33 @@ def convert(mesh, system: UnitSystem, *, materials: bool):
     for b in mesh.blocks:
         data = {k: (np.asarray(v, dtype=float) * L if k.endswith("offset") else v)
                 for k, v in b.data.items()}
+        if b.type in ("spring", "spring1") and materials:
+            # spring matrices: N/m, N/rad, N m/rad blocks; dampers times one time unit
+            nn = 2 if b.type == "spring" else 1
+            pat = np.kron(np.ones((nn, nn)), np.kron([[1.0, L], [L, L * L]], np.ones((3, 3))))
+            f = system.mass / system.time**2
+            for key, extra_t in (("K", 1.0), ("B", system.time)):
+                if key in data:
+                    data[key] = np.asarray(data[key], dtype=float) * pat * f * extra_t
+            rot = np.array([1.0, 1.0, 1.0, L * L, L * L, L * L]) * f
+            for key, extra_t in (("k6", 1.0), ("b6", system.time)):
+                if key in data:
+                    data[key] = np.asarray(data[key], dtype=float) * rot * extra_t
         blocks.append(CellBlock(b.type, b.cells, b.ids, b.tags, data))
     mass_f = system.mass if materials else 1.0
     inertia_f = system.factor((2, 1, 0)) if materials else 1.0
     masses = tuple(
         PointMass(pm.node, pm.mass * mass_f, np.asarray(pm.inertia, dtype=float) * inertia_f,
-                  np.asarray(pm.offset, dtype=float) * L, pm.id)
+                  np.asarray(pm.offset, dtype=float) * L, pm.id,
+                  None if pm.matrix is None else np.asarray(pm.matrix, dtype=float)
+                  * np.kron([[1.0, L], [L, L * L]], np.ones((3, 3)))
+                  * (mass_f if materials else 1.0))
         for pm in mesh.point_masses
     )
+    solution = dict(mesh.solution)
+    if materials:   # EIGRL frequency range in 1 / (file time unit)
+        for key in ("f_min", "f_max"):
+            if solution.get(key) is not None:
+                solution[key] = float(solution[key]) / system.time
     return replace(mesh, points=mesh.points * L, blocks=tuple(blocks), sections=sections,
-                   point_masses=masses)
+                   point_masses=masses, solution=solution)

@@ -65,6 +65,9 @@ def referenced(mesh: Mesh) -> np.ndarray:
     for link in mesh.rigid_links:
         used[link.master] = True
         used[np.asarray(link.slaves, dtype=np.int64)] = True
+    for it in mesh.interpolations:
+        used[it.ref] = True
+        used[np.asarray(it.nodes, dtype=np.int64)] = True
     return used
 
 
@@ -78,8 +81,23 @@ def prune(mesh: Mesh, keep: np.ndarray) -> Mesh:
     masses = tuple(replace(pm, node=int(new_of[pm.node])) for pm in mesh.point_masses)
     links = tuple(RigidLink(int(new_of[lk.master]), new_of[np.asarray(lk.slaves)], lk.dofs,
                             lk.id) for lk in mesh.rigid_links)
+    interp = tuple(replace(it, ref=int(new_of[it.ref]),
+                           nodes=new_of[np.asarray(it.nodes, dtype=np.int64)])
+                   for it in mesh.interpolations)
+    dof_sets = {}
+    for k, v in mesh.dof_sets.items():
+        v = np.asarray(v, dtype=np.int64).reshape(-1, 2)
+        n = new_of[v[:, 0]]
+        dof_sets[k] = np.column_stack([n, v[:, 1]])[n >= 0]
+    solution = dict(mesh.solution)
+    if "spc_directions" in solution:      # rows (node, group, direction) of flexpipe modes
+        d = np.array(solution["spc_directions"], dtype=float)
+        n = new_of[d[:, 0].astype(np.int64)]
+        d[:, 0] = n
+        solution["spc_directions"] = d[n >= 0]
     return replace(mesh, points=mesh.points[keep], node_ids=mesh.node_ids[keep],
-                   blocks=blocks, node_sets=node_sets, point_masses=masses, rigid_links=links)
+                   blocks=blocks, node_sets=node_sets, point_masses=masses, rigid_links=links,
+                   interpolations=interp, dof_sets=dof_sets, solution=solution)
 
 
 def _check_repeated_nodes(mesh: Mesh) -> None:

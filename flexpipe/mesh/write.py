@@ -57,6 +57,15 @@ def write_mesh(mesh: Mesh, path, *, format: str | None = None, gmsh_version: str
     if gmsh_version not in ("2.2", "4.1"):
         raise InputError(f"gmsh_version must be '2.2' or '4.1', got {gmsh_version!r}",
                          key="gmsh_version")
+    springs = [b.type for b in mesh.blocks if b.type in ("spring", "spring1")]
+    if springs and fmt in ("gmsh", "abaqus"):
+        raise InputError(f"the mesh has spring elements ({len(springs)} block(s), from "
+                         "CELAS/CBUSH or *SPRING), which .msh/.inp output does not carry; "
+                         "write a Nastran deck (.bdf) instead", file=str(path))
+    lost = [k for k in ("interpolations",) if getattr(mesh, k)]
+    if lost and fmt == "gmsh":
+        raise InputError("the mesh has RBE3 interpolation constraints, which .msh output "
+                         "does not carry; write .bdf instead", file=str(path))
     with atomic_path(path) as tmp:
         if fmt == "gmsh":
             from flexpipe.mesh.meshio_io import write_gmsh

@@ -16,7 +16,9 @@ body origin (m/s^2, body axes, from its velocity);
 per corner ``c`` in ``fl, fr, rl, rr``: ``hub_c_x|y|z`` force the corner applies to the body
 at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-axes),
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
-per named point ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, without gravity).
+per named point ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, without gravity);
+linkage cars, per body mount ``m``: ``mount_m_x|y|z`` force the suspension applies to the
+body there (N, body axes; ``hub_c_*`` is the sum over the corner's own mounts).
 """
 
 from __future__ import annotations
@@ -158,6 +160,11 @@ class CarController:
                       f"tire_{cn}_Fy", f"tire_{cn}_Fz", f"travel_{cn}", f"spin_{cn}"]
         for p in self.points:
             names += [f"acc_{p}_x", f"acc_{p}_y", f"acc_{p}_z"]
+        self.mounts = []
+        if linkage is not None:  # force on the body at every mount (body axes)
+            self.mounts = sorted({m for m, *_ in linkage.body_links})
+            for m in self.mounts:
+                names += [f"mount_{m}_x", f"mount_{m}_y", f"mount_{m}_z"]
         n_rows = int(round(t_end / h)) // self.output_every + 2
         self.rec = Recorder(names, n_rows)
         self._prev_v = None
@@ -355,6 +362,10 @@ class CarController:
             acc = self.point_acc()
             for p in self.points:
                 row += list(R.T @ acc[p])
+        if self.mounts:
+            mf = self.linkage.mount_forces()
+            for m in self.mounts:
+                row += list(R.T @ mf[m])
         self.rec.add(st.t, np.array(row, dtype=float))
         if self.body_motion is not None and len(self.motion) < self.rec.rows:
             self.motion.append(self.body_motion())

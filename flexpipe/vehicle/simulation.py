@@ -424,6 +424,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
         "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
+        "cpu_python_step_s": float(getattr(system, "prestep_cpu", 0.0)),
+        "suspension": "prismatic" if car.suspension is None else
+        f"linkage ({car.suspension.mode} mode)",
     }
     if fb is not None:
         used = fb.n_elastic if n_modes is None else n_modes

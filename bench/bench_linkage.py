@@ -1,0 +1,56 @@
+"""Full car on linkage suspensions (``cars/sedan_linkage.toml``): speed and profile.
+
+Targets (issue "Numbers that converge"): the flexible car at the default step at least 3x
+faster than real time, flexible/rigid CPU at most 2, with the linkage suspension.  The
+same run is made with the prismatic-corner sample (``cars/sedan.toml``) as the peer: the
+ratios are against it and against the rigid car, all measured in this run.  The profile
+splits each run's CPU time into the Python step (tyre model, linearization, driver,
+recording) and Exudyn's own work (the rest).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from flexpipe.scenarios.runner import _straight_road
+from flexpipe.vehicle import load_car, simulate
+from flexpipe.vehicle.simulation import prepare
+
+ROOT = Path(__file__).resolve().parents[1]
+SPEED = 70.0 / 3.6
+T_RUN = 10.0
+
+
+def run() -> dict:
+    """Run the benchmark; returns a flat dict of figures."""
+    road = _straight_road()
+    out = {"t_run_s": T_RUN, "speed_kmh": 70.0, "h_s": 2e-3}
+    for tag, path in (("linkage", ROOT / "cars" / "sedan_linkage.toml"),
+                      ("prismatic", ROOT / "cars" / "sedan.toml")):
+        car = load_car(path)
+        for body in ("rigid", "flexible"):
+            prep = prepare(car, body=body, speed=SPEED, road=road)
+            r = simulate(car, road=road, speed=SPEED, t_end=T_RUN, body=body, prepared=prep)
+            key = f"{tag}_{body}"
+            py = r.info.get("cpu_python_step_s", 0.0)
+            out[f"{key}_status"] = r.status
+            out[f"{key}_cpu_s"] = round(r.cpu_time, 3)
+            out[f"{key}_realtime_factor"] = round(r.realtime_factor, 3)
+            out[f"{key}_cpu_python_step_s"] = round(py, 3)
+            out[f"{key}_cpu_exudyn_s"] = round(r.cpu_time - py, 3)
+            out[f"{key}_ms_per_step"] = round(1e3 * r.cpu_time / (T_RUN / 2e-3), 4)
+            if body == "flexible":
+                out[f"{key}_modes"] = r.info.get("n_elastic_modes")
+        out[f"{tag}_cpu_ratio_flexible_to_rigid"] = round(
+            out[f"{tag}_flexible_cpu_s"] / out[f"{tag}_rigid_cpu_s"], 3)
+    out["linkage_over_prismatic_cpu_flexible"] = round(
+        out["linkage_flexible_cpu_s"] / out["prismatic_flexible_cpu_s"], 3)
+    out["target_flexible_rtf_at_least_3"] = out["linkage_flexible_realtime_factor"] >= 3.0
+    out["target_ratio_at_most_2"] = out["linkage_cpu_ratio_flexible_to_rigid"] <= 2.0
+    for k, v in out.items():
+        print(f"{k:44s} {v}")
+    return out
+
+
+if __name__ == "__main__":
+    run()

@@ -1,0 +1,289 @@
+"""Sections, masses, couplings and springs of the Abaqus reader (see
+:mod:`flexpipe.mesh.abaqus`): ``*BEAM SECTION`` shapes (RECT, CIRC, PIPE, BOX, I, L) and
+``*BEAM GENERAL SECTION``, MASS/ROTARYI elements, ``*KINEMATIC COUPLING``,
+``*COUPLING`` with ``*KINEMATIC`` (rigid links) or ``*DISTRIBUTING`` (RBE3-type
+interpolation, uniform weights or the node-based surface's weights), SPRING1/SPRING2
+with ``*SPRING`` (global DOF)."""
+
+from __future__ import annotations
+
+import warnings
+from collections import defaultdict
+
+import numpy as np
+
+from flexpipe.errors import MeshError
+from flexpipe.mesh._bulk import parse_real
+from flexpipe.mesh.mesh import PointMass, RigidLink
+from flexpipe.mesh.validate import MeshWarning
+
+
+def values(file, line, text, what, *, count=None):
+    vals = [v.strip() for v in text.split(",")]
+    while vals and not vals[-1]:
+        vals.pop()
+    out = []
+    for v in vals:
+        x = parse_real(v) if v else 0.0
+        if x is None:
+            raise MeshError(f"{what}: '{v}' is not a number", file=file, line=line)
+        out.append(x)
+    if count is not None and len(out) < count:
+        raise MeshError(f"{what}: expected {count} values, got {len(out)}", file=file, line=line)
+    return out
+
+
+def _shape_section(sec, v, where) -> dict:
+    """Abaqus BOX / I / L dimensions -> section (local 1 = flexpipe y, 2 = z)."""
+    from flexpipe.fem.sections import principal, standard_section
+
+    try:
+        if sec == "BOX":       # a (along 1), b (along 2), t1..t4 (uniform walls only)
+            a, b, *t = (v + [0.0] * 6)[:6]
+            if max(t) != min(t):
+                raise ValueError("only equal wall thicknesses t1 = t2 = t3 = t4 are supported")
+            s = standard_section("BOX", [b, a, t[0], t[0]])      # Nastran height = 1-axis
+            Iz, Iy, I12 = s["I1"], s["I2"], 0.0
+        elif sec == "I":       # l, h (along 2), b1, b2, t1, t2, t3
+            _, h, b1, b2, t1, t2, t3 = (v + [0.0] * 7)[:7]
+            s = standard_section("I", [h, b1, b2, t3, t1, t2])   # Nastran height = 2-axis
+            Iz, Iy, I12 = s["I2"], s["I1"], 0.0
+        else:                  # L: a (along 1), b (along 2), t1, t2
+            a, b, t1, t2 = (v + [0.0] * 4)[:4]
+            s = standard_section("L", [a, b, t1, t2])
+            Iz, Iy, I12 = s["I2"], s["I1"], s["I12"]
+    except ValueError as exc:
+        raise MeshError(f"*BEAM SECTION SECTION={sec}: {exc}", file=where[0],
+                        line=where[1]) from None
+    Ip1, Ip2, theta = principal(Iz, Iy, I12)
+    return {"A": s["A"], "Iz": Ip1, "Iy": Ip2, "J": s["J"], "theta": theta}
+
+
+def _beam_section(params, lines, f, ln):
+    rows = [(lf, lln, t) for lf, lln, t in lines.data()]
+    if not rows:
+        raise MeshError("beam section without data lines", file=f, line=ln)
+    sec = params.get("SECTION", "GENERAL").upper()
+    v = values(*rows[0], "beam section dimensions")
+    if sec != "GENERAL" and (not v or not all(np.isfinite(x) and x > 0 for x in v[
+            1 if sec == "I" else 0:])):
+        raise MeshError(f"*BEAM SECTION SECTION={sec}: dimensions {v} must be finite and > 0",
+                        file=rows[0][0], line=rows[0][1])
+    props, mat = {}, None
+    if sec == "GENERAL":
+        A, I11, I12, I22, J = (v + [0.0] * 5)[:5]
+        if I12:
+            warnings.warn(MeshWarning(f"{f} line {ln}: product of inertia I12 ignored"),
+                          stacklevel=4)
+        props = {"A": A, "Iy": I11, "Iz": I22, "J": J}
+        if len(rows) > 2:
+            E, G = (values(*rows[2], "beam E, G") + [0.0, 0.0])[:2]
+            rho = parse_real(params.get("DENSITY", "0")) or 0.0
+            props.update(E=E, nu=E / (2 * G) - 1 if G else 0.3, rho=rho)
+    elif sec == "RECT":
+        a, b = (v + [0.0, 0.0])[:2]
+        lo, hi = min(a, b), max(a, b)
+        J = hi * lo**3 * (1 / 3 - 0.21 * lo / hi * (1 - lo**4 / (12 * hi**4)))
+        props = {"A": a * b, "Iy": a * b**3 / 12, "Iz": b * a**3 / 12, "J": J}
+    elif sec in ("CIRC", "PIPE"):
+        r = v[0]
+        ri = r - v[1] if sec == "PIPE" else 0.0
+        if not 0 <= ri < r:
+            raise MeshError(f"*BEAM SECTION PIPE: wall {v[1]} must be smaller than the radius "
+                            f"{r}", file=rows[0][0], line=rows[0][1])
+        I = np.pi * (r**4 - ri**4) / 4
+        props = {"A": np.pi * (r**2 - ri**2), "Iy": I, "Iz": I, "J": 2 * I}
+    elif sec in ("I", "L", "BOX"):
+        props = _shape_section(sec, v, rows[0])
+    else:
+        raise MeshError(f"beam SECTION={sec} is not supported; use GENERAL, RECT, CIRC, PIPE, "
+                        "BOX, I or L", file=f, line=ln)
+    if sec != "GENERAL":
+        mat = params.get("MATERIAL")
+    n1 = values(*rows[1], "beam n1 direction")[:3] if len(rows) > 1 else None
+    return props, mat, n1
+
+
+def _masses(deck, cells_of, index, where_e):
+    """Point masses: MASS and ROTARYI elements on the same node are combined into one."""
+    acc: dict[int, list] = {}
+    for kind, items in (("mass", deck.masses), ("inertia", deck.inertias)):
+        for elset, value, f, ln in items:
+            _, members = cells_of(elset, f, ln, f"*{kind.upper()}")
+            for k in members.get("mass", []):
+                node = int(index([deck.conn["mass"][k][0]], lambda _, f=f, ln=ln: (f, ln),
+                                 "*MASS")[0])
+                entry = acc.setdefault(node, [0.0, np.zeros((3, 3)), deck.eids["mass"][k]])
+                if kind == "mass":
+                    entry[0] += float(value)
+                else:
+                    entry[1] = entry[1] + value
+    return tuple(PointMass(node, m, I, id=eid) for node, (m, I, eid) in acc.items())
+
+
+def _couplings(deck, index):
+    links = []
+    for ref, rows, f, ln in deck.couplings:
+        master = int(index([ref], lambda _, f=f, ln=ln: (f, ln),
+                           "*KINEMATIC COUPLING REF NODE")[0])
+        by_dofs = defaultdict(list)
+        for tok, first, last, lf, lln in rows:
+            if tok.isdigit():
+                nodes = [int(tok)]
+            else:
+                key = deck.set_key(deck.nsets, tok)
+                if key is None:
+                    raise MeshError(f"*KINEMATIC COUPLING refers to NSET '{tok}', which is "
+                                    "not defined", file=lf, line=lln)
+                nodes = deck.nsets[key]
+            dofs = "".join(str(d) for d in range(first, last + 1))
+            by_dofs[dofs].extend(nodes)
+        node_dofs = defaultdict(str)
+        for dofs, nodes in by_dofs.items():
+            for n in nodes:
+                node_dofs[n] = "".join(sorted(set(node_dofs[n] + dofs)))
+        groups = defaultdict(list)
+        for n, dofs in node_dofs.items():
+            groups[dofs].append(n)
+        for dofs, nodes in groups.items():
+            slaves = index(nodes, lambda _, f=f, ln=ln: (f, ln), "*KINEMATIC COUPLING")
+            links.append(RigidLink(master, slaves, dofs, 0))
+    return tuple(links)
+
+
+def _surface_nodes(deck, name, f, ln, index):
+    rows = deck.surfaces.get(name.upper())
+    if rows is None:
+        raise MeshError(f"*COUPLING refers to SURFACE '{name}', which is not defined (as "
+                        "*SURFACE, TYPE=NODE before it)", file=f, line=ln)
+    ids, weights = [], []
+    for lf, lln, t in rows:
+        tok = [x.strip() for x in t.split(",")]
+        w = parse_real(tok[1]) if len(tok) > 1 and tok[1] else 1.0
+        if w is None or not (np.isfinite(w) and w > 0):
+            raise MeshError(f"*SURFACE {name}: weight '{tok[1]}'; valid: > 0", file=lf,
+                            line=lln)
+        if tok[0].isdigit():
+            nodes = [int(tok[0])]
+        else:
+            key = deck.set_key(deck.nsets, tok[0])
+            if key is None:
+                raise MeshError(f"*SURFACE {name} refers to NSET '{tok[0]}', which is not "
+                                "defined", file=lf, line=lln)
+            nodes = deck.nsets[key]
+        ids += list(nodes)
+        weights += [w] * len(nodes)
+    idx = index(ids, lambda _, f=f, ln=ln: (f, ln), f"*SURFACE {name}")
+    return idx, np.array(weights)
+
+
+def _couplings2(deck, index):
+    """*COUPLING + *KINEMATIC (rigid links) and + *DISTRIBUTING (RBE3-type constraints)."""
+    from flexpipe.mesh.mesh import Interpolation
+
+    links, interp = [], []
+    for kind, ref, surf, f, ln, dofs in deck.couplings2:
+        r = int(index([ref], lambda _, f=f, ln=ln: (f, ln), "*COUPLING REF NODE")[0])
+        nodes, w = _surface_nodes(deck, surf, f, ln, index)
+        nodes, first = np.unique(nodes, return_index=True)
+        w = w[first]
+        if r in set(nodes.tolist()):
+            raise MeshError("*COUPLING: the reference node is also a surface node", file=f,
+                            line=ln)
+        if kind == "KINEMATIC":
+            links.append(RigidLink(r, nodes, dofs, 0))
+        else:
+            interp.append(Interpolation(r, dofs, nodes, w, ("123",) * len(nodes), 0))
+    return tuple(links), tuple(interp)
+
+
+def _springs(deck, cells_of, blocks):
+    """Stiffness matrices of SPRING1/SPRING2 elements from their *SPRING sections."""
+    from flexpipe.fem import spring
+
+    out = {}
+    for t, _conn, eids in blocks:
+        if t in ("spring", "spring1"):
+            out[t] = np.full((len(eids),) + ((12, 12) if t == "spring" else (6, 6)), np.nan)
+    for elset, rows, f, ln in deck.springs:
+        key, members = cells_of(elset, f, ln, "*SPRING")
+        if len(rows) < 2:
+            raise MeshError("*SPRING needs a DOF line and a stiffness line", file=f, line=ln)
+        d = [int(x) for x in values(*rows[0], "*SPRING DOF")]
+        k = values(*rows[1], "*SPRING stiffness", count=1)[0]
+        if not np.isfinite(k):
+            raise MeshError(f"*SPRING stiffness {k}; valid: finite", file=rows[1][0],
+                            line=rows[1][1])
+        for t in ("spring", "spring1"):
+            cells = members.get(t, [])
+            if not cells:
+                continue
+            need = 2 if t == "spring" else 1
+            if len(d) < need or not all(1 <= x <= 6 for x in d[:need]):
+                raise MeshError(f"*SPRING ELSET={key}: DOF line {d}; valid: {need} DOF in 1..6",
+                                file=rows[0][0], line=rows[0][1])
+            eye = np.broadcast_to(np.eye(3), (1, 3, 3))
+            ea = spring.unit_dof(eye, np.array([d[0] - 1]))
+            eb = spring.unit_dof(eye, np.array([d[1] - 1])) if need == 2 else None
+            out[t][cells] = spring.scalar(np.array([k]), ea, eb)[0]
+    for t, K in out.items():
+        bad = np.flatnonzero(np.isnan(K).any(axis=(1, 2)))
+        if bad.size:
+            eids = dict((bt, e) for bt, _, e in blocks)[t]
+            raise MeshError(f"{len(bad)} {t.upper()} element(s) have no *SPRING section, e.g. "
+                            f"{eids[bad[:10]].tolist()}", file=str(deck.path))
+    return out
+
+
+#: connection types and the components they make available (1-3 translations, 4-6 rotations)
+CONNECTION = {"BUSHING": "123456", "CARTESIAN": "123", "CARDAN": "456", "ROTATION": "456",
+              "EULER": "456"}
+
+
+def _connectors(deck, cells_of, blocks, X, index):
+    """Block data of CONN3D2 connectors: linear uncoupled elasticity and damping along the
+    global axes (BUSHING, or CARTESIAN with CARDAN/ROTATION/EULER), between coincident
+    nodes; stored like a Nastran CBUSH (``K``, ``B``, ``k6``, ``b6``, ``frame``, ``s``)."""
+    from flexpipe.fem import spring
+
+    conn_block = next((b for b in blocks if b[0] == "connector"), None)
+    if conn_block is None:
+        return {}
+    _, conn, eids = conn_block
+    n = len(eids)
+    k6 = np.full((n, 6), np.nan)
+    b6 = np.zeros((n, 6))
+    for elset, types, behavior, f, ln in deck.connectors:
+        bad = [t for t in types if t not in CONNECTION]
+        if bad or not types:
+            raise MeshError(f"*CONNECTOR SECTION connection type {bad or types}; supported: "
+                            f"{', '.join(CONNECTION)}", file=f, line=ln)
+        avail = "".join(sorted(set("".join(CONNECTION[t] for t in types))))
+        beh = deck.behaviors.get(behavior)
+        if beh is None:
+            raise MeshError(f"*CONNECTOR SECTION refers to BEHAVIOR '{behavior}', which is not "
+                            "defined (a *CONNECTOR BEHAVIOR with that NAME)", file=f, line=ln)
+        used = set(beh["K"]) | set(beh["B"])
+        if any(str(c) not in avail for c in used):
+            raise MeshError(f"*CONNECTOR BEHAVIOR {behavior} gives components {sorted(used)}, "
+                            f"but {'+'.join(types)} makes only {avail} available", file=f,
+                            line=ln)
+        _, members = cells_of(elset, f, ln, "*CONNECTOR SECTION")
+        cells = members.get("connector", [])
+        k6[cells] = [beh["K"].get(c, 0.0) for c in range(1, 7)]
+        b6[cells] = [beh["B"].get(c, 0.0) for c in range(1, 7)]
+    missing = np.flatnonzero(np.isnan(k6).any(axis=1))
+    if missing.size:
+        raise MeshError(f"{missing.size} CONN3D2 element(s) have no *CONNECTOR SECTION, e.g. "
+                        f"{eids[missing[:10]].tolist()}", file=str(deck.path))
+    XA, XB = X[conn[:, 0]], X[conn[:, 1]]
+    size = max(float(np.ptp(X, axis=0).max()), 1e-300)
+    apart = np.flatnonzero(np.linalg.norm(XB - XA, axis=1) > 1e-9 * size)
+    if apart.size:
+        raise MeshError(f"{apart.size} CONN3D2 connector(s) join nodes that are apart, e.g. "
+                        f"element {int(eids[apart[0]])}; only coincident nodes are supported",
+                        file=str(deck.path))
+    R = np.broadcast_to(np.eye(3), (n, 3, 3)).copy()
+    s = np.full(n, 0.5)
+    return {"K": spring.bush(XA, XB, R, k6, s), "B": spring.bush(XA, XB, R, b6, s), "k6": k6,
+            "b6": b6, "frame": R, "s": s}
