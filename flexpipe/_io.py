@@ -78,9 +78,15 @@ def read_numeric_rows(path, *, kind: str, columns: str):
 
     path = Path(path)
     try:
-        lines = path.read_text().splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
+        raw = path.read_bytes()
+    except OSError as exc:
         raise InputError(f"cannot read the {kind} file ({exc})", file=path) from None
+    try:
+        lines = raw.decode("utf-8").splitlines()
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); a {kind} file is a "
+                         f"text table of {columns}", file=path,
+                         line=raw[: exc.start].count(b"\n") + 1) from None
     rows = []
     header_allowed = True
     for k, raw in enumerate(lines, start=1):
@@ -102,3 +108,78 @@ def read_numeric_rows(path, *, kind: str, columns: str):
                              "number", file=path, line=k)
         rows.append((k, text, values))
     return rows
+
+
+# --------------------------------------------------------------------------- staged folders
+def stage_directory(out) -> Path:
+    """A fresh, empty staging folder ``.NAME.staging-PID`` next to the output folder ``out``.
+
+    Checks first that ``out`` is absent, empty or a previous run's folder (it holds a
+    ``summary.json``), so that :func:`commit_directory` never
+    replaces a folder of the user's other files.  Staging folders left by processes that
+    no longer exist are removed.
+
+    Raises
+    ------
+    InputError
+        ``out`` is a file, or a folder holding files that are not a flexpipe run.
+    """
+    import shutil
+
+    from flexpipe.errors import InputError
+
+    out = Path(out)
+    if out.exists():
+        if not out.is_dir():
+            raise InputError("the output folder is an existing file; choose another --out",
+                             file=out)
+        entries = [e.name for e in out.iterdir()]
+        if entries and "summary.json" not in entries:
+            raise InputError(
+                f"the output folder exists and is not a previous flexpipe run (no summary.json;"
+                f" it holds {sorted(entries)[:3]}); a run replaces its output folder as a "
+                "whole: choose a new or empty folder", file=out)
+    parent = out.resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    for old in parent.glob(f".{out.name}.staging-*"):
+        pid = old.name.rsplit("-", 1)[-1]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(old, ignore_errors=True)
+    stage = parent / f".{out.name}.staging-{os.getpid()}"
+    shutil.rmtree(stage, ignore_errors=True)
+    stage.mkdir()
+    return stage
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def commit_directory(stage, out) -> Path:
+    """Put the staging folder ``stage`` in place of ``out`` (the old folder is removed).
+
+    The swap is two renames on the same file system with SIGINT/SIGTERM blocked, so
+    ``out`` never holds files of two runs.
+    """
+    import shutil
+    import signal
+
+    stage, out = Path(stage), Path(out)
+    old = out.resolve().parent / f".{out.name}.old-{os.getpid()}"
+    shutil.rmtree(old, ignore_errors=True)
+    blocked = {signal.SIGINT, signal.SIGTERM}
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, blocked)
+    try:
+        if out.exists():
+            os.replace(out, old)
+        os.replace(stage, out)
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+    shutil.rmtree(old, ignore_errors=True)
+    return out

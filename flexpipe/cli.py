@@ -12,8 +12,8 @@ stays fast.  A command module provides
 
 Any :class:`~flexpipe.errors.FlexpipeError` or ``OSError`` a command raises is printed
 as a one-line message without traceback, with exit code 2 (argparse usage errors also
-exit with 2); warnings are printed as one line each.  To add a command, append a line
-to :data:`COMMANDS`.
+exit with 2); Ctrl-C and SIGTERM stop the command with exit code 130 / 143; warnings
+are printed as one line each.  To add a command, append a line to :data:`COMMANDS`.
 """
 
 from __future__ import annotations
@@ -80,6 +80,12 @@ def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     commands = _available()
     top = _top_parser(commands)
+    if argv and argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version"):
+        top.print_usage(sys.stderr)
+        print(f"flexpipe: error: unknown option {argv[0]}; give a COMMAND first: "
+              f"{', '.join(c[0] for c in commands)} (options follow the command)",
+              file=sys.stderr)
+        return EXIT_ERROR
     try:
         ns = top.parse_args(argv[:1] if argv and not argv[0].startswith("-") else argv)
     except SystemExit as exc:
@@ -96,16 +102,18 @@ def main(argv=None) -> int:
     def show_warning(message, category, filename, lineno, file=None, line=None):
         print(f"flexpipe {name}: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
+    from flexpipe._signals import interrupt_info, interrupt_text, interrupts_as_exceptions
+
     try:
-        with warnings.catch_warnings():
+        with warnings.catch_warnings(), interrupts_as_exceptions():
             warnings.showwarning = show_warning
             code = module.run(args)
     except (FlexpipeError, OSError) as exc:
         print(f"flexpipe {name}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR
-    except KeyboardInterrupt:
-        print(f"flexpipe {name}: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:
+        print(f"flexpipe {name}: {interrupt_text(exc)}", file=sys.stderr)
+        return interrupt_info(exc)[0]
     return int(code or 0)
 
 

@@ -73,7 +73,10 @@ def _material(args):
     if args.material is None and not over:
         return None
     if args.material is not None:
-        base = Material.named(args.material)
+        try:
+            base = Material.named(args.material)
+        except InputError as exc:
+            raise InputError(str(exc), key="--material") from None
         vals = {"E": base.E, "nu": base.nu, "rho": base.rho, **over}
         return Material(vals["E"], vals["nu"], vals["rho"], base.name)
     if len(over) < 3:

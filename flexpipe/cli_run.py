@@ -41,10 +41,16 @@ def add_arguments(parser) -> None:
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "
                              "(MATLAB); default csv")
+    parser.add_argument("-q", "--quiet", action="store_true",
+                        help="no progress messages (errors and warnings only)")
 
 
 def run(args) -> int:
-    """Run the scenario; exit code 0 when every run reached its end time, else 1."""
+    """Run the scenario; exit code 0 when every run reached its end time, else 1.
+
+    The output folder is replaced as a whole when the run ends, also when it fails or is
+    interrupted (then its ``summary.json`` says so: see
+    :func:`~flexpipe.scenarios.runner.run_pair`)."""
     from flexpipe.errors import InputError
     from flexpipe.scenarios.runner import run_pair
 
@@ -67,7 +73,9 @@ def run(args) -> int:
     summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed / 3.6,
                        t_end=args.t_end, out=out, title=title,
                        plots=("hub_force_fl", "trajectory"), bodies=bodies,
-                       cache=not args.no_cache, h=args.h, name="run", format=args.format)
+                       cache=not args.no_cache, h=args.h, name="run", format=args.format,
+                       log=(lambda *a: None) if args.quiet else print,
+                       progress=not args.quiet)
     return 0 if summary["status"] == 0 else 1
 
 

@@ -173,5 +173,5 @@ def test_corrupt_mesh_is_a_one_line_error(tmp_path, capsys):
     assert cli.main(["modes", str(bad), "--material", "steel", "-q"]) == 2
     cap = capsys.readouterr()
     err = cap.err.strip().splitlines()
-    assert len(err) == 1 and "broken.vtu: cannot read as vtu file" in err[0]
+    assert len(err) == 1 and "broken.vtu, line 1: not well-formed XML" in err[0]
     assert cap.out == ""

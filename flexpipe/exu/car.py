@@ -410,7 +410,18 @@ class CarSystem:
             self.prestep_cpu += time.process_time() - c0
             return True
 
-        mbs.SetPreStepUserFunction(prestep)
+        from flexpipe._signals import Interrupted, deferred_interrupts  # flexpipe#14
+
+        def guarded(mbs_, t):  # flexpipe#14: Ctrl-C/SIGTERM stop the run, re-raised below
+            if sig.signum is not None:
+                return False
+            try:
+                return prestep(mbs_, t)
+            except KeyboardInterrupt as exc:
+                last["interrupt"] = exc
+                return False
+
+        mbs.SetPreStepUserFunction(guarded)
         s = exu.SimulationSettings()
         ti = s.timeIntegration
         ti.numberOfSteps = n_steps
@@ -432,13 +443,20 @@ class CarSystem:
         printing = exu.config.printToConsole
         exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
         try:
-            ok = bool(exu.SolveDynamic(mbs, s, solverType=exu.DynamicSolverType.GeneralizedAlpha,
-                                       updateInitialValues=False, storeSolver=True))
+            with deferred_interrupts() as sig:  # flexpipe#14: signals only set sig.signum
+                ok = bool(exu.SolveDynamic(mbs, s,
+                                           solverType=exu.DynamicSolverType.GeneralizedAlpha,
+                                           updateInitialValues=False, storeSolver=True))
         except (RuntimeError, ValueError) as exc:  # Exudyn raises on Newton failure
             ok = False
             message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
         finally:
             exu.config.printToConsole = printing
+        if sig.signum is not None:  # flexpipe#14: an interrupt, not a solver failure
+            raise Interrupted(sig.signum, t=last["t"])
+        if "interrupt" in last:
+            last["interrupt"].t = last["t"]
+            raise last["interrupt"]
         cpu = time.process_time() - cpu0
         wall = time.perf_counter() - wall0
         completed = ok and last["t"] >= t_end - 1.5 * h

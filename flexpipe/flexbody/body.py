@@ -13,6 +13,7 @@ reads it back bit-for-bit (no pickles: plain arrays plus a JSON header).
 
 from __future__ import annotations
 
+import hashlib
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
@@ -236,11 +237,11 @@ class FlexBody:
         if path.suffix != ".npz":
             raise InputError("a FlexBody file must end in .npz", file=path)
         with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
-            np.savez(fh, **_to_arrays(self))
+            np.savez(fh, **_to_arrays(self, with_hash=True))
         return path
 
 
-def _to_arrays(body: FlexBody) -> dict:
+def _to_arrays(body: FlexBody, *, with_hash: bool = False) -> dict:
     header = {
         "format": FORMAT, "version": VERSION, "n_rigid": body.n_rigid, "mass": body.mass,
         "method": body.method, "source_hash": body.source_hash, "meta": dict(body.meta),
@@ -251,7 +252,7 @@ def _to_arrays(body: FlexBody) -> dict:
     stress_arrays = {}
     if body.stress is not None:  # optional entries: files without them load as before
         header["stress"], stress_arrays = body.stress.to_arrays()
-    out = {"header": np.array(json.dumps(header, sort_keys=True))}
+    out = {}
     for name in _ARRAYS:
         out[name] = getattr(body, name)
     for k, v in body.invariants.as_dict().items():
@@ -264,58 +265,178 @@ def _to_arrays(body: FlexBody) -> dict:
     for k, v in body.checks.items():
         out[f"checks.{k}"] = v
     out.update(stress_arrays)
+    if with_hash:
+        header["content_sha256"] = content_hash(header, out)
+    out["header"] = np.array(json.dumps(header, sort_keys=True))
     return out
 
 
+def content_hash(header: dict, arrays: Mapping[str, np.ndarray]) -> str:
+    """SHA-256 over the header (without its own hash) and every stored array.
+
+    Each array enters with its name, dtype, shape and bytes, so a changed value, a
+    scaled matrix or a NaN written into the file changes the hash.
+    """
+    h = hashlib.sha256()
+    head = {k: v for k, v in header.items() if k != "content_sha256"}
+    h.update(json.dumps(head, sort_keys=True).encode())
+    for name in sorted(arrays):
+        if name == "header":
+            continue
+        a = np.ascontiguousarray(arrays[name])
+        h.update(f"{name}|{a.dtype.str}|{a.shape}|".encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
+
+
 def load_body(path) -> FlexBody:
-    """Read a FlexBody written by :meth:`FlexBody.save`.
+    """Read a FlexBody written by :meth:`FlexBody.save`, verified.
+
+    The stored content hash (files written since flexpipe 0.1 carry one) is checked
+    against the arrays, then the body itself: finite arrays, positive mass, a symmetric
+    positive semi-definite inertia, non-negative ascending frequencies, ``K`` matching
+    the frequencies, triangle and interface node indices inside the node range.
 
     Raises
     ------
     InputError
-        Missing file, not a flexpipe modal neutral file, unsupported version or a
-        missing entry (named).
+        Missing or unreadable file, not a flexpipe modal neutral file, unsupported
+        version, a missing or malformed entry (named by its key), a content-hash
+        mismatch or an inconsistent body (named by key).
     """
     path = Path(path)
     if not path.is_file():
-        raise InputError("file not found", file=path)
+        raise InputError("file not found (or not a regular file)", file=path)
+    try:
+        return _load(path)
+    except InputError:
+        raise
+    except Exception as exc:  # noqa: BLE001 - any other failure means a corrupt file
+        raise InputError(f"corrupt or truncated flexpipe body file ({_reason(exc)}); write it "
+                         "again with FlexBody.save or 'flexpipe reduce'", file=path) from None
+
+
+def _reason(exc: BaseException) -> str:
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    if "allow_pickle" in text:  # numpy's hint would invite loading untrusted pickles
+        text = "holds Python objects (pickles), not plain arrays"
+    return f"{type(exc).__name__}: {text[:200]}"
+
+
+def _load(path: Path) -> FlexBody:
     try:
         data = np.load(path, allow_pickle=False)
     except Exception as exc:  # noqa: BLE001 - any reader failure is a bad file
-        raise InputError(f"not a readable .npz file ({exc})", file=path) from None
+        raise InputError(f"not a readable .npz file ({_reason(exc)})", file=path) from None
+    if not hasattr(data, "files"):
+        raise InputError("a single .npy array, not a flexpipe .npz body file", file=path)
     with data:
         if "header" not in data.files:
             raise InputError("not a flexpipe modal neutral file (no 'header' entry)", file=path)
-        header = json.loads(str(data["header"]))
-        if header.get("format") != FORMAT:
-            raise InputError(f"format is {header.get('format')!r}, expected {FORMAT!r}",
-                             file=path, key="format")
-        if header.get("version") != VERSION:
-            raise InputError(f"version {header.get('version')} is not supported; this "
-                             f"flexpipe reads version {VERSION}", file=path, key="version")
 
         def get(key):
             if key not in data.files:
                 raise InputError("entry missing (file truncated or written by another tool)",
                                  file=path, key=key)
-            return data[key]
+            try:
+                return data[key]
+            except Exception as exc:  # noqa: BLE001 - CRC error, truncated member, pickle
+                raise InputError(f"entry unreadable ({_reason(exc)})", file=path,
+                                 key=key) from None
 
-        arrays = {name: get(name) for name in _ARRAYS}
-        inv = FFRFInvariants(**{f.name: get(f"invariants.{f.name}")
-                                for f in fields(FFRFInvariants)})
-        interfaces = tuple(
-            BodyInterface(name=h["name"], kind=h["kind"], dofs=h.get("dofs", 6),
-                          point=get(f"interface.{j}.point"),
-                          nodes=get(f"interface.{j}.nodes"),
-                          shapes=get(f"interface.{j}.shapes"),
-                          residual_compliance=(data[f"interface.{j}.residual_compliance"]
-                                               if f"interface.{j}.residual_compliance"
-                                               in data.files else None))
-            for j, h in enumerate(header["interfaces"]))
-        checks = {k: get(f"checks.{k}") for k in header["checks"]}
-        stress = StressModes.from_arrays(header["stress"], get) if header.get("stress") \
-            else None
-    return FlexBody(**arrays, n_rigid=header["n_rigid"], mass=header["mass"], invariants=inv,
-                    interfaces=interfaces, method=header["method"],
-                    source_hash=header["source_hash"], meta=header["meta"], checks=checks,
-                    stress=stress)
+        try:
+            header = json.loads(str(get("header")))
+        except ValueError as exc:
+            raise InputError(f"header is not JSON ({exc})", file=path, key="header") from None
+        if not isinstance(header, dict):
+            raise InputError("header must be a JSON object", file=path, key="header")
+        if header.get("format") != FORMAT:
+            raise InputError(f"format is {header.get('format')!r}, expected {FORMAT!r}",
+                             file=path, key="format")
+        if header.get("version") != VERSION:
+            raise InputError(f"version {header.get('version')!r} is not supported; this "
+                             f"flexpipe reads version {VERSION}", file=path, key="version")
+        _check_header(path, header)
+        stored = {k: get(k) for k in data.files if k != "header"}
+    for key in stored:
+        if stored[key].dtype.kind not in "biuf":
+            raise InputError(f"entry has dtype {stored[key].dtype}; expected numbers",
+                             file=path, key=key)
+    required = [*_ARRAYS, *(f"invariants.{f.name}" for f in fields(FFRFInvariants)),
+                *(f"interface.{j}.{k}" for j in range(len(header["interfaces"]))
+                  for k in ("point", "nodes", "shapes")),
+                *(f"checks.{k}" for k in header["checks"])]
+    for key in required:
+        if key not in stored:
+            raise InputError("entry missing (file truncated or written by another tool)",
+                             file=path, key=key)
+    if "content_sha256" in header and content_hash(header, stored) != header[
+            "content_sha256"]:
+        raise InputError("content hash mismatch: the stored arrays or header were changed or "
+                         "corrupted after the file was written; write it again", file=path,
+                         key="content_sha256")
+
+    def get2(key):
+        if key not in stored:
+            raise InputError("entry missing (file truncated or written by another tool)",
+                             file=path, key=key)
+        return stored[key]
+
+    arrays = {name: get2(name) for name in _ARRAYS}
+    inv = FFRFInvariants(**{f.name: get2(f"invariants.{f.name}")
+                            for f in fields(FFRFInvariants)})
+    interfaces = []
+    for j, h in enumerate(header["interfaces"]):
+        try:
+            interfaces.append(BodyInterface(
+                name=h["name"], kind=h["kind"], dofs=h.get("dofs", 6),
+                point=get2(f"interface.{j}.point"), nodes=get2(f"interface.{j}.nodes"),
+                shapes=get2(f"interface.{j}.shapes"),
+                residual_compliance=stored.get(f"interface.{j}.residual_compliance")))
+        except (ValueError, TypeError) as exc:
+            raise InputError(f"malformed interface ({exc})", file=path,
+                             key=f"interface.{j}") from None
+    checks = {k: get2(f"checks.{k}") for k in header["checks"]}
+    stress = _stress(path, header, get2)
+    from flexpipe.flexbody.checks import check_body_arrays
+
+    check_body_arrays(path, header, arrays, inv, interfaces)
+    try:
+        return FlexBody(**arrays, n_rigid=header["n_rigid"], mass=header["mass"],
+                        invariants=inv, interfaces=interfaces, method=header["method"],
+                        source_hash=header["source_hash"], meta=header["meta"], checks=checks,
+                        stress=stress)
+    except (ValueError, TypeError) as exc:
+        raise InputError(f"inconsistent body: {exc}", file=path, key="header") from None
+
+
+def _stress(path, header, get):
+    """The optional stress modes (None for files without them)."""
+    if not header.get("stress"):
+        return None
+    try:
+        return StressModes.from_arrays(header["stress"], get)
+    except InputError:
+        raise
+    except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
+        raise InputError(f"malformed stress modes ({type(exc).__name__}: {exc})", file=path,
+                         key="stress") from None
+
+
+def _check_header(path, header) -> None:
+    types = {"n_rigid": int, "mass": (int, float), "method": str, "source_hash": str,
+             "meta": dict, "interfaces": list, "checks": list}
+    for key, t in types.items():
+        if key not in header:
+            raise InputError("header entry missing", file=path, key=f"header.{key}")
+        v = header[key]
+        if not isinstance(v, t) or isinstance(v, bool):
+            raise InputError(f"header entry has the wrong type ({type(v).__name__})",
+                             file=path, key=f"header.{key}")
+    for j, h in enumerate(header["interfaces"]):
+        if not (isinstance(h, dict) and isinstance(h.get("name"), str)
+                and h.get("kind") in ("rbe2", "node")):
+            raise InputError("each interface needs a string 'name' and kind 'rbe2' or 'node'",
+                             file=path, key=f"header.interfaces[{j}]")
+    if not all(isinstance(c, str) for c in header["checks"]):
+        raise InputError("check names must be strings", file=path, key="header.checks")

@@ -176,9 +176,12 @@ def load_params(path=None) -> HalfCarParams:
     """
     path = Path(path) if path is not None else DEFAULT_PARAMS
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise InputError(f"cannot read half-car parameter file ({exc.strerror})",
+                         file=path) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text ({exc.reason}); a parameter file is TOML text",
                          file=path) from None
     try:
         data = tomllib.loads(text)
@@ -186,6 +189,8 @@ def load_params(path=None) -> HalfCarParams:
         m = re.search(r"line (\d+)", str(exc))
         raise InputError(f"invalid TOML: {exc}", file=path,
                          line=int(m.group(1)) if m else None) from None
+    except RecursionError:
+        raise InputError("invalid TOML: nested too deeply", file=path, line=1) from None
     r = _Reader(path, text, data)
     n_el = r.get("body", "n_elements", kind=int)
     front, rear = _corner(r, "front", n_el), _corner(r, "rear", n_el)

@@ -124,6 +124,9 @@ def _merge_by_type(pieces):
 
 def read_gmsh(path, *, keep=()) -> Mesh:
     """Read a Gmsh ``.msh`` file (see module docstring for what is kept)."""
+    from flexpipe.mesh.check_gmsh import check_gmsh
+
+    check_gmsh(path)  # ASCII files: damaged lines named before meshio sees them
     m, tags = _read_gmsh_with_tags(path)
     points = np.asarray(m.points, dtype=float)
     if tags is not None and len(np.unique(tags)) == len(tags):
@@ -215,6 +218,10 @@ def read_gmsh(path, *, keep=()) -> Mesh:
 def read_vtk(path, file_format: str) -> Mesh:
     """Read a ``.vtu``/``.vtk`` file; ``node_id``/``element_id``/``property_id`` arrays
     (written by flexpipe) restore ids and tags."""
+    from flexpipe.mesh.check_vtu import check_vtk, check_vtu
+
+    # damaged arrays and lines named before meshio sees them
+    (check_vtu if file_format == "vtu" else check_vtk)(path)
     m = _meshio_read(path, file_format)
     pieces, start = [], 0
     eid = m.cell_data.get("element_id")

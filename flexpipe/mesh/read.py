@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexpipe.errors import InputError, MeshError
+from flexpipe.errors import FlexpipeError, InputError, MeshError
 from flexpipe.mesh.mesh import SHELL_TYPES, Mesh
 from flexpipe.mesh.units import convert, resolve
 from flexpipe.mesh.validate import MeshWarning, validate
@@ -24,6 +24,22 @@ DEFAULT_THICKNESS_SET = "default_thickness"
 
 
 def _read_raw(path: Path, fmt: str, keep) -> Mesh:
+    if fmt in ("nastran", "abaqus"):
+        return _read_format(path, fmt, keep)
+    try:  # third-party parsers underneath: no exception of theirs reaches the caller raw
+        return _read_format(path, fmt, keep)
+    except FlexpipeError:
+        raise
+    except (OSError, MemoryError) as exc:
+        raise MeshError(f"cannot read the file ({type(exc).__name__}: {exc})",
+                        file=str(path)) from None
+    except Exception as exc:  # noqa: BLE001 - a corrupt file in any of many ways
+        raise MeshError(f"cannot read as a {fmt} file ({type(exc).__name__}: "
+                        f"{' '.join(str(exc).split())[:200]}); is the file complete and in "
+                        "that format?", file=str(path)) from None
+
+
+def _read_format(path: Path, fmt: str, keep) -> Mesh:
     if fmt == "gmsh":
         from flexpipe.mesh.meshio_io import read_gmsh
 
@@ -126,6 +142,12 @@ def read_mesh(path, scale: float = 1.0, *, units: str | None = None, thickness=N
     system, materials = resolve(scale, units)
     if isinstance(keep, str):
         keep = (keep,)
+    from flexpipe.mesh.mesh import NODES_PER_CELL
+
+    unknown = [k for k in keep if k not in NODES_PER_CELL]
+    if unknown:
+        raise MeshError(f"keep: unknown cell type(s) {unknown}; valid: "
+                        f"{sorted(NODES_PER_CELL)}", file=str(path), key="keep")
     mesh = _read_raw(path, fmt, tuple(keep))
     mesh = convert(mesh, system, materials=materials)
     mesh = replace(mesh, source=str(path))

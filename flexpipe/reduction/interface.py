@@ -17,7 +17,7 @@ solid node without rotations can then be an interface on its own.
 
 from __future__ import annotations
 
-from dataclasses import KW_ONLY, dataclass
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
@@ -60,6 +60,8 @@ class Interface:
     name: str | None = None
     node_set: str | None = None
     dofs: int = 6
+    #: where the interface was defined, ``(file, line)``, named by errors about it
+    source: tuple | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         if self.dofs not in (3, 6) or isinstance(self.dofs, bool):
@@ -117,6 +119,9 @@ def _has_rotations(fe: FEModel, nodes) -> np.ndarray:
 def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
     """Bind interfaces to the nodes of ``fe``; check they are valid and disjoint.
 
+    An error about an interface read from a spec file (``Interface.source``) names that
+    file and the line of its ``[[interface]]`` table.
+
     Raises
     ------
     InputError
@@ -128,6 +133,19 @@ def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
     if isinstance(interfaces, Interface):
         interfaces = [interfaces]
     interfaces = list(interfaces)
+    try:
+        return _resolve(fe, interfaces)
+    except InputError as exc:
+        src = {i.name: i.source for i in interfaces
+               if isinstance(i, Interface) and i.source is not None}
+        if exc.file is None and exc.key in src:
+            file, line = src[exc.key]
+            raise InputError(str(exc), file=file, line=line, key=f"interface '{exc.key}'"
+                             ) from None
+        raise
+
+
+def _resolve(fe: FEModel, interfaces: list) -> list[ResolvedInterface]:
     if not interfaces:
         raise InputError("at least one interface is needed", key="interfaces")
     size = float(np.ptp(fe.nodes, axis=0).max()) if fe.n_nodes else 1.0

@@ -27,6 +27,7 @@ uses the 6-DOF shell/beam node at the point.
 
 from __future__ import annotations
 
+import math
 import tomllib
 from pathlib import Path
 
@@ -49,6 +50,10 @@ def _line_of(lines, k):
     return None
 
 
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
 def read_interfaces(path, *, node_ids=None) -> list[Interface]:
     """Read the interfaces of a TOML spec file.
 
@@ -58,16 +63,33 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
     node_ids : ndarray of int, optional
         The mesh's node ids (``Mesh.node_ids``), to translate ``nodes = [ids]`` into
         node indices; without it ``nodes`` are taken as 0-based indices.
+
+    Raises
+    ------
+    InputError
+        Naming the file, the line of the ``[[interface]]`` table and the key: unreadable
+        or non-UTF-8 file, invalid TOML, unknown keys, a point that is not three finite
+        numbers, node ids that are not integers, a non-positive radius, more than one of
+        ``radius``, ``nodes``, ``node_set`` in one entry, duplicate names.
     """
     path = Path(path)
     try:
-        text = path.read_text()
+        raw = path.read_bytes()
     except OSError as exc:
         raise InputError(f"cannot read the interface file ({exc.strerror})", file=path) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); an interface spec is "
+                         "a TOML text file", file=path,
+                         line=raw[: exc.start].count(b"\n") + 1) from None
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"not valid TOML: {exc}", file=path) from None
+    except RecursionError:
+        raise InputError("not valid TOML: arrays or tables nested too deeply (hundreds of "
+                         "levels); an interface spec needs two", file=path, line=1) from None
     lines = text.splitlines()
     unknown = set(doc) - {"interface", "radius"}
     if unknown:
@@ -75,46 +97,59 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
                          file=path, key=sorted(unknown)[0])
     entries = doc.get("interface")
     if not isinstance(entries, list) or not entries:
-        raise InputError("no [[interface]] tables", file=path, key="interface")
+        raise InputError("no [[interface]] tables (write each interface as a table "
+                         "[[interface]] with name, point and radius/nodes/node_set)",
+                         file=path, key="interface")
     default_r = doc.get("radius")
-    out = []
+    if default_r is not None and not (_is_number(default_r) and default_r > 0):
+        raise InputError(f"radius must be a positive length in m, got {default_r!r}",
+                         file=path, key="radius")
+    out, seen = [], {}
     for k, e in enumerate(entries):
         line = _line_of(lines, k)
         where = dict(file=path, line=line)
+        if not isinstance(e, dict):
+            raise InputError(f"entry {k + 1} is {e!r}, not a table; write [[interface]] "
+                             "tables", key=f"interface[{k}]", **where)
         bad = set(e) - _KEYS
         if bad:
             raise InputError(f"unknown key(s) {sorted(bad)}; valid: {sorted(_KEYS)}",
                              key=f"interface[{k}].{sorted(bad)[0]}", **where)
         name = e.get("name", f"if{k + 1}")
-        if not isinstance(name, str) or not name:
+        if not isinstance(name, str) or not name.strip():
             raise InputError("name must be a non-empty string", key=f"interface[{k}].name",
                              **where)
+        if name in seen:
+            raise InputError(f"name '{name}' is used twice (also at line {seen[name]}); "
+                             "interface names must be unique", key=f"interface[{k}].name",
+                             **where)
+        seen[name] = line
         p = e.get("point")
-        if not (isinstance(p, list) and len(p) == 3
-                and all(isinstance(v, (int, float)) for v in p)):
-            raise InputError(f"point must be [x, y, z] in m, got {p!r}",
+        if not (isinstance(p, list) and len(p) == 3 and all(_is_number(v) for v in p)):
+            raise InputError(f"point must be [x, y, z]: three finite numbers in m, got {p!r}",
                              key=f"interface[{k}].point", **where)
-        kw = {"name": name}
+        given = [g for g in ("radius", "nodes", "node_set") if g in e]
+        if len(given) > 1:
+            raise InputError(f"give only one of radius, nodes, node_set (got {given}); the "
+                             "interface would otherwise silently ignore one",
+                             key=f"interface[{k}].{given[1]}", **where)
+        kw = {"name": name, "source": (str(path), line)}
         if "dofs" in e:
             if e["dofs"] not in (3, 6) or isinstance(e["dofs"], bool):
                 raise InputError(f"dofs must be 3 (forces only) or 6 (forces and moments), "
                                  f"got {e['dofs']!r}", key=f"interface[{k}].dofs", **where)
             kw["dofs"] = int(e["dofs"])
         if "node_set" in e:
-            kw["node_set"] = str(e["node_set"])
+            if not isinstance(e["node_set"], str) or not e["node_set"]:
+                raise InputError(f"node_set must be the name of a node set of the mesh, got "
+                                 f"{e['node_set']!r}", key=f"interface[{k}].node_set", **where)
+            kw["node_set"] = e["node_set"]
         elif "nodes" in e:
-            ids = np.asarray(e["nodes"], dtype=np.int64).ravel()
-            if node_ids is not None:
-                pos = {int(v): i for i, v in enumerate(np.asarray(node_ids))}
-                missing = [int(v) for v in ids if int(v) not in pos]
-                if missing:
-                    raise InputError(f"node ids {missing[:10]} are not in the mesh",
-                                     key=f"interface[{k}].nodes", **where)
-                ids = np.array([pos[int(v)] for v in ids])
-            kw["nodes"] = ids
+            kw["nodes"] = _node_indices(e["nodes"], node_ids, key=f"interface[{k}].nodes",
+                                        where=where)
         elif "radius" in e or default_r is not None:
             r = e.get("radius", default_r)
-            if not isinstance(r, (int, float)) or r <= 0:
+            if not (_is_number(r) and r > 0):
                 raise InputError(f"radius must be a positive length in m, got {r!r}",
                                  key=f"interface[{k}].radius", **where)
             kw["radius"] = float(r)
@@ -123,3 +158,19 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
         except InputError as exc:
             raise InputError(str(exc), key=f"interface[{k}]", **where) from None
     return out
+
+
+def _node_indices(ids, node_ids, *, key, where):
+    if not (isinstance(ids, list) and ids and all(
+            isinstance(v, int) and not isinstance(v, bool) for v in ids)):
+        raise InputError(f"nodes must be a non-empty list of integer node ids, got {ids!r}",
+                         key=key, **where)
+    if node_ids is not None:
+        pos = {int(v): i for i, v in enumerate(np.asarray(node_ids))}
+        missing = [v for v in ids if v not in pos]
+        if missing:
+            raise InputError(f"node ids {missing[:10]} are not in the mesh", key=key, **where)
+        return np.array([pos[v] for v in ids], dtype=np.int64)
+    if min(ids) < 0:
+        raise InputError(f"node indices must be >= 0, got {min(ids)}", key=key, **where)
+    return np.array(ids, dtype=np.int64)

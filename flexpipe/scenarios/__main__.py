@@ -20,12 +20,21 @@ def main(argv=None) -> int:
     p.add_argument("--t-end", type=float, default=None, help="simulated time, s")
     p.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
     args = p.parse_args(argv)
+    from flexpipe._signals import interrupt_info, interrupt_text, interrupts_as_exceptions
+
     try:
-        summary = run_scenario(args.name, out=args.out, car=args.car, t_end=args.t_end,
-                               cache=not args.no_cache)
-    except FlexpipeError as exc:
-        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        with interrupts_as_exceptions():
+            summary = run_scenario(args.name, out=args.out, car=args.car, t_end=args.t_end,
+                                   cache=not args.no_cache)
+    except (FlexpipeError, OSError) as exc:
+        text = str(exc)
+        if isinstance(exc, OSError) and exc.filename:
+            text = f"{exc.filename}: {exc.strerror or text}"
+        print(f"error: {' '.join(text.split())}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt as exc:
+        print(interrupt_text(exc), file=sys.stderr)
+        return interrupt_info(exc)[0]
     return 0 if summary["status"] == 0 else 1
 
 

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe._io import write_text_atomic
-from flexpipe.errors import InputError
+from flexpipe.errors import FlexpipeError, InputError
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_CAR = ROOT / "cars" / "sedan.toml"
@@ -76,13 +76,23 @@ def _summary_diffs(diff: dict) -> dict:
 def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
              h: float | None = None, notes=None, name: str = "run", log=print,
-             format: str = "csv") -> dict:  # noqa: A002
-    """Simulate ``car`` with each body kind, write CSVs, plots and ``summary.json``.
+             format: str = "csv", progress: bool = True) -> dict:  # noqa: A002
+    """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
-    Returns the summary dict (``status`` 0 when every run reached its end time).
+    The run is a transaction: everything is written into a staging folder next to
+    ``out`` which then replaces ``out`` as a whole, so ``out`` never mixes files of two
+    runs.  A run that fails or is interrupted (Ctrl-C, SIGTERM) still replaces ``out``
+    with its own ``summary.json`` (``state`` "error" or "interrupted", the message and
+    the channel files of the runs that finished), then the exception propagates.
+
+    Returns
+    -------
+    dict
+        The summary: ``status`` 0 when every run reached its end time, -1 when one
+        stopped early; ``state`` "completed" or "stopped early".
     """
-    from flexpipe.vehicle import plots as P
-    from flexpipe.vehicle.result import compare
+    from flexpipe._io import commit_directory, stage_directory
+    from flexpipe.vehicle.export import SUFFIX
     from flexpipe.vehicle.simulation import simulate
     from flexpipe.vehicle.spec import Car, load_car
 
@@ -106,43 +116,71 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     bodies = tuple(bodies)
     if not bodies:
         raise InputError("give at least one body kind", key="bodies")
-    out.mkdir(parents=True, exist_ok=True)
-    kw = {} if h is None else {"h": h}
-    results = {}
+    stage = stage_directory(out)
+    results, files = {}, []
+    base = {"scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
+            "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
-    for i, body in enumerate(bodies, 1):
-        log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
-        r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
-                     progress=True, cache=cache, log=lambda m: log("      " + m), **kw)
-        results[body] = r
-        log(f"      {r.message}; CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s "
-            f"simulated (real-time factor {r.realtime_factor:.2f})")
-    files = []
-    for body, r in results.items():
-        from flexpipe.vehicle.export import SUFFIX
+    try:
+        kw = {} if h is None else {"h": h}
+        for i, body in enumerate(bodies, 1):
+            log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
+            r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
+                         progress=progress, cache=cache, log=lambda m: log("      " + m), **kw)
+            results[body] = r
+            files.append(r.save(stage / f"{body}{SUFFIX.get(format, '.csv')}",
+                                format=format).name)
+            log(f"      {r.message}; CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s "
+                f"simulated (real-time factor {r.realtime_factor:.2f})")
+        summary = _summary(base, results, path=path, speed=speed)
+        files += _plots(results, stage, plots=plots, path=path, title=title)
+        summary["files"] = sorted(files + ["summary.json"])
+        _durability(stage, results, summary, car=car, road=road, log=log)
+    except BaseException as exc:
+        _write_failure(stage, base, results, files, exc, bodies=bodies, t0=t0)
+        commit_directory(stage, out)
+        raise
+    summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
+    write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
+    commit_directory(stage, out)
+    log(f"wrote {out}/: {', '.join(summary['files'])}")
+    d = summary.get("hub_force_difference_rigid_vs_flexible", {}).get("fl_z")
+    if d is not None:
+        log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
+            f"{d['rms_diff_N']:.1f} N ({100 * d['rel_rms_diff']:.2f} %), peak "
+            f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
+            f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
+    return summary
 
-        files.append(r.save(out / f"{body}{SUFFIX.get(format, '.csv')}", format=format).name)
+
+def _summary(base: dict, results: dict, *, path, speed) -> dict:
+    from flexpipe.vehicle.result import compare
+
+    ok = all(r.status == 0 for r in results.values())
     summary = {
-        "scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
-        "status": 0 if all(r.status == 0 for r in results.values()) else -1,
+        **base, "status": 0 if ok else -1, "state": "completed" if ok else "stopped early",
         "messages": {b: r.message for b, r in results.items()},
         "simulated_time_s": min(r.simulated_time for r in results.values()),
         "cpu_time_s": {b: round(r.cpu_time, 3) for b, r in results.items()},
         "wall_time_s": {b: round(r.wall_time, 3) for b, r in results.items()},
         "realtime_factor": {b: round(r.realtime_factor, 3) for b, r in results.items()},
-        "speed_kmh": round(speed * 3.6, 3), "time_step_s": next(iter(results.values())).info["h"],
-        **({"notes": notes} if notes else {}),
+        "time_step_s": next(iter(results.values())).info["h"],
     }
     if "rigid" in results and "flexible" in results:
         ra, rb = results["rigid"], results["flexible"]
-        diff = compare(ra, rb, t_from=min(0.5, 0.25 * ra.simulated_time))
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)
-        summary["hub_force_difference_rigid_vs_flexible"] = _summary_diffs(diff)
-        summary["hub_force_difference_note"] = (
-            "rigid minus flexible, after the first 0.5 s; rel_rms_diff = rms_diff / rms_rigid "
-            "(static load included), rel_rms_diff_dynamic = rms_diff / std_rigid (fluctuating "
-            "part); hub force = force the corner applies to the body at its hardpoint, body "
-            "axes")
+        if ra.status == 0 and rb.status == 0:
+            diff = compare(ra, rb, t_from=min(0.5, 0.25 * ra.simulated_time))
+            summary["hub_force_difference_rigid_vs_flexible"] = _summary_diffs(diff)
+            summary["hub_force_difference_note"] = (
+                "rigid minus flexible, after the first 0.5 s; rel_rms_diff = rms_diff / "
+                "rms_rigid (static load included), rel_rms_diff_dynamic = rms_diff / "
+                "std_rigid (fluctuating part); hub force = force the corner applies to the "
+                "body at its hardpoint, body axes")
+        else:
+            summary["hub_force_difference_note"] = (
+                "not computed: the rigid and flexible runs did not both reach t_end "
+                "(differences of diverged fragments would mean nothing)")
     fb = [r for r in results.values() if r.body != "rigid"]
     if fb:
         info = fb[0].info
@@ -154,23 +192,40 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         summary["lateral_error_max_m"] = {
             b: round(float(np.nanmax(np.abs(r["lateral_error"][r.t >= 1.0]))), 4)
             if np.any(r.t >= 1.0) else None for b, r in results.items()}
+    return summary
+
+
+def _plots(results, stage, *, plots, path, title) -> list:
+    from flexpipe.vehicle import plots as P
+
+    files = []
     if "hub_force_fl" in plots:
         plot_title = f"Vertical force on the front-left wheel hub\n{title}"
-        files.append(P.hub_force(results, out / "hub_force_fl.png", title=plot_title).name)
+        files.append(P.hub_force(results, stage / "hub_force_fl.png", title=plot_title).name)
     if "trajectory" in plots and path is not None:
-        files.append(P.trajectory(results, path, out / "trajectory.png").name)
-    summary["files"] = sorted(files + ["summary.json"])
-    _durability(out, results, summary, car=car, road=road, log=log)
-    summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
-    write_text_atomic(out / "summary.json", json.dumps(summary, indent=2) + "\n")
-    log(f"wrote {out}/: {', '.join(summary['files'])}")
-    if "hub_force_difference_rigid_vs_flexible" in summary:
-        d = summary["hub_force_difference_rigid_vs_flexible"]["fl_z"]
-        log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
-            f"{d['rms_diff_N']:.1f} N ({100 * d['rel_rms_diff']:.2f} %), peak "
-            f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
-            f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
-    return summary
+        files.append(P.trajectory(results, path, stage / "trajectory.png").name)
+    return files
+
+
+def _write_failure(stage, base, results, files, exc, *, bodies, t0) -> None:
+    """summary.json of a run that raised: state, message, the runs that finished."""
+    from flexpipe._signals import interrupt_info, interrupt_text
+
+    running = next((b for b in bodies if b not in results), None)
+    if isinstance(exc, KeyboardInterrupt):
+        code, _ = interrupt_info(exc)
+        state, status = "interrupted", code
+        message = interrupt_text(exc) + (f" during the {running} body run" if running else "")
+    else:
+        state, status = "error", 2
+        message = " ".join(str(exc).split()) or type(exc).__name__
+        if not isinstance(exc, FlexpipeError):
+            message = f"{type(exc).__name__}: {message}"
+    summary = {**base, "status": status, "state": state, "message": message,
+               "completed_runs": {b: r.message for b, r in results.items()},
+               "files": sorted(files + ["summary.json"]),
+               "total_wall_time_s": round(time.perf_counter() - t0, 2)}
+    write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
 
 
 def _durability(out, results, summary, *, car, road, log):

@@ -30,13 +30,18 @@ def parse(path: Path) -> tuple[dict, list[str]]:
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text ({exc.reason})", file=path) from None
+        raise InputError(f"not UTF-8 text ({exc.reason})", file=path,
+                         line=raw[: exc.start].count(b"\n") + 1) from None
     try:
         return tomllib.loads(text), text.splitlines()
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         raise InputError(f"TOML syntax error: {exc}", file=path,
                          line=int(m.group(1)) if m else None) from None
+    except RecursionError:
+        raise InputError("TOML nested too deeply (arrays or inline tables within each other "
+                         "hundreds of levels deep); a car file needs only a few levels",
+                         file=path, line=1) from None
 
 
 class Table:
@@ -140,6 +145,9 @@ class Table:
             return v
         if not isinstance(v, str):
             raise self.error(key, f"expected a string, got {v!r}")
+        if not v.strip():
+            raise self.error(key, "must not be empty"
+                             + (f"; valid: {', '.join(map(repr, choices))}" if choices else ""))
         if choices is not None and v not in choices:
             raise self.error(key, f"got {v!r}; valid: {', '.join(map(repr, choices))}")
         return v

@@ -7,7 +7,8 @@
 * :func:`corner_interfaces` ties the mesh nodes around each suspension hardpoint (RBE2
   spider of radius ``interface_radius_m``) and checks the hardpoints lie on the body.
 * :func:`reduced_body` reduces the body for a frequency band, cached on disk under a key
-  made of the mesh file bytes and every setting that changes the result.
+  made of the mesh file bytes and every setting that changes the result; entries are
+  verified on load and rebuilt when bad (:mod:`flexpipe.vehicle._cache`).
 * :func:`describe_modes` names the global torsion and bending modes of a body.
 """
 
@@ -203,7 +204,7 @@ def _digest(car: Car, extra: dict) -> str:
         "hardpoints": [c.hardpoint.tolist() for c in car.corners], **extra,
     }
     h.update(json.dumps(settings, sort_keys=True).encode())
-    return h.hexdigest()[:20]
+    return h.hexdigest()  # the full key is stored in the entry, 20 hex digits name it
 
 
 def rigid_properties(car: Car, *, cache: bool = True) -> RigidBodyData:
@@ -211,19 +212,22 @@ def rigid_properties(car: Car, *, cache: bool = True) -> RigidBodyData:
     if car.body.mesh is None:
         r = car.body.rigid
         return RigidBodyData(r.mass, r.cg.copy(), r.inertia.copy())
-    path = cache_dir() / f"massprops-{_digest(car, {})}.json"
-    if cache and path.is_file():
-        d = json.loads(path.read_text())
-        return RigidBodyData(d["mass"], np.array(d["cg"]), np.array(d["inertia"]))
-    from flexpipe._io import write_text_atomic
+    from flexpipe.vehicle import _cache
+
+    key = _digest(car, {})
+    path = cache_dir() / f"massprops-{key[:20]}.json"
+    if cache:
+        _cache.clean_stale(cache_dir())
+        hit = _cache.load_massprops(path, key)
+        if hit is not None:
+            return RigidBodyData(*hit)
     from flexpipe.flexbody import mass_properties
 
     fe = body_fe(car)
     corner_interfaces(car, fe.nodes)
     mass, com, J, _ = mass_properties(fe.M, fe.nodes, fe.dofs_per_node)
     if cache:
-        write_text_atomic(path, json.dumps({"mass": mass, "cg": com.tolist(),
-                                            "inertia": J.tolist()}))
+        _cache.save_massprops(path, key, mass, com, J)
     return RigidBodyData(mass, com, J)
 
 
@@ -263,8 +267,8 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     info : dict
         ``cached`` (bool), ``seconds`` (reduction time, 0 when cached), ``path``.
     """
-    from flexpipe.flexbody import load_body
     from flexpipe.reduction import reduce
+    from flexpipe.vehicle import _cache
 
     cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
     key = {"cutoff": round(cutoff, 6), "m": method, "stress": STRESS_MODES}
@@ -275,12 +279,13 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
         key["mounts"] = [[m.name, m.point, m.radius, m.dofs, m.node_set, m.nodes]
                          for m in mounts]
         key["interface_f_max"] = interface_f_max
-    path = cache_dir() / f"body-{_digest(car, key)}.npz"
-    if cache and path.is_file():
-        try:
-            return load_body(path), {"cached": True, "seconds": 0.0, "path": str(path)}
-        except InputError:
-            pass  # stale or truncated cache file: rebuild it
+    key = _digest(car, key)
+    path = cache_dir() / f"body-{key[:20]}.npz"
+    if cache:  # verified entry (input key, content hash, physics) or rebuilt with a warning
+        _cache.clean_stale(cache_dir())
+        hit = _cache.load_cached_body(path, key)
+        if hit is not None:
+            return hit, {"cached": True, "seconds": 0.0, "path": str(path)}
     t0 = time.perf_counter()
     log(f"reducing body {car.body.mesh.name} ({method}, modes to {cutoff:.0f} Hz) ...")
     fe = body_fe(car)
@@ -303,7 +308,7 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
         f"({body.frequencies_hz[body.n_rigid]:.1f}-{body.frequencies_hz[-1]:.0f} Hz) "
         f"in {seconds:.1f} s")
     if cache:
-        body.save(path)
+        body = _cache.save_cached_body(body, path, key)
     return body, {"cached": False, "seconds": seconds, "path": str(path)}
 
 

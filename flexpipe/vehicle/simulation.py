@@ -256,6 +256,11 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     if h < 1e-5:
         raise InputError(f"h must be >= 1e-5 s, got {h}", key="h")
     output_step = _number(output_step, "output_step", lo=0.0, hi=1.0)
+    if h > t_end:  # flexpipe#14 (robust): checked here, not by Exudyn
+        raise InputError(f"h = {h:g} s is longer than t_end = {t_end:g} s; choose h <= t_end",
+                         key="h")
+    if max_mode_hz is not None:  # flexpipe#14 (robust)
+        max_mode_hz = _number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6)
     every = max(1, int(round(output_step / h)))
     if body == "full" and car.body.mesh is None or body == "flexible" and car.body.mesh is None:
         raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
@@ -352,6 +357,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     if fb is not None:
         if max_mode_hz is not None:
             n_modes = int(np.count_nonzero(fb.frequencies_hz[fb.n_rigid:] <= max_mode_hz))
+            if n_modes == 0:  # flexpipe#14 (robust)
+                raise InputError(f"max_mode_hz = {max_mode_hz:g} Hz keeps no elastic mode: the "
+                                 f"lowest is {fb.frequencies_hz[fb.n_rigid]:.4g} Hz; use "
+                                 "body='rigid' or a higher max_mode_hz", key="max_mode_hz")
         q0 = None if car.suspension is not None else static_deflection(fb, corners, n_modes)
     build = CarBuild(
         chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass,
@@ -403,6 +412,11 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     else:
         status, message = 0, f"reached t_end = {t_end:g} s"
     ch = ctrl.rec.channels()
+    if status != 0:  # flexpipe#14 (robust): say what diverged and which input is implausible
+        from flexpipe.vehicle.diagnose import explain
+
+        message = explain(message, car=car, body_mass=rb.mass, body_cg=rb.center_of_mass,
+                          t=ctrl.rec.t[: ctrl.rec.rows], channels=ch)
     info = {
         "car": car.name, "car_file": str(car.file), "body": body, "h": h,
         "output_step": every * h, "speed": speed, "t_end": t_end,

@@ -1,0 +1,138 @@
+"""Bad car files (TOML) for ``load_car``, made by mutating the sample sedan key by key.
+
+The sample's mesh and tyre paths are made absolute so that each case loads from its own
+folder.  For every distinct key (the first ``[[body.mass]]`` entry stands for all of
+them, ``fl`` and ``rr`` for the corners): a typo in the key, a wrong type, NaN and
+infinity, a negative value, arrays of the wrong length, and deletion of required keys.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+SEDAN = ROOT / "cars" / "sedan.toml"
+#: keys whose deletion must be an error
+REQUIRED = {"hardpoint_m", "wheel_center_m", "spring_rate_N_per_m", "unsprung_mass_kg",
+            "wheel_radius_m", "wheel_spin_inertia_kg_m2", "tire", "mass_kg", "position_m",
+            "ratio", "layout"}
+#: mutations that give a valid file (an empty label where the default is empty)
+MAY_LOAD = {("body.fatigue", "name", "empty-string")}
+KEY_LINE = re.compile(r"^(\s*)([A-Za-z_][A-Za-z0-9_]*)(\s*=\s*)(.*?)(\s*#.*)?$")
+
+
+def base_text() -> str:
+    text = SEDAN.read_text()
+    text = text.replace('"../meshes/', f'"{(ROOT / "meshes").as_posix()}/')
+    return text.replace('"../tires/', f'"{(ROOT / "tires").as_posix()}/')
+
+
+def _key_lines(lines):
+    """(index, section, key, value) of the distinct key lines to mutate."""
+    section, seen_mass, out = "", 0, []
+    for i, line in enumerate(lines):
+        s = line.strip()
+        if s.startswith("["):
+            section = s.strip("[]")
+            if section == "body.mass":
+                seen_mass += 1
+            continue
+        m = KEY_LINE.match(line)
+        if not m or s.startswith("#"):
+            continue
+        if section == "body.mass" and seen_mass > 1:
+            continue
+        if section in ("corners.fr", "corners.rl") or section.startswith("body.points") and \
+                m.group(2) != "driver_floor":
+            continue
+        out.append((i, section, m.group(2), m.group(4)))
+    return out
+
+
+def _variants(key: str, value: str):
+    v = value.strip()
+    is_array = v.startswith("[")
+    is_string = v.startswith('"')
+    if not key.endswith("floor"):  # body.points names are the user's own: no typo there
+        yield "typo", None
+    if is_string:
+        yield "number", "5"
+        yield "empty-string", '""'
+        return
+    yield "text", '"oops"'
+    yield "bool", "true"
+    yield "table", "{a = 1}"
+    if is_array:
+        items = [x.strip() for x in v.strip("[]").split(",")]
+        yield "short", "[" + ", ".join(items[:-1]) + "]"
+        yield "long", "[" + ", ".join(items + ["0.0"]) + "]"
+        yield "nan-item", "[" + ", ".join(["nan"] + items[1:]) + "]"
+        yield "text-item", "[" + ", ".join(['"a"'] + items[1:]) + "]"
+        yield "empty", "[]"
+        if key.endswith("inertia_kg_m2"):
+            yield "negative", "[" + ", ".join(["-1.0"] + items[1:]) + "]"
+    else:
+        yield "nan", "nan"
+        yield "inf", "inf"
+        yield "negative", "-" + v if not v.startswith("-") else v[1:]
+        yield "array", f"[{v}]"
+
+
+def cases():
+    text = base_text()
+    yield "ok-sedan", "car.toml", text.encode(), "ok"
+    yield "ok-crlf", "car.toml", text.replace("\n", "\r\n").encode(), "ok"
+    yield "ok-no-comments", "car.toml", "\n".join(
+        ln for ln in text.splitlines() if not ln.strip().startswith("#")).encode(), "ok"
+    lines = text.splitlines()
+    for i, section, key, value in _key_lines(lines):
+        m = KEY_LINE.match(lines[i])
+        for kind, new in _variants(key, value):
+            mutated = list(lines)
+            if kind == "typo":
+                mutated[i] = f"{m.group(1)}{key}x{m.group(3)}{value}"
+            else:
+                mutated[i] = f"{m.group(1)}{key}{m.group(3)}{new}"
+            expect = "maybe" if (section, key, kind) in MAY_LOAD else "error"
+            yield f"{section}.{key}-{kind}", "car.toml", "\n".join(mutated).encode(), expect
+        if key in REQUIRED:
+            mutated = lines[:i] + lines[i + 1:]
+            yield f"{section}.{key}-deleted", "car.toml", "\n".join(mutated).encode(), "error"
+    # whole-file and structure
+    yield "empty", "car.toml", b"", "error"
+    yield "binary", "car.toml", bytes(range(256)) * 8, "error"
+    yield "latin1", "car.toml", text.replace('name = "sedan"', 'name = "s\xe9dan"').encode(
+        "latin-1"), "error"
+    yield "utf16", "car.toml", text.encode("utf-16"), "error"
+    yield "truncated-half", "car.toml", text.encode()[: len(text) // 2], "error"
+    yield "truncated-mid-line", "car.toml", text.encode()[: text.index("spring_rate") + 14], \
+        "error"
+    yield "deep-nesting", "car.toml", b"a = " + b"[" * 5000 + b"]" * 5000, "error"
+    yield "deep-tables", "car.toml", b"a = " + b"{b = " * 3000 + b"1" + b"}" * 3000, "error"
+    yield "unknown-section", "car.toml", (text + "\n[suspensionx]\nk = 1\n").encode(), "error"
+    yield "duplicate-section", "car.toml", (text + "\n[steering]\nratio = 15.0\n").encode(), \
+        "error"
+    for sec in ("car", "body", "corners.fl", "steering", "drive"):
+        out, skip = [], False
+        for ln in text.splitlines():
+            if ln.strip().startswith("["):
+                skip = ln.strip() == f"[{sec}]"
+            if not skip:
+                out.append(ln)
+        yield f"section-{sec}-missing", "car.toml", "\n".join(out).encode(), "error"
+    yield "mesh-missing-file", "car.toml", text.replace("sedan_biw.bdf", "nope.bdf").encode(), \
+        "error"
+    yield "tire-missing-file", "car.toml", text.replace("sedan_205_55R16.tir", "nope.tir", 1)\
+        .encode(), "error"
+    yield "mesh-is-directory", "car.toml", text.replace("meshes/sedan_biw.bdf", "meshes")\
+        .encode(), "error"
+    yield "left-corner-on-right", "car.toml", text.replace(
+        "hardpoint_m = [0.0, 0.65, 0.85]", "hardpoint_m = [0.0, -0.65, 0.85]", 1).encode(), \
+        "error"
+    yield "rear-ahead-of-front", "car.toml", text.replace(
+        "wheel_center_m = [0.0, 0.775, 0.2983]", "wheel_center_m = [-3.0, 0.775, 0.2983]", 1)\
+        .encode(), "error"
+    yield "wheel-under-ground", "car.toml", text.replace(
+        "wheel_center_m = [0.0, 0.775, 0.2983]", "wheel_center_m = [0.0, 0.775, -0.3]", 1)\
+        .encode(), "error"

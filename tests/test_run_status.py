@@ -1,0 +1,92 @@
+"""Run status and messages (issue 14): what a stopped run reports, plain numbers in
+errors, argument checks that used to reach Exudyn."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexpipe as fp
+from flexpipe.errors import InputError, plain_numbers
+from tests.badinput.gen_cars import base_text
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True)
+def _cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("FLEXPIPE_CACHE", str(tmp_path / "cache"))
+
+
+@pytest.fixture(scope="module")
+def preload_car(tmp_path_factory):
+    """The sample car with a -1e6 N spring preload at the front-left corner."""
+    text = base_text().replace("[corners.fl]\n", "[corners.fl]\nspring_preload_N = -1e6\n", 1)
+    path = tmp_path_factory.mktemp("car") / "car.toml"
+    path.write_text(text)
+    return fp.load_car(path)
+
+
+def test_divergence_names_the_implausible_preload_and_what_diverged(preload_car):
+    r = fp.simulate(preload_car, speed=10.0, t_end=0.2, body="rigid")
+    assert r.status == -1
+    # the static preload that holds the design position is the corner's wheel load minus
+    # its unsprung weight: positive and of the order of a quarter of the car's weight
+    assert "corners.fl.spring_preload_N = -1e+06 N" in r.message
+    assert str(preload_car.file) in r.message
+    assert "last recorded state" in r.message and "_fl" in r.message
+
+
+def test_summary_compares_only_runs_that_both_completed(preload_car):
+    from flexpipe.scenarios.runner import _summary
+
+    car = fp.load_car(ROOT / "cars" / "sedan.toml")
+    good = fp.simulate(car, speed=10.0, t_end=0.1, body="rigid")
+    bad = fp.simulate(preload_car, speed=10.0, t_end=0.1, body="rigid")
+    assert good.status == 0 and bad.status == -1
+    both = _summary({}, {"rigid": good, "flexible": good}, path=None, speed=10.0)
+    assert both["status"] == 0 and "hub_force_difference_rigid_vs_flexible" in both
+    one = _summary({}, {"rigid": good, "flexible": bad}, path=None, speed=10.0)
+    assert one["status"] == -1 and one["state"] == "stopped early"
+    assert "hub_force_difference_rigid_vs_flexible" not in one
+    assert "not computed" in one["hub_force_difference_note"]
+
+
+def test_failed_run_replaces_the_folder_with_its_own_status(tmp_path, preload_car):
+    """A run that raises midway (here: a bad road after the first body) leaves only its
+    own summary with state 'error', never the old run's files."""
+    import json
+
+    from flexpipe.scenarios.runner import run_pair
+
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "summary.json").write_text('{"status": 0}')
+    (out / "flexible.csv").write_text("old")
+    with pytest.raises(InputError):
+        run_pair(ROOT / "cars" / "sedan.toml", road=None, path=None, speed=10.0, t_end=0.1,
+                 out=out, title="t", bodies=("rigid", "nonsense"), plots=(),
+                 log=lambda *a: None, progress=False)
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["state"] == "error" and summary["status"] == 2
+    assert "nonsense" in summary["message"]
+    assert sorted(p.name for p in out.iterdir()) == ["rigid.csv", "summary.json"]
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+
+@pytest.mark.parametrize("kw, key", [({"h": 4e-3, "t_end": 2e-3}, "h"),
+                                     ({"max_mode_hz": -1.0}, "max_mode_hz"),
+                                     ({"max_mode_hz": float("nan")}, "max_mode_hz")])
+def test_arguments_checked_before_the_solver(kw, key):
+    car = fp.load_car(ROOT / "cars" / "sedan.toml")
+    with pytest.raises(InputError) as info:
+        fp.simulate(car, speed=10.0, body="flexible", **{"t_end": 0.1, **kw})
+    assert info.value.key == key
+
+
+def test_messages_show_plain_numbers():
+    text = f"got {np.float64(0.2)!r}, {np.int64(3)!r} and {[np.float32(1.5)]!r}"
+    assert plain_numbers(text) == "got 0.2, 3 and [1.5]"
+    assert "np." not in str(InputError(f"radius {np.float64(-0.5)!r}", key="radius"))
