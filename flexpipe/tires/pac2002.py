@@ -127,17 +127,20 @@ class MagicFormula:
                 "NOT reduced under combined slip", UserWarning, stacklevel=2)
         fnom = props.fnomin
 
+        def num(sec, key, default):  # a number, or an error naming file, line and key
+            return props.number(sec, key, default) if props.has(sec) else float(default)
+
         def rng(sec, lo, hi, default):
-            return (props.get(sec, lo, default[0]), props.get(sec, hi, default[1]))
+            return (num(sec, lo, default[0]), num(sec, hi, default[1]))
 
         return cls(
             c=coeffs, fnomin=fnom, r0=props.unloaded_radius, use_mode=mode,
             kappa_range=rng("LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", (-1.5, 1.5)),
             alpha_range=rng("SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", (-1.5707, 1.5707)),
             gamma_range=rng("INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", (-0.5, 0.5)),
-            fz_max=float(props.get("VERTICAL_FORCE_RANGE", "FZMAX", 3.0 * fnom)),
-            longvl=float(props.get("MODEL", "LONGVL", 16.7)),
-            vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
+            fz_max=num("VERTICAL_FORCE_RANGE", "FZMAX", 3.0 * fnom),
+            longvl=num("MODEL", "LONGVL", 16.7),
+            vxlow=num("MODEL", "VXLOW", 1.0) or 1.0,
         )
 
     # ------------------------------------------------------------------ building blocks
