@@ -199,7 +199,8 @@ def read_path_csv(path) -> Path:
         ys.append(values[1])
         where.append(k)
     if len(xs) < 2:
-        raise InputError(f"{len(xs)} point(s); a path needs at least 2", file=path)
+        raise InputError(f"{len(xs)} point(s); a path needs at least 2", file=path,
+                         line=where[-1] if where else 1)
     return Path.from_xy(xs, ys, name=path.stem, source=str(path), lines=where)
 
 

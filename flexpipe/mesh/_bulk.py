@@ -164,7 +164,8 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
     except OSError as exc:
         raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
     if "\x00" in text[:4096]:
-        raise MeshError("not a Nastran bulk-data text file (binary content)", file=str(path))
+        raise MeshError("not a Nastran bulk-data text file (binary content: a NUL byte)",
+                        file=str(path), line=text[:text.index("\x00")].count("\n") + 1)
     lines = text.splitlines()
     start = 0
     for i, ln in enumerate(lines):

@@ -100,7 +100,8 @@ class _Lines:
         except OSError as exc:
             raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
         if "\x00" in text[:4096]:
-            raise MeshError("not an Abaqus input text file (binary content)", file=str(path))
+            raise MeshError("not an Abaqus input text file (binary content: a NUL byte)",
+                            file=str(path), line=text[:text.index("\x00")].count("\n") + 1)
         for i, ln in enumerate(text.splitlines()):
             s = ln.strip()
             if not s or s.startswith("**"):

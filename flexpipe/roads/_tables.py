@@ -41,11 +41,13 @@ def read_toml(path) -> dict:
                          "UTF-8", file=path, line=text[:exc.start].count(b"\n") + 1) from None
     except tomllib.TOMLDecodeError as exc:
         line = getattr(exc, "lineno", None)
+        if line is None and "end of document" in str(exc):
+            line = text.count(b"\n") + 1  # the file ends where the error is
         raise InputError(f"TOML syntax error: {exc}", file=path, line=line) from None
     except RecursionError:
         raise InputError("TOML nesting too deep to parse (arrays or tables nested thousands "
                          "of levels); a road, path or driver file is a few flat tables",
-                         file=path) from None
+                         file=path, line=1) from None
 
 
 class TableReader:

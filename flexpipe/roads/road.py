@@ -419,7 +419,7 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         line_no.append(k)
     if len(rows) < 2:
         raise InputError(f"{len(rows)} data line(s); a road needs at least 2 samples",
-                         file=path)
+                         file=path, line=line_no[-1] if line_no else 1)
     data = np.array(rows)
     right = data[:, 2] if ncol == 3 else data[:, 1]
     return Road(x=data[:, 0], left=data[:, 1], right=right, track_width=track_width,

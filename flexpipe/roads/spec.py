@@ -116,7 +116,7 @@ def load_road(spec, *, track_width: float | None = None) -> Road:
     suffix = path.suffix.lower()
     if suffix not in (".crg", ".csv", ".toml"):
         raise InputError(f"unknown road file type {path.suffix!r}; valid: .crg, .csv, .toml",
-                         file=path)
+                         file=path, key="file suffix")
     if not path.is_file():
         raise InputError("road file does not exist", file=path)
     tw = 1.5 if track_width is None else track_width

@@ -36,8 +36,9 @@ def parse(path: Path) -> tuple[dict, list[str]]:
         return tomllib.loads(text), text.splitlines()
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
-        raise InputError(f"TOML syntax error: {exc}", file=path,
-                         line=int(m.group(1)) if m else None) from None
+        line = int(m.group(1)) if m else (len(text.splitlines()) or 1
+                                          if "end of document" in str(exc) else None)
+        raise InputError(f"TOML syntax error: {exc}", file=path, line=line) from None
     except RecursionError:
         raise InputError("TOML nested too deeply (arrays or inline tables within each other "
                          "hundreds of levels deep); a car file needs only a few levels",
