@@ -127,7 +127,12 @@ class ImplicitTires:
             VV[2 * m:3 * m, 1] += DV
             VV[3 * m:4 * m, 2] += DV
             OM[4 * m:5 * m] += DW
-            CC[5 * m:6 * m, 2] += DZ
+            # height slope: the secant to the height predicted for the end of the step
+            # (a wheel that lands or lifts off within the step meets the kink of the
+            # vertical force there), the tangent when the wheel hardly moves
+            dz = h * v[:, 2]
+            dz = np.where(np.abs(dz) > DZ, dz, DZ)
+            CC[5 * m:6 * m, 2] += dz
             st = self.state[id(tire)]
             from flexpipe.tires import SlipState
 
@@ -153,7 +158,7 @@ class ImplicitTires:
                     dF = dF * horiz
                 Dv[ix, :, k] = dF
             dw[ix] = (F[4] - Fb) / DW * horiz
-            A[ix] = (F[5] - Fb) / DZ
+            A[ix] = (F[5] - Fb) / dz[:, None]
             F0[ix] = Fb
             r[ix] = P - C
             M[ix] = own[:m]
