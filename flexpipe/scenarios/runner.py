@@ -176,7 +176,8 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
                 "rigid minus flexible, after the first 0.5 s; rel_rms_diff = rms_diff / "
                 "rms_rigid (static load included), rel_rms_diff_dynamic = rms_diff / "
                 "std_rigid (fluctuating part); hub force = force the corner applies to the "
-                "body at its hardpoint, body axes")
+                "body, summed over its mounts (a prismatic corner has one, its hardpoint), "
+                "body axes")
         else:
             summary["hub_force_difference_note"] = (
                 "not computed: the rigid and flexible runs did not both reach t_end "
