@@ -208,7 +208,11 @@ def _digest(car: Car, extra: dict) -> str:
 
 
 def rigid_properties(car: Car, *, cache: bool = True) -> RigidBodyData:
-    """Mass properties of the body: from ``[body.rigid]`` or from the trimmed FE model."""
+    """Mass properties of the body: from ``[body.rigid]``, a ready body file or the trimmed
+    FE model."""
+    if car.body.body_file is not None:
+        fb = ready_body(car)
+        return RigidBodyData(fb.mass, np.array(fb.center_of_mass), np.array(fb.inertia))
     if car.body.mesh is None:
         r = car.body.rigid
         return RigidBodyData(r.mass, r.cg.copy(), r.inertia.copy())
@@ -229,6 +233,23 @@ def rigid_properties(car: Car, *, cache: bool = True) -> RigidBodyData:
     if cache:
         _cache.save_massprops(path, key, mass, com, J)
     return RigidBodyData(mass, com, J)
+
+
+def ready_body(car: Car, required=()):
+    """The car's ready reduced body (``[body] body_file``), checked to carry every
+    interface in ``required`` (names)."""
+    from flexpipe.flexbody import load_body
+
+    fb = load_body(car.body.body_file)
+    have = {i.name for i in fb.interfaces}
+    missing = [n for n in required if n not in have]
+    if missing:
+        raise InputError(f"the body file {car.body.body_file.name} has no interface "
+                         f"{missing[0]!r} ({len(missing)} missing); this car needs "
+                         f"{', '.join(required)}; reduce the body with these interfaces "
+                         f"(it has {', '.join(sorted(have))})", file=car.file,
+                         key="body.body_file")
+    return fb
 
 
 # --------------------------------------------------------------------------- reduction
@@ -270,6 +291,11 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     from flexpipe.reduction import reduce
     from flexpipe.vehicle import _cache
 
+    if car.body.body_file is not None:  # a ready body: used as it is, band and all
+        names = [m[0] if isinstance(m, tuple) else m.name for m in mounts] if mounts \
+            else list(CORNERS)
+        return ready_body(car, names), {"cached": True, "seconds": 0.0,
+                                        "path": str(car.body.body_file)}
     cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
     key = {"cutoff": round(cutoff, 6), "m": method, "stress": STRESS_MODES}
     if mounts is not None:  # every body-side mount an interface (flexpipe/vehicle/mounts.py)

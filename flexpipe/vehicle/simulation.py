@@ -100,6 +100,32 @@ def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
     return f / fb.omega[sel] ** 2
 
 
+def body_mounts(car: Car) -> list:
+    """The body's interfaces for a linkage car: every suspension mount, tied as
+    ``[body.mounts.<name>]`` says (point + radius, node set or node ids) or else the nodes
+    within :data:`MOUNT_RADIUS_M` of the mount point; 6 DOF where a joint or bushing needs
+    the mount's frame, else 3 (``Suspension.mount_dofs``)."""
+    from flexpipe.vehicle.mounts import Mount
+
+    points = car.suspension.mounts()
+    dofs = car.suspension.mount_dofs()
+    given = car.body.mounts or {}
+    for name in given:
+        if name not in points:
+            raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
+                             f"suspension; valid: {', '.join(points)}", file=car.file,
+                             key=f"body.mounts.{name}")
+    out = []
+    for name, p in points.items():
+        g = given.get(name, {})
+        tie = g.get("node_set") is not None or g.get("nodes") is not None
+        out.append(Mount(name, tuple(g["point"]) if g.get("point") is not None else tuple(p),
+                         radius=g.get("radius") or (None if tie else MOUNT_RADIUS_M),
+                         dofs=g.get("dofs") or dofs[name], node_set=g.get("node_set"),
+                         nodes=g.get("nodes")))
+    return out
+
+
 def linkage_statics(car: Car, rb):
     """Suspension of a linkage car ready to run and its static wheel loads (4,) N.
 
@@ -174,10 +200,7 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
         cutoff = FULL_CUTOFF_HZ if body == "full" else None
         kw = {}
         if car.suspension is not None:  # every body-side mount an interface of the body
-            dofs = car.suspension.mount_dofs()
-            kw = {"mounts": [(n, p, MOUNT_RADIUS_M, dofs[n])
-                             for n, p in car.suspension.mounts().items()],
-                  "interface_f_max": INTERFACE_F_MAX_HZ}
+            kw = {"mounts": body_mounts(car), "interface_f_max": INTERFACE_F_MAX_HZ}
         fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log, cutoff=cutoff,
                                           **kw)
         out.update(flexbody=fb, band_hz=None if body == "full" else band, reduction=info)
@@ -262,7 +285,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     if max_mode_hz is not None:  # flexpipe#14 (robust)
         max_mode_hz = _number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6)
     every = max(1, int(round(output_step / h)))
-    if body == "full" and car.body.mesh is None or body == "flexible" and car.body.mesh is None:
+    if body in ("full", "flexible") and car.body.mesh is None and car.body.body_file is None:
         raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
                          "properties ([body.rigid]); use body='rigid'", file=car.file,
                          key="body.mesh")
@@ -346,8 +369,13 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     kind = "rigid" if body == "rigid" else "flexible"
     names = list(car.body.points)
     pn = {}
-    if car.body.mesh is not None:
-        nodes = fb.nodes if fb is not None else bodymodel.body_mesh(car).points
+    if car.body.mesh is not None or car.body.body_file is not None:
+        if fb is not None:
+            nodes = fb.nodes
+        elif car.body.body_file is not None:
+            nodes = bodymodel.ready_body(car).nodes
+        else:
+            nodes = bodymodel.body_mesh(car).points
         pn = bodymodel.point_nodes(car, nodes)
         local = {n: nodes[pn[n]] for n in names}
     else:

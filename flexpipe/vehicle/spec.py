@@ -97,6 +97,8 @@ class BodySpec:
     added_masses: tuple[AddedMass, ...]
     points: dict
     fatigue: object = None  # FatigueMaterial of [body.fatigue] (feat/durability)
+    body_file: Path | None = None  # ready reduced body (.npz from flexpipe reduce)
+    mounts: dict = None  # {mount: {"point", "radius", "dofs", "node_set", "nodes"}} overrides
 
 
 @dataclass(frozen=True)
@@ -234,6 +236,16 @@ def _body(doc: Table, base: Path) -> BodySpec:
         if not mesh.is_file():
             raise t.error("mesh", f"mesh file {mesh} does not exist (paths are relative to "
                                   "the car file)")
+    body_file = None
+    if t.has("body_file"):
+        body_file = (base / t.string("body_file", doc="reduced body from flexpipe reduce")
+                     ).resolve()
+        if not body_file.is_file():
+            raise t.error("body_file", f"body file {body_file} does not exist (paths are "
+                                       "relative to the car file)")
+        if mesh is not None:
+            raise t.error("body_file", "give either 'mesh' (reduced for each run's band) or "
+                                       "'body_file' (a ready reduced body), not both")
     scale = t.number("mesh_scale", 1.0, lo=0, lo_open=True)
     units = t.string("mesh_units", None)
     material = _material(t, "material")
@@ -246,9 +258,10 @@ def _body(doc: Table, base: Path) -> BodySpec:
         rigid = RigidProps(r.number("mass_kg", lo=0, lo_open=True, doc="body mass"),
                            r.vector("cg_m"), _inertia(r, "inertia_kg_m2"))
         r.finish()
-    if mesh is None and rigid is None:
-        raise t.error(None, "the body needs a 'mesh' (flexible body) or a [body.rigid] table "
-                            "with mass_kg, cg_m, inertia_kg_m2")
+    if mesh is None and rigid is None and body_file is None:
+        raise t.error(None, "the body needs a 'mesh' (flexible body), a 'body_file' (ready "
+                            "reduced body .npz) or a [body.rigid] table with mass_kg, cg_m, "
+                            "inertia_kg_m2")
     masses = []
     raw = t.raw("mass", [])
     if not isinstance(raw, list):
@@ -266,6 +279,34 @@ def _body(doc: Table, base: Path) -> BodySpec:
         for k in list(p.data):
             points[k] = p.vector(k)
         p.finish()
+    if body_file is not None and masses:
+        raise t.error("mass", "a ready body file carries its own masses: add the "
+                              "non-structural masses before reducing it (flexpipe reduce), "
+                              "or give the mesh instead of body_file")
+    mounts = {}
+    if t.has("mounts"):  # per-mount ties: point + radius, a node set, or node ids
+        mt = t.sub("mounts")
+        for name in list(mt.data):
+            m = mt.sub(name)
+            d = {"point": m.vector("point_m") if m.has("point_m") else None,
+                 "radius": m.number("radius_m", None, lo=0, lo_open=True),
+                 "dofs": int(m.number("dofs", 0, lo=0, hi=6)) or None,
+                 "node_set": m.string("node_set", None), "nodes": None}
+            if m.has("nodes"):
+                raw_nodes = m.raw("nodes")
+                if not (isinstance(raw_nodes, list) and raw_nodes and all(
+                        isinstance(v, int) and not isinstance(v, bool) and v >= 0
+                        for v in raw_nodes)):
+                    raise m.error("nodes", "expected a list of node indices (integers >= 0, "
+                                           "0-based)")
+                d["nodes"] = tuple(raw_nodes)
+            if d["dofs"] not in (None, 3, 6):
+                raise m.error("dofs", f"must be 3 or 6, got {d['dofs']}")
+            if sum(x is not None for x in (d["radius"], d["node_set"], d["nodes"])) > 1:
+                raise m.error(None, "give one of radius_m, node_set or nodes")
+            m.finish()
+            mounts[name] = d
+        mt.finish()
     fatigue = None
     if t.has("fatigue"):  # feat/durability: Basquin S-N data, flexpipe.durability.fatigue
         from flexpipe.durability.fatigue import read_fatigue_table
@@ -273,7 +314,7 @@ def _body(doc: Table, base: Path) -> BodySpec:
         fatigue = read_fatigue_table(t.sub("fatigue"))
     t.finish()
     return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
-                    fatigue)
+                    fatigue, body_file, mounts)
 
 
 def _corner(corners: Table, name: str, base: Path) -> CornerSpec:

@@ -1,0 +1,92 @@
+"""A car whose body is a ready reduced body (``[body] body_file``), and mounts tied by node
+set or node ids (``[body.mounts.<name>]``): the same body reached by another route must
+give the same car (reference: the car built from the mesh)."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import flexpipe as fp
+from flexpipe.errors import InputError
+from flexpipe.vehicle import bodymodel
+from flexpipe.vehicle.simulation import body_mounts, prepare
+
+ROOT = Path(__file__).resolve().parents[1]
+CAR = ROOT / "cars" / "sedan_linkage.toml"
+
+
+def _variant(tmp_path, body_lines: str) -> Path:
+    """cars/sedan_linkage.toml with its [body] mesh line replaced; paths made absolute."""
+    text = CAR.read_text().replace('"../', f'"{ROOT}/')
+    old = f'mesh = "{ROOT}/meshes/sedan_biw.bdf"'
+    assert old in text
+    out = tmp_path / "car.toml"
+    out.write_text(text.replace(old, body_lines, 1))
+    return out
+
+
+@pytest.fixture(scope="module")
+def mesh_car_runs():
+    car = fp.load_car(CAR)
+    prep = prepare(car, body="flexible", speed=0.0)
+    return car, prep
+
+
+def test_ready_body_file_gives_the_same_car(tmp_path, mesh_car_runs):
+    car, prep = mesh_car_runs
+    fb = prep["flexbody"]
+    body_npz = tmp_path / "body.npz"
+    fb.save(body_npz)
+    # a ready body carries its own masses: drop the [[body.mass]] tables
+    text = _variant(tmp_path, f'body_file = "{body_npz}"').read_text()
+    text = "\n".join(ln for ln in text.split("\n[[body.mass]]")[0].splitlines()) + \
+        "\n[corners" + text.split("\n[corners", 1)[1]
+    (tmp_path / "car2.toml").write_text(text)
+    car2 = fp.load_car(tmp_path / "car2.toml")
+    rb, rb2 = bodymodel.rigid_properties(car), bodymodel.rigid_properties(car2)
+    assert rb2.mass == pytest.approx(rb.mass, rel=1e-9)
+    assert np.allclose(rb2.center_of_mass, rb.center_of_mass, atol=1e-9)
+    a = fp.simulate(car, speed=0.0, t_end=0.3, body="flexible", prepared=prep)
+    b = fp.simulate(car2, speed=0.0, t_end=0.3, body="flexible")
+    assert b.status == 0, b.message
+    for ch in ("hub_fl_z", "hub_rr_y", "tire_rl_Fz"):
+        assert np.allclose(a[ch], b[ch], rtol=1e-6, atol=1e-6)
+
+
+def test_body_file_lacking_a_mount_is_named(tmp_path, mesh_car_runs):
+    from flexpipe.reduction import Interface
+
+    car, _ = mesh_car_runs
+    fe = bodymodel.body_fe(car)
+    small = fp.reduce(fe, [Interface((0.2, 0.42, 0.148), radius=0.02, name="only_one")],
+                      method="craig-bampton", n_modes=2)
+    npz = tmp_path / "small.npz"
+    small.save(npz)
+    text = _variant(tmp_path, f'body_file = "{npz}"').read_text()
+    text = text.split("\n[[body.mass]]")[0] + "\n[corners" + text.split("\n[corners", 1)[1]
+    (tmp_path / "car3.toml").write_text(text)
+    car3 = fp.load_car(tmp_path / "car3.toml")
+    with pytest.raises(InputError, match="body_file.*no interface 'front_lower_arm_front_l'"):
+        fp.simulate(car3, speed=0.0, t_end=0.1, body="flexible")
+
+
+def test_mount_by_node_ids_ties_the_same_node(tmp_path):
+    car = fp.load_car(CAR)
+    nodes = bodymodel.body_mesh(car).points
+    name = "front_upper_arm_front_l"
+    p = car.suspension.mounts()[name]
+    k = int(np.argmin(np.linalg.norm(nodes - p, axis=1)))
+    path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [{k}]\ndofs = 6\n")
+    car2 = fp.load_car(path)
+    m = {mm.name: mm for mm in body_mounts(car2)}[name]
+    assert m.nodes == (k,) and m.dofs == 6 and m.radius is None
+
+
+def test_unknown_mount_name_is_an_error(tmp_path):
+    path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
+    path.write_text(path.read_text() + "\n[body.mounts.front_lower_arm_frnt_l]\ndofs = 6\n")
+    car = fp.load_car(path)
+    with pytest.raises(InputError, match="body.mounts.front_lower_arm_frnt_l"):
+        body_mounts(car)
