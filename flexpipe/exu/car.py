@@ -358,7 +358,7 @@ class CarSystem:
         s.show.statistics = False
         s.show.computationTime = False
         s.linearSolver.solverType = exu.LinearSolverType.EXUdense
-        cpu0, wall0 = time.process_time(), time.perf_counter()
+        cpu0, wall0 = time.thread_time(), time.perf_counter()
         message = ""
         printing = exu.config.printToConsole
         exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
@@ -370,7 +370,7 @@ class CarSystem:
             message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
         finally:
             exu.config.printToConsole = printing
-        cpu = time.process_time() - cpu0
+        cpu = time.thread_time() - cpu0
         wall = time.perf_counter() - wall0
         completed = ok and last["t"] >= t_end - 1.5 * h
         return completed, last["t"], cpu, wall, message
