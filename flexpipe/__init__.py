@@ -28,6 +28,8 @@ _EXPORTS = {
     "simulate": "flexpipe.vehicle",
     "compare": "flexpipe.vehicle",
     "Result": "flexpipe.vehicle",
+    "sweep": "flexpipe.sweeps",
+    "load_sweep": "flexpipe.sweeps",
     "FlexpipeError": "flexpipe.errors",
     "InputError": "flexpipe.errors",
     "MeshError": "flexpipe.errors",

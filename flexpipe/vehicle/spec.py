@@ -324,7 +324,7 @@ def load_car(path, *, overrides=None) -> Car:
     overrides : dict, optional
         Dotted key to value, set on the parsed file before validation (e.g.
         ``{"corners.fl.spring_rate_N_per_m": 35000.0}``; see
-        :func:`flexpipe.sweep.overrides.apply_overrides`).
+        :func:`flexpipe.sweeps.overrides.apply_overrides`).
 
     Returns
     -------
@@ -340,7 +340,7 @@ def load_car(path, *, overrides=None) -> Car:
         raise InputError(f"expected a .toml car file, got '{path.suffix}'", file=path)
     data, lines = parse(path)
     if overrides:  # --- sweep (issue 12): dotted-key overrides before validation
-        from flexpipe.sweep.overrides import apply_overrides
+        from flexpipe.sweeps.overrides import apply_overrides
 
         data = apply_overrides(data, overrides, file=path, origin="car override")
     base = path.resolve().parent
