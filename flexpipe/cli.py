@@ -30,6 +30,7 @@ COMMANDS = (
     ("info", "flexpipe.cli_info", "summary of a mesh, body or car model file"),
     ("reduce", "flexpipe.cli_reduce", "component mode synthesis of a mesh into a flexible body"),
     ("run", "flexpipe.cli_run", "simulate a car scenario"),
+    ("sweep", "flexpipe.cli_sweep", "many runs from one spec on Dask (table, channels, plots)"),
 )
 EXIT_ERROR = 2
 

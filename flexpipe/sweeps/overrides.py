@@ -58,7 +58,7 @@ def apply_overrides(doc: dict, overrides: dict, *, file=None, origin: str = "ove
     """
     out = copy.deepcopy(doc)
     for dotted, value in overrides.items():
-        parts = [p for p in str(dotted).split(".")]
+        parts = str(dotted).split(".")
         if not parts or any(not p for p in parts):
             raise InputError(f"{origin}: malformed dotted key {dotted!r}", file=file,
                              key=str(dotted))
@@ -74,10 +74,12 @@ def apply_overrides(doc: dict, overrides: dict, *, file=None, origin: str = "ove
         if not isinstance(node, dict):
             raise InputError(f"{origin}: '{done.rstrip('.')}' is a value, not a table",
                              file=file, key=dotted)
-        if isinstance(node.get(last), dict | list) and not isinstance(value, type(node[last])):
+        old = node.get(last)
+        if isinstance(old, dict | list) and not isinstance(value, type(old)):
+            keys = ", ".join(sorted(old)) if isinstance(old, dict) else "by index"
             raise InputError(f"{origin}: '{dotted}' is a table in the file; set one of its keys "
-                             f"({', '.join(sorted(node[last])) if isinstance(node[last], dict) else 'by index'})"
-                             f" instead of replacing it with {value!r}", file=file, key=dotted)
+                             f"({keys}) instead of replacing it with {value!r}", file=file,
+                             key=dotted)
         node[last] = copy.deepcopy(value)
     return out
 
