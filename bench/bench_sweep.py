@@ -68,7 +68,7 @@ def run() -> dict:
 
             t0 = time.perf_counter()
             cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                   host="127.0.0.1", dashboard_address=None,
+                                   host="127.0.0.1", dashboard_address=":0",
                                    silence_logs=logging.ERROR)
             client = Client(cluster)
             client.run(lambda: __import__("flexpipe.vehicle.simulation"))

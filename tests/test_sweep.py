@@ -31,7 +31,7 @@ def client(tmp_path_factory):
     mp = pytest.MonkeyPatch()
     mp.setenv("FLEXPIPE_CACHE", str(tmp_path_factory.mktemp("cache")))
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                           host="127.0.0.1", dashboard_address=None, silence_logs=50)
+                           host="127.0.0.1", dashboard_address=":0", silence_logs=50)
     c = Client(cluster)
     yield c
     c.close()
@@ -137,3 +137,37 @@ def test_overrides_reach_arrays_of_tables_and_leave_the_document_alone():
     assert doc["body"]["mass"][0]["mass_kg"] == 75.0 and doc["corners"]["fl"] == {}
     with pytest.raises(InputError, match="is a table in the file"):
         apply_overrides(doc, {"corners.fl": 3.0})
+
+
+def test_cli_runs_a_latin_hypercube_spec_file(client, tmp_path, capsys):
+    from flexpipe.cli import main
+
+    car = rigid_sedan(tmp_path)
+    spec = tmp_path / "lhs.toml"
+    spec.write_text(f"""
+[sweep]
+car = "{car.name}"
+road = "{ROAD.as_posix()}"
+t_end_s = 0.4
+design = "lhs"
+samples = 4
+seed = 7
+
+[parameters]
+speed_kmh = {{min = 40.0, max = 80.0}}
+"road.seed" = {{min = 1, max = 4}}
+body = ["rigid"]
+""")
+    code = main(["sweep", str(spec), "--scheduler", client.scheduler.address, "--out",
+                 str(tmp_path / "out"), "--no-progress"])
+    assert code == 0, capsys.readouterr()
+    assert "4 runs (0 already done, 0 failed" in capsys.readouterr().out
+    t = pd.read_parquet(tmp_path / "out" / "metrics.parquet")
+    # Latin hypercube: one sample in each quarter of the speed range, each seed once
+    assert sorted(((t["speed_kmh"] - 40.0) // 10.0).astype(int)) == [0, 1, 2, 3]
+    assert sorted(t["road.seed"]) == [1, 2, 3, 4]
+    assert (t["status"] == 0).all()
+    import dask.dataframe as dd
+
+    rows = len(dd.read_parquet(tmp_path / "out" / "channels").compute())
+    assert rows == 4 * round(0.4 / 2e-3)  # every run's samples, t = h .. t_end

@@ -74,11 +74,11 @@ def _client(scheduler, n_workers):
 
     if scheduler is not None:
         if hasattr(scheduler, "submit"):
-            return scheduler, None, None
-        return Client(scheduler), None, None
+            return scheduler, None, False  # the caller's client: leave it open
+        return Client(scheduler), None, True
     n = n_workers or os.cpu_count() or 1
     cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                           host="127.0.0.1", dashboard_address=None,
+                           host="127.0.0.1", dashboard_address=":0",
                            silence_logs=logging.ERROR)
     return Client(cluster), cluster, True
 
@@ -232,6 +232,7 @@ def _execute(todo, store, *, scheduler, n_workers, progress, cache) -> list:
     finally:
         if own:
             client.close()
+        if cluster is not None:
             cluster.close()
 
 
