@@ -171,3 +171,21 @@ body = ["rigid"]
 
     rows = len(dd.read_parquet(tmp_path / "out" / "channels").compute())
     assert rows == 4 * round(0.4 / 2e-3)  # every run's samples, t = h .. t_end
+
+
+def test_runs_sharing_a_body_share_one_reduction_key():
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.execute import _cars
+    from flexpipe.sweeps.tasks import body_keys, road_of
+
+    spec = load_sweep({"sweep": {"car": str(ROOT / "cars" / "sedan.toml"), "road": str(ROAD),
+                                 "body": "flexible", "t_end_s": 1.0},
+                       "parameters": {"car.body.damping_ratio": [0.02, 0.03],
+                                      "speed_kmh": [60.0, 90.0],
+                                      "car.corners.fl.spring_rate_N_per_m": [3e4, 4e4]}})
+    runs = spec.runs()
+    keys = [body_keys(car, r, road_of(r)) for r, car in zip(runs, _cars(runs), strict=True)]
+    # the body depends on its damping (and band), not on the springs or the speed here
+    # (both speeds excite the road above the 30 Hz band limit)
+    assert len(runs) == 8 and len({k[1] for k in keys}) == 2 and len({k[0] for k in keys}) == 2
+    assert {k[2] for k in keys} == {30.0}
