@@ -134,6 +134,11 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
     InputError
         A bad spec, or a run whose car overrides do not validate (named with its
         parameters), before any run starts.
+
+    Notes
+    -----
+    The local cluster starts worker processes by spawning: in a script, call ``sweep``
+    under ``if __name__ == "__main__":``.
     """
     t_start = time.perf_counter()
     spec = load_sweep(spec)
