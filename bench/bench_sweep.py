@@ -75,7 +75,7 @@ def run() -> dict:
             try:
                 # serial and sweep alternate in ROUNDS batches of 4 runs, so a change of the
                 # load from other jobs during the benchmark hits both alike
-                serial_s = sweep_s = cpu = 0.0
+                serial_s = sweep_s = cpu = sweep_cpu = 0.0
                 diff = 0.0
                 n_failed = 0
                 for i in range(ROUNDS):
@@ -90,11 +90,13 @@ def run() -> dict:
                                 progress=False, plots=False)
                     sweep_s += time.perf_counter() - t0
                     n_failed += res.n_failed
+                    sweep_cpu += float(res.table["cpu_s"].sum())
                     diff = max([diff] + [abs(float(np.abs(r.channels["hub_fl_z"]).max()) - p)
                                          for r, p in zip(serial, res.table["hub_fl_z_peak_N"],
                                                          strict=True)])
                 out.update(serial_s=round(serial_s, 2), serial_cpu_s=round(cpu, 2),
-                           sweep_s=round(sweep_s, 2), sweep_failed=n_failed,
+                           sweep_s=round(sweep_s, 2), sweep_cpu_s=round(sweep_cpu, 2),
+                           sweep_failed=n_failed,
                            speedup=round(serial_s / sweep_s, 2),
                            speedup_with_cluster_start=round(
                                serial_s / (sweep_s + out["cluster_start_s"]), 2),
