@@ -7,7 +7,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: setup straight slalom paper test bench lint clean
+.PHONY: setup straight slalom paper sweep test bench lint clean
 
 setup: $(STAMP)
 
@@ -22,6 +22,9 @@ straight: setup
 
 slalom: setup
 	$(PY) -m flexpipe.scenarios slalom --out out/slalom
+
+sweep: setup
+	$(PY) -m flexpipe sweep sweeps/sample.toml --out out/sweep
 
 paper: setup
 	$(PY) -m flexpipe.halfcar.paper --out out/paper

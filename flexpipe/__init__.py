@@ -32,6 +32,8 @@ _EXPORTS = {
     "BodyMotion": "flexpipe.vehicle.result",
     "recover_stress": "flexpipe.durability",
     "FatigueMaterial": "flexpipe.durability",
+    "sweep": "flexpipe.sweeps",
+    "load_sweep": "flexpipe.sweeps",
     "FlexpipeError": "flexpipe.errors",
     "InputError": "flexpipe.errors",
     "MeshError": "flexpipe.errors",

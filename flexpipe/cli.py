@@ -33,6 +33,7 @@ COMMANDS = (
     ("kc", "flexpipe.cli_kc", "kinematics and compliance rig of a car's suspension"),
     ("stress", "flexpipe.cli_stress", "stress recovery, hot spots and fatigue of a run"),
     ("animate", "flexpipe.cli_animate", "ParaView animation (.pvd) of a run's flexible body"),
+    ("sweep", "flexpipe.cli_sweep", "many runs from one spec on Dask (table, channels, plots)"),
 )
 EXIT_ERROR = 2
 

@@ -113,7 +113,6 @@ def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=prin
 
     Returns ``{file: description}`` of every file written (and of the run's own files).
     """
-    from flexpipe.vehicle import bodymodel
 
     out = Path(out)
     files = {k: v for k, v in DESCRIPTIONS.items()
@@ -122,7 +121,9 @@ def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=prin
     if r is None or r.motion is None or r.motion.n_modes == 0:
         return files
     band = r.info.get("band_hz")
-    body, info = bodymodel.reduced_body(car, f_max=band, log=lambda *a: None)
+    from flexpipe.vehicle.simulation import reduce_car_body
+
+    body, info = reduce_car_body(car, f_max=band)
     X, Y, Z = road_strip(road, r.motion.position[:, 0], r.motion.position[:, 1],
                          width=2.0 * float(np.max(np.abs([c.wheel_center[1]
                                                           for c in car.corners]))) + 1.0)

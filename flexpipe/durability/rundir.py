@@ -107,10 +107,9 @@ class RunData:
         if self.band_hz is None:
             raise InputError(f"body file {self.body_file} is missing and the run does not "
                              "say its band; rerun the scenario", file=self.out)
-        from flexpipe.vehicle import bodymodel
+        from flexpipe.vehicle.simulation import reduce_car_body
 
-        body, _ = bodymodel.reduced_body(self.car(), f_max=self.band_hz,
-                                         log=log or (lambda *a: None))
+        body, _ = reduce_car_body(self.car(), f_max=self.band_hz, log=log)
         return body
 
 

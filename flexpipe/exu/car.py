@@ -407,7 +407,7 @@ class CarSystem:
             t0 = t - h  # the state is at the start of the step
             if t0 <= 1e-12:
                 return True
-            c0 = time.process_time()
+            c0 = time.thread_time()
             st = self.state(t0)
             loads = step(st)
             last["t"] = t0
@@ -417,7 +417,7 @@ class CarSystem:
             if loads is None:
                 return False
             self.apply(loads, st.mount_R, st)
-            self.prestep_cpu += time.process_time() - c0
+            self.prestep_cpu += time.thread_time() - c0
             return True
 
         from flexpipe._signals import Interrupted, deferred_interrupts  # flexpipe#14
@@ -448,7 +448,7 @@ class CarSystem:
         s.show.statistics = False
         s.show.computationTime = False
         s.linearSolver.solverType = exu.LinearSolverType.EXUdense
-        cpu0, wall0 = time.process_time(), time.perf_counter()
+        cpu0, wall0 = time.thread_time(), time.perf_counter()
         message = ""
         printing = exu.config.printToConsole
         exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
@@ -467,7 +467,7 @@ class CarSystem:
         if "interrupt" in last:
             last["interrupt"].t = last["t"]
             raise last["interrupt"]
-        cpu = time.process_time() - cpu0
+        cpu = time.thread_time() - cpu0
         wall = time.perf_counter() - wall0
         completed = ok and last["t"] >= t_end - 1.5 * h
         return completed, last["t"], cpu, wall, message

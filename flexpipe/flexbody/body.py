@@ -178,6 +178,12 @@ class FlexBody:
         inv = {k: _ro(v) for k, v in self.invariants.as_dict().items()}
         object.__setattr__(self, "invariants", FFRFInvariants(**inv))
 
+    def __reduce__(self):
+        # standard pickle cannot take the read-only mapping proxies: rebuild from plain dicts
+        args = tuple(dict(v) if isinstance(v, MappingProxyType) else v
+                     for v in (getattr(self, f.name) for f in fields(self)))
+        return (type(self), args)
+
     # ------------------------------------------------------------------ views
     @property
     def n_nodes(self) -> int:

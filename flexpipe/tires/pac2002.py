@@ -41,6 +41,9 @@ Pac2002Coefficients = make_dataclass(
     [(k, float, 1.0 if k in _SCALING_DEFAULT_ONE else 0.0) for k in _ALL],
     frozen=True, slots=True,
 )
+# make_dataclass puts the class in module 'types' (Python < 3.12 has no module= argument):
+# name its real home so standard pickle finds it (prepare() output crosses process pools).
+Pac2002Coefficients.__module__ = __name__
 
 
 @dataclass(frozen=True)

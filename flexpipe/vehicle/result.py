@@ -95,7 +95,8 @@ class Result:
     body : str
         "rigid", "flexible" or "full".
     cpu_time : float
-        CPU time of the time integration, s (process time; excludes model building).
+        CPU time of the time integration, s (CPU time of the calling thread, so
+        runs in parallel threads do not count each other; excludes model building).
     wall_time : float
         Wall-clock time of the time integration, s.
     simulated_time : float

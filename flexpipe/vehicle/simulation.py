@@ -70,6 +70,14 @@ def _road(road, needed: float):
                      f"got {type(road).__name__}", key="road")
 
 
+def _car(car) -> Car:
+    if isinstance(car, Car):
+        return car
+    if isinstance(car, (str, Path)):
+        return load_car(car)
+    raise InputError(f"car must be a Car or a car file, got {type(car).__name__}", key="car")
+
+
 def _path(path, needed: float):
     from flexpipe.driver import Path as DPath
     from flexpipe.driver import read_path, straight
@@ -98,6 +106,18 @@ def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
         itf = fb.interfaces[names.index(name)]
         f += itf.shapes[2, sel] * corners.preload[i]
     return f / fb.omega[sel] ** 2
+
+
+def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, log=None):
+    """The car's reduced flexible body for band ``f_max`` (Hz): interfaces at the four
+    corner hardpoints, or for a linkage car at every suspension mount
+    (:func:`body_mounts`, interface reduction to :data:`INTERFACE_F_MAX_HZ`).  Returns
+    ``(FlexBody, info)`` as :func:`flexpipe.vehicle.bodymodel.reduced_body`."""
+    kw = {}
+    if car.suspension is not None:  # every body-side mount an interface of the body
+        kw = {"mounts": body_mounts(car), "interface_f_max": INTERFACE_F_MAX_HZ}
+    return bodymodel.reduced_body(car, f_max=f_max, cache=cache, cutoff=cutoff,
+                                  log=log or (lambda *a: None), **kw)
 
 
 def body_mounts(car: Car) -> list:
@@ -183,14 +203,23 @@ def _tires(car: Car):
     return out
 
 
-def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, log=None):
+def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, log=None,
+            bodies=None):
     """Everything a run needs that does not depend on the time integration.
 
-    Returns a dict with ``rigid`` (mass properties), ``corners``, ``tires``, ``flexbody``
-    (None for rigid), ``band_hz`` and ``reduction`` (cache info).
+    ``car`` and ``road`` take what :func:`simulate` takes (a Car or car file; a Road, road
+    file, road table or None).  Returns a dict with ``rigid`` (mass properties),
+    ``corners``, ``tires``, ``flexbody`` (None for rigid), ``band_hz`` and ``reduction``
+    (cache info); it pickles with the standard :mod:`pickle`.  ``bodies`` may supply
+    ``{"rigid": RigidBodyData, "flexbody": FlexBody, "reduction": info}`` computed once
+    elsewhere (a sweep's per-body task) instead of reading the cache.
     """
     log = log or (lambda *a: None)
-    rb = bodymodel.rigid_properties(car, cache=cache)
+    car = _car(car)  # --- sweep (issue 12): same car/road arguments as simulate()
+    if road is not None:
+        road = _road(road, 0.0)
+    bodies = bodies or {}
+    rb = bodies.get("rigid") or bodymodel.rigid_properties(car, cache=cache)
     tires = _tires(car)
     corners = corner_arrays(car, rb.mass, rb.center_of_mass, tires=tires)
     out = {"rigid": rb, "corners": corners, "tires": tires, "flexbody": None,
@@ -198,11 +227,10 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
     if body in ("flexible", "full"):
         band = f_max if f_max is not None else bodymodel.choose_band(speed, road)
         cutoff = FULL_CUTOFF_HZ if body == "full" else None
-        kw = {}
-        if car.suspension is not None:  # every body-side mount an interface of the body
-            kw = {"mounts": body_mounts(car), "interface_f_max": INTERFACE_F_MAX_HZ}
-        fb, info = bodymodel.reduced_body(car, f_max=band, cache=cache, log=log, cutoff=cutoff,
-                                          **kw)
+        if bodies.get("flexbody") is not None:
+            fb, info = bodies["flexbody"], bodies["reduction"]
+        else:
+            fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache, log=log)
         out.update(flexbody=fb, band_hz=None if body == "full" else band, reduction=info)
     return out
 
@@ -265,12 +293,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     InputError
         Bad arguments, bad car file, road or path too short.
     """
-    if not isinstance(car, Car):
-        if isinstance(car, (str, Path)):
-            car = load_car(car)
-        else:
-            raise InputError(f"car must be a Car or a car file, got {type(car).__name__}",
-                             key="car")
+    car = _car(car)
     if body not in BODIES:
         raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
     speed = _number(speed, "speed", lo=0.0, hi=80.0, lo_closed=True)

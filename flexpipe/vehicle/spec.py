@@ -392,13 +392,17 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
     return spec
 
 
-def load_car(path) -> Car:
+def load_car(path, *, overrides=None) -> Car:
     """Read and validate a car file.
 
     Parameters
     ----------
     path : str or Path
         TOML car file (see :mod:`flexpipe.vehicle.spec` for the keys).
+    overrides : dict, optional
+        Dotted key to value, set on the parsed file before validation (e.g.
+        ``{"corners.fl.spring_rate_N_per_m": 35000.0}``; see
+        :func:`flexpipe.sweeps.overrides.apply_overrides`).
 
     Returns
     -------
@@ -413,6 +417,10 @@ def load_car(path) -> Car:
     if path.suffix.lower() != ".toml":
         raise InputError(f"expected a .toml car file, got '{path.suffix}'", file=path)
     data, lines = parse(path)
+    if overrides:  # --- sweep (issue 12): dotted-key overrides before validation
+        from flexpipe.sweeps.overrides import apply_overrides
+
+        data = apply_overrides(data, overrides, file=path, origin="car override")
     base = path.resolve().parent
     doc = Table(data, "", path, lines)
     ct = doc.sub("car")

@@ -1,0 +1,355 @@
+"""Sweep specification: a TOML file (or the same structure as a dict) naming the base
+car, road and settings once, and the parameters to vary as a grid, a list or a Latin
+hypercube.  See ``docs/sweeps.md`` for the format; the short version::
+
+    [sweep]
+    car = "../cars/sedan.toml"      # paths relative to this file
+    road = "../roads/iso_c_200m.toml"  # or an inline [road] table (below), or omitted: flat
+    path = "straight"               # or a path file
+    body = "rigid"                  # rigid | flexible | full
+    speed_kmh = 60.0
+    t_end_s = 10.0
+    h_s = 0.002                     # time step
+    output_step_s = 0.002
+    settle_s = 0.0                  # metrics leave out samples before this time
+    design = "grid"                 # grid | list | lhs
+    samples = 16                    # lhs only
+    seed = 0                        # lhs only
+    out = "../out/sweep"            # default output folder (flexpipe sweep --out overrides)
+
+    [parameters]                    # grid: lists; lhs: {min, max} ranges or lists (levels)
+    speed_kmh = [40, 70, 100]
+    "road.road_class" = ["A", "B", "C"]
+    body = ["rigid", "flexible"]
+    "car.corners.fl.spring_rate_N_per_m" = [25000.0, 30000.0]
+
+    [[runs]]                        # list design: one table per run
+    speed_kmh = 50
+
+    [plots]
+    metrics = ["aw_driver_floor_z_m_per_s2", "hub_fl_z_rms_N"]
+
+Parameter names: ``speed_kmh``, ``t_end_s``, ``h_s``, ``body``, ``path`` (file or
+"straight"), ``road`` (a road file replacing the base road), ``road.<key>`` (a key of the
+base road's ``[road]`` table, e.g. ``road.road_class``, ``road.seed``) and
+``car.<dotted key>`` (any key of the car file, e.g. ``car.corners.fl.spring_rate_N_per_m``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from flexpipe.errors import InputError
+
+SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road")
+DESIGNS = ("grid", "list", "lhs")
+BODIES = ("rigid", "flexible", "full")
+_SWEEP_KEYS = ("car", "road", "path", "body", "speed_kmh", "t_end_s", "h_s", "output_step_s",
+               "settle_s", "design", "samples", "seed", "out")
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """One run of a sweep, fully resolved.
+
+    ``params`` holds the swept values (names as in the spec), ``car_overrides`` the
+    dotted car keys, ``road`` a road file (Path), a ``[road]`` table (dict; ``road_base``
+    is the file it came from, for relative ``file`` keys and messages) or None (flat),
+    ``key`` the parameter key.
+    """
+
+    key: str
+    index: int
+    params: dict
+    car_file: Path
+    car_overrides: dict
+    road: object
+    road_base: Path | None
+    path: str
+    body: str
+    speed: float
+    t_end: float
+    h: float
+    output_step: float
+    settle: float
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A parsed sweep (see the module docstring)."""
+
+    file: Path | None
+    car: Path
+    road: object  # Path, dict (inline table) or None
+    road_base: Path | None
+    base: dict
+    design: str
+    parameters: dict
+    runs_list: tuple = ()
+    samples: int = 0
+    seed: int = 0
+    out: Path | None = None
+    plots: tuple = ()
+    extra: dict = field(default_factory=dict)
+
+    # ------------------------------------------------------------------ expansion
+    def points(self) -> list[dict]:
+        """Swept values of every run, in run order."""
+        if self.design == "list":
+            return [dict(r) for r in self.runs_list]
+        names = list(self.parameters)
+        if self.design == "grid":
+            return [dict(zip(names, combo, strict=True))
+                    for combo in itertools.product(*(self.parameters[n] for n in names))]
+        from scipy.stats import qmc
+
+        u = qmc.LatinHypercube(d=len(names), seed=self.seed).random(self.samples)
+        out = []
+        for row in u:
+            point = {}
+            for name, ui in zip(names, row, strict=True):
+                v = self.parameters[name]
+                if isinstance(v, list):  # levels, stratified over their index
+                    point[name] = v[min(int(ui * len(v)), len(v) - 1)]
+                elif isinstance(v[0], int) and isinstance(v[1], int):
+                    point[name] = min(v[0] + int(ui * (v[1] - v[0] + 1)), v[1])
+                else:
+                    point[name] = float(v[0] + ui * (v[1] - v[0]))
+            out.append(point)
+        return out
+
+    def runs(self) -> list[RunSpec]:
+        """Every run, resolved and keyed (duplicates keep their first position)."""
+        car_sha = _sha(self.car)
+        road_desc = _describe_road(self.road)
+        out, seen = [], set()
+        for i, point in enumerate(self.points()):
+            r = self._resolve(i, point, car_sha, road_desc)
+            if r.key not in seen:
+                seen.add(r.key)
+                out.append(r)
+        return out
+
+    def _resolve(self, index, point, car_sha, road_desc) -> RunSpec:
+        where = self.file
+        s = dict(self.base)
+        car_over, road_over = {}, {}
+        road = self.road
+        for name, value in point.items():
+            if name.startswith("car."):
+                car_over[name[4:]] = value
+            elif name.startswith("road."):
+                road_over[name[5:]] = value
+            elif name in SETTINGS:
+                s[name] = value
+            else:
+                raise InputError(f"unknown parameter {name!r}; valid: {', '.join(SETTINGS)}, "
+                                 "road.<key of the [road] table>, car.<dotted key of the car "
+                                 "file>", file=where, key=f"parameters.{name}")
+        road_base = self.road_base
+        if "road" in point:
+            road = _file(point["road"], self.file, "parameters.road")
+            road_base = road
+        if road_over:
+            if not isinstance(road, dict):
+                raise InputError("road.<key> parameters need a base road given as a .toml "
+                                 "[road] table (file or inline); got "
+                                 f"{road if road is not None else 'a flat road'}",
+                                 file=where, key=f"parameters.road.{next(iter(road_over))}")
+            road = {**road, **road_over}
+        body = s["body"]
+        if body not in BODIES:
+            raise InputError(f"body {body!r}; valid: {', '.join(BODIES)}", file=where,
+                             key="body")
+        path = s["path"]
+        if path != "straight":
+            path = str(_file(path, self.file, "path"))
+        speed = _num(s["speed_kmh"], "speed_kmh", where, lo=0.0) / 3.6
+        t_end = _num(s["t_end_s"], "t_end_s", where, lo=0.0, open_=True)
+        h = _num(s["h_s"], "h_s", where, lo=0.0, open_=True)
+        output_step = _num(s["output_step_s"], "output_step_s", where, lo=0.0, open_=True)
+        settle = _num(s["settle_s"], "settle_s", where, lo=0.0)
+        ident = {"car": str(self.car), "car_sha": car_sha, "car_overrides": car_over,
+                 "road": road_desc if road is self.road else _describe_road(road),
+                 "path": path, "path_sha": _sha(Path(path)) if path != "straight" else "",
+                 "body": body, "speed_kmh": float(s["speed_kmh"]), "t_end_s": t_end, "h_s": h,
+                 "output_step_s": output_step}
+        key = hashlib.sha256(json.dumps(ident, sort_keys=True, default=str).encode())
+        return RunSpec(key=key.hexdigest()[:16], index=index, params=dict(point),
+                       car_file=self.car, car_overrides=car_over, road=road,
+                       road_base=road_base, path=path, body=body, speed=speed, t_end=t_end,
+                       h=h, output_step=output_step, settle=settle)
+
+
+# --------------------------------------------------------------------------- helpers
+def _sha(path: Path) -> str:
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
+    except OSError:
+        return ""
+
+
+def _describe_road(road):
+    if road is None:
+        return "flat"
+    if isinstance(road, dict):
+        return {"table": road}
+    return {"file": str(road), "sha": _sha(road)}
+
+
+def _file(value, base_file, key) -> Path:
+    if not isinstance(value, str | Path):
+        raise InputError(f"expected a file name, got {value!r}", file=base_file, key=key)
+    base = Path(base_file).parent if base_file is not None else Path.cwd()
+    p = (base / value).resolve()
+    if not p.is_file():
+        raise InputError(f"file {p} does not exist (paths are relative to the sweep file)",
+                         file=base_file, key=key)
+    return p
+
+
+def _num(v, key, where, *, lo=None, open_=False) -> float:
+    if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
+        raise InputError(f"expected a finite number, got {v!r}", file=where, key=key)
+    if lo is not None and (v < lo or (open_ and v == lo)):
+        raise InputError(f"must be {'>' if open_ else '>='} {lo:g}, got {v!r}", file=where,
+                         key=key)
+    return float(v)
+
+
+def _parameters(raw, design, where) -> dict:
+    if not isinstance(raw, dict):
+        raise InputError("expected a [parameters] table", file=where, key="parameters")
+    out = {}
+    for name, v in raw.items():
+        key = f"parameters.{name}"
+        if design == "lhs" and isinstance(v, dict):
+            if set(v) != {"min", "max"}:
+                raise InputError(f"a Latin-hypercube range is {{min = ..., max = ...}}, got "
+                                 f"{v!r}", file=where, key=key)
+            lo, hi = _num(v["min"], key + ".min", where), _num(v["max"], key + ".max", where)
+            if not hi >= lo:
+                raise InputError(f"max {hi:g} < min {lo:g}", file=where, key=key)
+            out[name] = (v["min"], v["max"]) if all(
+                isinstance(x, int) for x in (v["min"], v["max"])) else (lo, hi)
+        elif isinstance(v, list) and v:
+            out[name] = list(v)
+        else:
+            what = "a non-empty list of values" + (" or {min, max}" if design == "lhs" else "")
+            raise InputError(f"expected {what}, got {v!r}", file=where, key=key)
+    return out
+
+
+def load_sweep(spec, *, base_dir=None) -> SweepSpec:
+    """Read a sweep from a TOML file or a dict of the same structure.
+
+    Parameters
+    ----------
+    spec : str, Path or dict
+    base_dir : str or Path, optional
+        Folder that relative paths of a dict spec are relative to (default: cwd).
+
+    Raises
+    ------
+    InputError
+        Unknown keys, bad values or missing files, naming the sweep file and key.
+    """
+    if isinstance(spec, SweepSpec):
+        return spec
+    if isinstance(spec, dict):
+        doc, file = spec, None
+        anchor = Path(base_dir or Path.cwd()) / "sweep.toml"
+    else:
+        from flexpipe.vehicle._toml import parse
+
+        file = Path(spec)
+        if file.suffix.lower() != ".toml":
+            raise InputError("a sweep spec is a .toml file", file=file)
+        if not file.is_file():
+            raise InputError("sweep file does not exist", file=file)
+        doc, _ = parse(file)
+        anchor = file.resolve()
+    where = file
+    unknown = sorted(set(doc) - {"sweep", "parameters", "runs", "road", "plots"})
+    if unknown:
+        raise InputError(f"unknown table [{unknown[0]}]; valid: [sweep], [parameters], "
+                         "[[runs]], [road], [plots]", file=where, key=unknown[0])
+    sw = doc.get("sweep")
+    if not isinstance(sw, dict):
+        raise InputError("missing [sweep] table (car = ..., speed_kmh = ...)", file=where,
+                         key="sweep")
+    bad = sorted(set(sw) - set(_SWEEP_KEYS))
+    if bad:
+        raise InputError(f"unknown key; valid keys in [sweep]: {', '.join(_SWEEP_KEYS)}",
+                         file=where, key=f"sweep.{bad[0]}")
+    if "car" not in sw:
+        raise InputError("missing required key 'car' (the base car file)", file=where,
+                         key="sweep.car")
+    car = _file(sw["car"], anchor, "sweep.car")
+    road, road_base = None, None
+    if "road" in doc and "road" in sw:
+        raise InputError("give the base road once: sweep.road (a file) or a [road] table",
+                         file=where, key="road")
+    if "road" in doc:
+        if not isinstance(doc["road"], dict):
+            raise InputError("expected a [road] table", file=where, key="road")
+        road, road_base = dict(doc["road"]), anchor
+    elif "road" in sw:
+        road = _file(sw["road"], anchor, "sweep.road")
+        road_base = road
+        if road.suffix.lower() == ".toml":  # keep the table so road.<key> can vary
+            from flexpipe.roads._tables import read_toml
+
+            road = dict(read_toml(road).get("road", {})) or road
+    design = sw.get("design", "grid")
+    if design not in DESIGNS:
+        raise InputError(f"design {design!r}; valid: {', '.join(DESIGNS)}", file=where,
+                         key="sweep.design")
+    base = {"speed_kmh": sw.get("speed_kmh", 60.0), "t_end_s": sw.get("t_end_s", 10.0),
+            "h_s": sw.get("h_s", 2e-3), "output_step_s": sw.get("output_step_s", 2e-3),
+            "settle_s": sw.get("settle_s", 0.0), "body": sw.get("body", "rigid"),
+            "path": sw.get("path", "straight")}
+    params = _parameters(doc.get("parameters", {}), design, where)
+    runs_list = doc.get("runs", [])
+    if design == "list":
+        if not isinstance(runs_list, list) or not runs_list or not all(
+                isinstance(r, dict) for r in runs_list):
+            raise InputError("design = 'list' needs [[runs]] tables, one per run",
+                             file=where, key="runs")
+        if params:
+            raise InputError("design = 'list' takes [[runs]], not [parameters]", file=where,
+                             key="parameters")
+    elif runs_list:
+        raise InputError(f"[[runs]] needs design = 'list' (got {design!r})", file=where,
+                         key="runs")
+    elif not params:
+        raise InputError("no [parameters] to sweep", file=where, key="parameters")
+    samples = sw.get("samples", 0)
+    if design == "lhs" and (isinstance(samples, bool) or not isinstance(samples, int)
+                            or samples < 1):
+        raise InputError(f"design = 'lhs' needs samples = a positive integer, got {samples!r}",
+                         file=where, key="sweep.samples")
+    seed = sw.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int):
+        raise InputError(f"seed must be an integer, got {seed!r}", file=where, key="sweep.seed")
+    plots = doc.get("plots", {})
+    metrics = plots.get("metrics", []) if isinstance(plots, dict) else None
+    if not isinstance(metrics, list) or not all(isinstance(m, str) for m in metrics):
+        raise InputError("[plots] metrics must be a list of metric column names", file=where,
+                         key="plots.metrics")
+    out = sw.get("out")
+    spec_obj = SweepSpec(file=file, car=car, road=road, road_base=road_base, base=base,
+                         design=design, parameters=params, runs_list=tuple(runs_list),
+                         samples=int(samples), seed=seed,
+                         out=(anchor.parent / out).resolve() if out else None,
+                         plots=tuple(metrics))
+    spec_obj.runs()  # validate every run's parameters now, before anything runs
+    return spec_obj
+
+
+__all__ = ["DESIGNS", "RunSpec", "SweepSpec", "load_sweep"]

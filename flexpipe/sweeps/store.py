@@ -1,0 +1,111 @@
+"""The output folder of a sweep: one record per finished run, channel files, the table.
+
+Layout (``out/``)::
+
+    runs/<key>.json                  one record per run (parameters, status, metrics)
+    channels/run=<key>/part-0.parquet  t and every channel of the run
+    metrics.parquet, metrics.csv     the table of the sweep's runs, in run order
+    plots/*.png                      chosen metrics against the swept parameters
+    sweep.json                       what ran: spec, counts, reductions, timing
+
+Every file is written atomically (temporary name, then rename) and a run's channels are
+written before its record, so a record on disk means the run is complete: a rerun skips
+it, and killing anything at any moment loses no finished run.  The channel folder is a
+Hive-partitioned Parquet dataset: ``pandas.read_parquet(out / "channels")`` or
+``dask.dataframe.read_parquet`` return every run with a ``run`` column.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import atomic_path, write_text_atomic
+from flexpipe.sweeps.tasks import STATUS_LOST
+
+
+def _plain(v):
+    if isinstance(v, np.generic):
+        v = v.item()
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v
+
+
+class Store:
+    """Records and channels of the runs of a sweep under ``out``."""
+
+    def __init__(self, out):
+        self.out = Path(out)
+        self.runs_dir = self.out / "runs"
+        self.channels_dir = self.out / "channels"
+
+    def record_path(self, key: str) -> Path:
+        """File of the record of run ``key``."""
+        return self.runs_dir / f"{key}.json"
+
+    def channels_path(self, key: str) -> Path:
+        """Channel file of run ``key``."""
+        return self.channels_dir / f"run={key}" / "part-0.parquet"
+
+    def finished(self, *, retry_failed: bool = False) -> dict:
+        """``{key: record}`` of the runs on disk that a rerun skips.
+
+        Lost runs (their worker died too often) are always run again; failed runs too when
+        ``retry_failed``.
+        """
+        out = {}
+        if not self.runs_dir.is_dir():
+            return out
+        for f in self.runs_dir.glob("*.json"):
+            try:
+                rec = json.loads(f.read_text())
+            except (OSError, ValueError):
+                continue  # unreadable: run it again
+            if rec.get("status") == STATUS_LOST or (retry_failed and rec.get("status", 0) < 0):
+                continue
+            out[rec["key"]] = rec
+        return out
+
+    def write(self, record: dict, channels) -> None:
+        """Store one run: channels first (if any), then the record."""
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        key = record["key"]
+        if channels is not None and len(channels.get("t", ())) > 0:
+            table = pa.table({k: np.asarray(v, dtype=float) for k, v in channels.items()})
+            path = self.channels_path(key)
+            with atomic_path(path) as tmp:
+                pq.write_table(table, tmp)
+        rec = {k: _plain(v) for k, v in record.items()}
+        write_text_atomic(self.record_path(key), json.dumps(rec, indent=1, sort_keys=True))
+
+    def table(self, keys):
+        """DataFrame of the records of ``keys`` (in that order) with units in the names."""
+        import pandas as pd
+
+        rows = []
+        for k in keys:
+            p = self.record_path(k)
+            if p.is_file():
+                rows.append(json.loads(p.read_text()))
+        df = pd.DataFrame(rows)
+        if not df.empty:
+            df = df.sort_values("index", kind="stable").reset_index(drop=True)
+        return df
+
+    def write_table(self, df) -> tuple[Path, Path]:
+        """``metrics.parquet`` and ``metrics.csv``, atomically."""
+        pq_path, csv_path = self.out / "metrics.parquet", self.out / "metrics.csv"
+        with atomic_path(pq_path) as tmp:
+            df.to_parquet(tmp, index=False)
+        with atomic_path(csv_path) as tmp:
+            df.to_csv(tmp, index=False)
+        return pq_path, csv_path
+
+
+__all__ = ["Store"]

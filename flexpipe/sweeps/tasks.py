@@ -1,0 +1,112 @@
+"""What a sweep worker runs: one task per distinct body (mass properties, reduction) and
+one task per run.  Plain module-level functions of picklable arguments, so they run on any
+Dask worker (or a process pool) that has flexpipe installed and sees the input files.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+
+import numpy as np
+
+#: status of a run that raised instead of returning a Result (bad input found late, bug)
+STATUS_ERROR = -2
+#: status of a run whose task was lost (its worker died more often than Dask allows)
+STATUS_LOST = -3
+
+
+def road_of(run):
+    """The run's road: a Road from its file, its ``[road]`` table, or None (flat)."""
+    from flexpipe.roads import load_road, road_from_spec
+
+    if run.road is None:
+        return None
+    if isinstance(run.road, dict):
+        return road_from_spec(run.road, file=run.road_base, name="road")
+    return load_road(run.road)
+
+
+def body_keys(car, run, road=None):
+    """Cache identities of what the run needs reduced or integrated once.
+
+    Returns ``(mass_key, body_key, band)``: ``mass_key`` names the body's mass properties
+    (None for a car given by rigid properties), ``body_key`` the reduced body (None for a
+    rigid run) and ``band`` its band (Hz).
+    """
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ
+
+    if car.body.mesh is None:
+        return None, None, None
+    mass_key = "mass-" + bodymodel._digest(car, {})
+    if run.body == "rigid":
+        return mass_key, None, None
+    band = bodymodel.choose_band(run.speed, road)
+    cutoff = FULL_CUTOFF_HZ if run.body == "full" else bodymodel.CB_RATIO * band
+    key = {"cutoff": round(cutoff, 6), "m": bodymodel.DEFAULT_METHOD}
+    return mass_key, "body-" + bodymodel._digest(car, key), band
+
+
+def mass_task(car, cache: bool = True):
+    """Mass properties of the car body (the FE model is assembled at most once)."""
+    from flexpipe.vehicle import bodymodel
+
+    return bodymodel.rigid_properties(car, cache=cache)
+
+
+def body_task(car, body: str, band: float, rigid, cache: bool = True) -> dict:
+    """The reduced body of a flexible or full run: ``{"rigid", "flexbody", "reduction"}``.
+
+    ``reduction["cached"]`` tells whether it came from the on-disk cache; the sweep counts
+    the others as reductions done.
+    """
+    from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ, reduce_car_body
+
+    cutoff = FULL_CUTOFF_HZ if body == "full" else None
+    fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache)
+    return {"rigid": rigid, "flexbody": fb, "reduction": dict(info, band_hz=band)}
+
+
+def run_task(run, car, rigid=None, bodies=None):
+    """Simulate one run; never raises.
+
+    Returns
+    -------
+    record : dict
+        ``key``, the swept parameters, ``status``, ``message``, CPU and wall time and the
+        metrics of :func:`flexpipe.sweeps.metrics.run_metrics`.
+    channels : dict of str to ndarray, or None
+        ``t`` and every output channel (None when the run raised before integrating).
+    """
+    from flexpipe.sweeps.metrics import run_metrics
+    from flexpipe.vehicle.simulation import prepare, simulate
+
+    t0 = time.perf_counter()
+    record = {"key": run.key, "index": run.index, **run.params}
+    channels = None
+    try:
+        road = road_of(run)
+        given = dict(bodies) if bodies is not None else {}
+        if rigid is not None:
+            given["rigid"] = rigid
+        prep = prepare(car, body=run.body, speed=run.speed, road=road, bodies=given)
+        res = simulate(car, road=road, path=run.path, speed=run.speed, t_end=run.t_end,
+                       body=run.body, h=run.h, output_step=run.output_step, prepared=prep)
+        record.update(status=int(res.status), message=res.message, cpu_s=res.cpu_time,
+                      wall_s=res.wall_time, simulated_time_s=res.simulated_time)
+        if "n_elastic_modes" in res.info:
+            record["n_elastic_modes"] = int(res.info["n_elastic_modes"])
+        record.update(run_metrics(res.t, res.channels, settle=run.settle))
+        channels = {"t": np.asarray(res.t), **{k: np.asarray(v) for k, v in
+                                              res.channels.items()}}
+    except Exception as exc:  # a failed run is a result, never the end of the sweep
+        last = traceback.extract_tb(exc.__traceback__)[-1]
+        record.update(status=STATUS_ERROR, message=f"{type(exc).__name__}: {exc} "
+                      f"(at {last.filename.rsplit('/', 1)[-1]}:{last.lineno})")
+    record["task_s"] = time.perf_counter() - t0
+    return record, channels
+
+
+__all__ = ["STATUS_ERROR", "STATUS_LOST", "body_keys", "body_task", "mass_task", "road_of",
+           "run_task"]

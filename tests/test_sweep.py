@@ -1,0 +1,191 @@
+"""Sweeps on dask.distributed: results equal serial simulate() runs to 1e-12, reruns skip
+finished runs, a failing run is recorded and does not stop the sweep, a worker killed
+mid-sweep loses nothing and duplicates nothing, bad dotted keys are named up front."""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from _rigidcar import rigid_sedan
+
+import flexpipe as fp
+from flexpipe.errors import InputError
+from flexpipe.sweeps.metrics import run_metrics
+from flexpipe.sweeps.overrides import apply_overrides
+
+ROOT = Path(__file__).resolve().parents[1]
+ROAD = ROOT / "roads" / "iso_c_200m.toml"
+
+
+@pytest.fixture(scope="module")
+def client(tmp_path_factory):
+    from dask.distributed import Client, LocalCluster
+
+    mp = pytest.MonkeyPatch()
+    mp.setenv("FLEXPIPE_CACHE", str(tmp_path_factory.mktemp("cache")))
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           host="127.0.0.1", dashboard_address=":0", silence_logs=50)
+    c = Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+    mp.undo()
+
+
+def _spec(car, **sweep):
+    base = {"car": str(car), "road": str(ROAD), "body": "rigid", "t_end_s": 0.6}
+    base.update(sweep)
+    return {"sweep": base}
+
+
+def test_sweep_equals_serial_simulate_and_resumes(client, tmp_path):
+    car = rigid_sedan(tmp_path)
+    spec = _spec(car) | {"parameters": {"speed_kmh": [40.0, 70.0],
+                                        "car.corners.fl.spring_rate_N_per_m": [30000.0,
+                                                                               36000.0]}}
+    res = fp.sweep(spec, out=tmp_path / "out", scheduler=client, progress=False)
+    assert res.n_runs == 4 and res.n_failed == 0 and list(res.table["status"]) == [0] * 4
+    ch = pd.read_parquet(tmp_path / "out" / "channels")
+    assert sorted(ch["run"].astype(str).unique()) == sorted(res.table["key"])
+    for _, row in res.table.iterrows():
+        k = row["car.corners.fl.spring_rate_N_per_m"]
+        serial = fp.simulate(fp.load_car(car, overrides={"corners.fl.spring_rate_N_per_m": k}),
+                             road=ROAD, speed=row["speed_kmh"] / 3.6, t_end=0.6, body="rigid")
+        mine = ch[ch["run"].astype(str) == row["key"]].sort_values("t")
+        assert np.abs(mine["t"].to_numpy() - serial.t).max() <= 1e-12
+        for name in serial.channels:
+            ref = serial[name]
+            assert np.abs(mine[name].to_numpy() - ref).max() <= 1e-12 * max(1.0, np.abs(
+                ref).max()), name
+        for m, v in run_metrics(serial.t, serial.channels).items():
+            assert row[m] == pytest.approx(v, rel=1e-12, abs=1e-12), m
+    # the stiffer front-left spring is a different car: a different hub force
+    assert res.table["hub_fl_z_peak_N"].nunique() == 4
+    again = fp.sweep(spec, out=tmp_path / "out", scheduler=client, progress=False)
+    assert again.n_skipped == 4 and again.table.equals(res.table)
+    assert (tmp_path / "out" / "metrics.parquet").is_file()
+
+
+def test_failed_run_is_recorded_and_the_sweep_goes_on(client, tmp_path):
+    car = rigid_sedan(tmp_path)
+    # 400 km/h is beyond simulate()'s speed range: that run fails, the other one runs
+    spec = _spec(car) | {"parameters": {"speed_kmh": [50.0, 400.0]}}
+    res = fp.sweep(spec, out=tmp_path / "out", scheduler=client, progress=False)
+    t = res.table.set_index("speed_kmh")
+    assert t.loc[50.0, "status"] == 0
+    assert t.loc[400.0, "status"] < 0 and "speed must be" in t.loc[400.0, "message"]
+    assert res.n_failed == 1
+
+
+def test_killed_worker_loses_and_duplicates_nothing(client, tmp_path):
+    car = rigid_sedan(tmp_path)
+    speeds = [30.0, 40.0, 50.0, 60.0, 70.0, 80.0]
+    spec = _spec(car, t_end_s=1.5) | {"parameters": {"speed_kmh": speeds}}
+    out = tmp_path / "out"
+    box = {}
+    th = threading.Thread(target=lambda: box.update(
+        res=fp.sweep(spec, out=out, scheduler=client, progress=False)))
+    th.start()
+    killed = None
+    deadline = time.time() + 60
+    while killed is None and time.time() < deadline and th.is_alive():
+        busy = {w: ks for w, ks in client.processing().items()
+                if any(str(k).startswith("run-") for k in ks)}
+        done = list((out / "runs").glob("*.json")) if (out / "runs").is_dir() else []
+        if busy and done:  # one run finished, another is running: kill its worker
+            addr = next(iter(busy))
+            pid = client.run(os.getpid, workers=[addr])[addr]
+            os.kill(pid, signal.SIGKILL)
+            killed = addr
+        time.sleep(0.05)
+    th.join(timeout=120)
+    assert killed is not None, "no worker was caught running a task"
+    res = box["res"]
+    assert sorted(res.table["speed_kmh"]) == speeds  # every run present once
+    assert list(res.table["status"]) == [0] * len(speeds)
+    assert len(list((out / "runs").glob("*.json"))) == len(speeds)
+    assert len(list((out / "channels").glob("run=*/part-0.parquet"))) == len(speeds)
+
+
+def test_bad_dotted_key_is_named_before_anything_runs(tmp_path):
+    car = rigid_sedan(tmp_path)
+    spec = _spec(car) | {"parameters": {"car.corners.fx.spring_rate_N_per_m": [1.0]}}
+    with pytest.raises(InputError, match=r"corners\.fx.*valid names under \[corners\]: fl, "
+                                         r"fr, rl, rr"):
+        fp.sweep(spec, out=tmp_path / "out", progress=False)
+    spec = _spec(car) | {"parameters": {"car.corners.fl.spring_rate": [1.0]}}
+    with pytest.raises(InputError, match="did you mean 'spring_rate_N_per_m'"):
+        fp.sweep(spec, out=tmp_path / "out", progress=False)
+    spec = _spec(car) | {"parameters": {"wind_kmh": [1.0]}}
+    with pytest.raises(InputError, match="unknown parameter 'wind_kmh'"):
+        fp.sweep(spec, out=tmp_path / "out", progress=False)
+    assert not (tmp_path / "out" / "runs").exists()
+
+
+def test_overrides_reach_arrays_of_tables_and_leave_the_document_alone():
+    doc = {"body": {"mass": [{"name": "driver", "mass_kg": 75.0}]}, "corners": {"fl": {}}}
+    new = apply_overrides(doc, {"body.mass.driver.mass_kg": 90.0, "body.mass.0.name": "d",
+                                "corners.fl.spring_rate_N_per_m": 1.0})
+    assert new["body"]["mass"][0] == {"name": "d", "mass_kg": 90.0}
+    assert doc["body"]["mass"][0]["mass_kg"] == 75.0 and doc["corners"]["fl"] == {}
+    with pytest.raises(InputError, match="is a table in the file"):
+        apply_overrides(doc, {"corners.fl": 3.0})
+
+
+def test_cli_runs_a_latin_hypercube_spec_file(client, tmp_path, capsys):
+    from flexpipe.cli import main
+
+    car = rigid_sedan(tmp_path)
+    spec = tmp_path / "lhs.toml"
+    spec.write_text(f"""
+[sweep]
+car = "{car.name}"
+road = "{ROAD.as_posix()}"
+t_end_s = 0.4
+design = "lhs"
+samples = 4
+seed = 7
+
+[parameters]
+speed_kmh = {{min = 40.0, max = 80.0}}
+"road.seed" = {{min = 1, max = 4}}
+body = ["rigid"]
+""")
+    code = main(["sweep", str(spec), "--scheduler", client.scheduler.address, "--out",
+                 str(tmp_path / "out"), "--no-progress"])
+    assert code == 0, capsys.readouterr()
+    assert "4 runs (0 already done, 0 failed" in capsys.readouterr().out
+    t = pd.read_parquet(tmp_path / "out" / "metrics.parquet")
+    # Latin hypercube: one sample in each quarter of the speed range, each seed once
+    assert sorted(((t["speed_kmh"] - 40.0) // 10.0).astype(int)) == [0, 1, 2, 3]
+    assert sorted(t["road.seed"]) == [1, 2, 3, 4]
+    assert (t["status"] == 0).all()
+    import dask.dataframe as dd
+
+    rows = len(dd.read_parquet(tmp_path / "out" / "channels").compute())
+    assert rows == 4 * round(0.4 / 2e-3)  # every run's samples, t = h .. t_end
+
+
+def test_runs_sharing_a_body_share_one_reduction_key():
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.execute import _cars
+    from flexpipe.sweeps.tasks import body_keys, road_of
+
+    spec = load_sweep({"sweep": {"car": str(ROOT / "cars" / "sedan.toml"), "road": str(ROAD),
+                                 "body": "flexible", "t_end_s": 1.0},
+                       "parameters": {"car.body.damping_ratio": [0.02, 0.03],
+                                      "speed_kmh": [60.0, 90.0],
+                                      "car.corners.fl.spring_rate_N_per_m": [3e4, 4e4]}})
+    runs = spec.runs()
+    keys = [body_keys(car, r, road_of(r)) for r, car in zip(runs, _cars(runs), strict=True)]
+    # the body depends on its damping (and band), not on the springs or the speed here
+    # (both speeds excite the road above the 30 Hz band limit)
+    assert len(runs) == 8 and len({k[1] for k in keys}) == 2 and len({k[0] for k in keys}) == 2
+    assert {k[2] for k in keys} == {30.0}
