@@ -372,16 +372,6 @@ class CarSystem:
         rhs = ts.F0 - (ts.Dv @ vP[:, :, None])[:, :, 0] - ts.dw * om[:, None] \
             - ts.A * st.wheel_q[:, 2:3]
         f = (JT @ rhs[:, :, None])[:, :, 0]
-        if ts.DMv is not None:  # the tyre's own moments, linearized the same way
-            Jm = np.zeros((n, 3, 8))  # wheel angular velocity (carrier + spin)
-            Jm[:, :, 3:7] = G
-            Jm[:, :, 7] = s
-            JmT = Jm.transpose(0, 2, 1)
-            D = D - JmT @ (ts.DMv @ Jc + ts.dMw[:, :, None] * Jw[:, None, :])
-            K[:, :, 2] -= (JmT @ ts.AM[:, :, None])[:, :, 0]
-            rm = ts.moment - (ts.DMv @ vP[:, :, None])[:, :, 0] - ts.dMw * om[:, None] \
-                - ts.AM * st.wheel_q[:, 2:3]
-            f = f + (JmT @ rm[:, :, None])[:, :, 0]
         return D, K, f
 
     # ------------------------------------------------------------------ time loop

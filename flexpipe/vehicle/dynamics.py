@@ -263,12 +263,11 @@ class CarController:
         # brakes oppose the rolling direction
         if self.torque < 0:
             T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
+        Ms = np.einsum("ij,ij->i", ts.moment, s_axis)
         if self.v_target == 0.0:  # parking brake: viscous, at half the explicit limit
             T = -0.5 * self.spin_inertia / self.h * st.spin_rate
-        # the tyre's moments are in the implicit element with its force; drive and brake
-        # torques stay explicit (the driver's sample-and-hold)
-        spin_torque = T
-        carrier_moment = np.zeros_like(ts.moment)
+        spin_torque = T + Ms
+        carrier_moment = ts.moment - Ms[:, None] * s_axis
 
         from flexpipe.exu.car import CarLoads
 

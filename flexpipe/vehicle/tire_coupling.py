@@ -51,9 +51,6 @@ class TireStep:
     r: np.ndarray  # (n, 3) contact point - wheel centre, global
     moment: np.ndarray  # (n, 3) tyre moments (Mx, My, Mz; not the moment of F), global
     spin_axis: np.ndarray  # (n, 3)
-    DMv: np.ndarray = None  # (n, 3, 3) d moment / d v_P
-    dMw: np.ndarray = None  # (n, 3) d moment / d omega
-    AM: np.ndarray = None  # (n, 3) d moment / d z
 
 
 class ImplicitTires:
@@ -118,9 +115,6 @@ class ImplicitTires:
         A = np.zeros((n, 3))
         r = np.zeros((n, 3))
         M = np.zeros((n, 3))
-        DMv = np.zeros((n, 3, 3))
-        dMw = np.zeros((n, 3))
-        AM = np.zeros((n, 3))
         for tire, ix in self.groups:
             m = len(ix)
             C, s, v = kin["C"][ix], kin["s"][ix], kin["v"][ix]
@@ -158,23 +152,15 @@ class ImplicitTires:
             own = wf.moment - _cross(wf.contact_point - CC, wf.force)
             half = 0.5 if relax else 1.0
             horiz = np.array([half, half, 1.0])  # relaxed horizontal, direct vertical
-            Mo = own.reshape(rows, m, 3)
-            Mb = Mo[0]
             for k in range(3):
                 dF = (F[1 + k] - Fb) / DV
-                dM = (Mo[1 + k] - Mb) / DV
-                if k < 2:  # horizontal velocities act through the relaxed slips
+                if k < 2:
                     dF = dF * horiz
-                    dM = dM * half
                 Dv[ix, :, k] = dF
-                DMv[ix, :, k] = dM
             dw[ix] = (F[4] - Fb) / DW * horiz
-            dMw[ix] = (Mo[4] - Mb) / DW * half
             A[ix] = (F[5] - Fb) / dz[:, None]
-            AM[ix] = (Mo[5] - Mb) / dz[:, None]
             F0[ix] = Fb
             r[ix] = P - C
             M[ix] = own[:m]
         self._prev = {k: kin[k].copy() for k in ("v", "w", "omega")}
-        return TireStep(F0=F0, Dv=Dv, dw=dw, A=A, r=r, moment=M, spin_axis=kin["s"].copy(),
-                        DMv=DMv, dMw=dMw, AM=AM)
+        return TireStep(F0=F0, Dv=Dv, dw=dw, A=A, r=r, moment=M, spin_axis=kin["s"].copy())
