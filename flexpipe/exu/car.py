@@ -244,6 +244,11 @@ class CarSystem:
             self.spin_node.append(n_s)
             self.travel0[i] = W[2] - H[2]
             self.slide_local[i] = [H[0] - W[0], H[1] - W[1], 0.0]
+        self._finish(spec)
+
+    def _finish(self, spec) -> None:
+        """Assemble; carrier reference coordinates, solver tolerances, output points."""
+        mbs = self.mbs
         mbs.Assemble()
         self.wheel_ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
                                    for n in self.wheel_node], dtype=float)

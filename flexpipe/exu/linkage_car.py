@@ -103,15 +103,7 @@ class LinkageCarSystem(CarSystem):
             self.spin_node.append(n_s)
         order = spec.suspension.corners()
         self.design_wheel = np.array([order[c].wheel_center for c in ("fl", "fr", "rl", "rr")])
-        mbs.Assemble()
-        self.wheel_ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
-                                   for n in self.wheel_node], dtype=float)
-        self.newton_rtol = 1e-3
-        self.newton_atol = 1e-4
-        self.points = {}
-        for name, node in spec.point_nodes.items():
-            self.points[name] = ("node", int(node)) if spec.chassis == "flexible" else \
-                ("local", list(map(float, spec.point_local[name])))
+        self._finish(spec)
         self.joint = []
 
     def state(self, t: float) -> CarState:
