@@ -34,7 +34,7 @@ def test_parked_linkage_car_carries_its_weight(parked):
     mass = rb.mass + sum(c.unsprung_mass for c in car.corners) + RACK_MASS \
         + 2 * n_arb * ARB_ARM_MASS
     Fz = sum(r[f"tire_{c}_Fz"][-1] for c in CORNERS)
-    assert Fz == pytest.approx(mass * 9.81, rel=1e-5)
+    assert Fz == pytest.approx(mass * 9.81, rel=1e-6)
 
 
 def test_linkage_car_starts_in_static_equilibrium_at_design_ride_height(parked):
