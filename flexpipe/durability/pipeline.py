@@ -121,7 +121,7 @@ def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=prin
     if r is None or r.motion is None or r.motion.n_modes == 0:
         return files
     band = r.info.get("band_hz")
-    from flexpipe.vehicle.simulation import reduce_car_body
+    from flexpipe.vehicle.linkage_setup import reduce_car_body
 
     body, info = reduce_car_body(car, f_max=band)
     X, Y, Z = road_strip(road, r.motion.position[:, 0], r.motion.position[:, 1],

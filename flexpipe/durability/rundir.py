@@ -107,7 +107,7 @@ class RunData:
         if self.band_hz is None:
             raise InputError(f"body file {self.body_file} is missing and the run does not "
                              "say its band; rerun the scenario", file=self.out)
-        from flexpipe.vehicle.simulation import reduce_car_body
+        from flexpipe.vehicle.linkage_setup import reduce_car_body
 
         body, _ = reduce_car_body(self.car(), f_max=self.band_hz, log=log)
         return body

@@ -117,26 +117,32 @@ class CarBuild:
 class CarSystem:
     """An assembled Exudyn car; :meth:`run` integrates it with per-step explicit loads."""
 
-    def __init__(self, spec: CarBuild):
+    def _start(self, spec):
+        """New Exudyn system; returns the initial pose ``p0, R0``, velocity ``v0`` and
+        gravity ``g`` (global).  With every elastic mode switched off the floating frame
+        without elastic coordinates is a rigid body with the FE body's own mass properties
+        (Exudyn's ObjectFFRFreducedOrder needs at least one modal coordinate)."""
         self.spec = spec
         self.SC = exu.SystemContainer()
-        self.mbs = mbs = self.SC.AddSystem()
+        self.mbs = self.SC.AddSystem()
         p0 = np.asarray(spec.position, dtype=float)
         R0 = np.asarray(spec.rotation, dtype=float)
         v0 = R0 @ np.array([spec.speed, 0.0, 0.0])
         g = np.array([0.0, 0.0, -spec.gravity])
-        rates = np.asarray(spec.body_rates, dtype=float)
-        vb = v0 + R0 @ np.array([0.0, 0.0, rates[0]])
-        wb = R0 @ np.array([rates[1], rates[2], 0.0])
-        names = ("fl", "fr", "rl", "rr")
         if spec.chassis == "flexible" and spec.n_modes == 0:
-            # every elastic mode switched off: the floating frame without elastic
-            # coordinates is a rigid body with the FE body's own mass properties (Exudyn's
-            # ObjectFFRFreducedOrder needs at least one modal coordinate)
             fb = spec.flexbody
             spec.mass, spec.center_of_mass = fb.mass, fb.center_of_mass
             spec.inertia_origin = fb.inertia_origin
             spec.chassis = "rigid"
+        return p0, R0, v0, g
+
+    def __init__(self, spec: CarBuild):
+        p0, R0, v0, g = self._start(spec)
+        mbs = self.mbs
+        rates = np.asarray(spec.body_rates, dtype=float)
+        vb = v0 + R0 @ np.array([0.0, 0.0, rates[0]])
+        wb = R0 @ np.array([rates[1], rates[2], 0.0])
+        names = ("fl", "fr", "rl", "rr")
         if spec.chassis == "flexible":
             h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=vb,
                                   angular_velocity=wb, gravity=g, n_modes=spec.n_modes,

@@ -26,18 +26,8 @@ class LinkageCarSystem(CarSystem):
     """An assembled Exudyn car with linkage suspensions (``spec.suspension``)."""
 
     def __init__(self, spec):  # noqa: D107 - see class docstring
-        self.spec = spec
-        self.SC = exu.SystemContainer()
-        self.mbs = mbs = self.SC.AddSystem()
-        p0 = np.asarray(spec.position, dtype=float)
-        R0 = np.asarray(spec.rotation, dtype=float)
-        v0 = R0 @ np.array([spec.speed, 0.0, 0.0])
-        g = np.array([0.0, 0.0, -spec.gravity])
-        if spec.chassis == "flexible" and spec.n_modes == 0:
-            fb = spec.flexbody
-            spec.mass, spec.center_of_mass = fb.mass, fb.center_of_mass
-            spec.inertia_origin = fb.inertia_origin
-            spec.chassis = "rigid"
+        p0, R0, v0, g = self._start(spec)
+        mbs = self.mbs
         self.modal_node = None
         cache = {}
         if spec.chassis == "flexible":

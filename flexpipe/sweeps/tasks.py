@@ -61,7 +61,8 @@ def body_task(car, body: str, band: float, rigid, cache: bool = True) -> dict:
     ``reduction["cached"]`` tells whether it came from the on-disk cache; the sweep counts
     the others as reductions done.
     """
-    from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ, reduce_car_body
+    from flexpipe.vehicle.linkage_setup import reduce_car_body
+    from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ
 
     cutoff = FULL_CUTOFF_HZ if body == "full" else None
     fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache)

@@ -33,7 +33,7 @@ def car_text(car: Car) -> str:
         N = static_wheel_loads(car, rb.mass, rb.center_of_mass)
         lines.append("  suspension: prismatic corners (hardpoint_m, spring/damper along body z)")
     else:
-        from flexpipe.vehicle.simulation import linkage_statics
+        from flexpipe.vehicle.linkage_setup import linkage_statics
         from flexpipe.vehicle.suspension.statics import point_masses, wheel_rate
 
         susp, N = linkage_statics(car, rb)

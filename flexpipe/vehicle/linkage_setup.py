@@ -1,0 +1,78 @@
+"""Linkage cars' set-up between the car file and the Exudyn model.
+
+* :func:`reduce_car_body`: the reduced flexible body with its interfaces at the four
+  corner hardpoints, or for a linkage car at every suspension mount.
+* :func:`body_mounts`: those mounts as :class:`~flexpipe.vehicle.mounts.Mount` ties.
+* :func:`linkage_statics`: the suspension with the wheels in the knuckles and springs
+  preloaded for the static wheel loads of the true mass distribution.
+"""
+
+from __future__ import annotations
+
+from flexpipe.errors import InputError
+from flexpipe.vehicle import bodymodel
+from flexpipe.vehicle.corners import GRAVITY
+from flexpipe.vehicle.spec import CORNERS, Car
+
+#: interface reduction of a body with every suspension mount an interface: characteristic
+#: constraint modes up to this frequency (Hz), see flexpipe.reduction.ccmodes
+INTERFACE_F_MAX_HZ = 400.0
+#: body nodes within this distance of a suspension mount are tied to it (RBE2), m
+MOUNT_RADIUS_M = 0.005
+
+
+def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, log=None):
+    """The car's reduced flexible body for band ``f_max`` (Hz): interfaces at the four
+    corner hardpoints, or for a linkage car at every suspension mount
+    (:func:`body_mounts`, interface reduction to :data:`INTERFACE_F_MAX_HZ`).  Returns
+    ``(FlexBody, info)`` as :func:`flexpipe.vehicle.bodymodel.reduced_body`."""
+    kw = {}
+    if car.suspension is not None:  # every body-side mount an interface of the body
+        kw = {"mounts": body_mounts(car), "interface_f_max": INTERFACE_F_MAX_HZ}
+    return bodymodel.reduced_body(car, f_max=f_max, cache=cache, cutoff=cutoff,
+                                  log=log or (lambda *a: None), **kw)
+
+
+def body_mounts(car: Car) -> list:
+    """The body's interfaces for a linkage car: every suspension mount, tied as
+    ``[body.mounts.<name>]`` says (point + radius, node set or node ids) or else the nodes
+    within :data:`MOUNT_RADIUS_M` of the mount point; 6 DOF where a joint or bushing needs
+    the mount's frame, else 3 (``Suspension.mount_dofs``)."""
+    from flexpipe.vehicle.mounts import Mount
+
+    points = car.suspension.mounts()
+    dofs = car.suspension.mount_dofs()
+    given = car.body.mounts or {}
+    for name in given:
+        if name not in points:
+            raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
+                             f"suspension; valid: {', '.join(points)}", file=car.file,
+                             key=f"body.mounts.{name}")
+    out = []
+    for name, p in points.items():
+        g = given.get(name, {})
+        tie = g.get("node_set") is not None or g.get("nodes") is not None
+        out.append(Mount(name, tuple(g["point"]) if g.get("point") is not None else tuple(p),
+                         radius=g.get("radius") or (None if tie else MOUNT_RADIUS_M),
+                         dofs=g.get("dofs") or dofs[name], node_set=g.get("node_set"),
+                         nodes=g.get("nodes")))
+    return out
+
+
+def linkage_statics(car: Car, rb):
+    """Suspension of a linkage car ready to run and its static wheel loads (4,) N.
+
+    The knuckles carry the wheels; the static loads follow from the whole car's mass
+    distribution (body, every part at its centre of mass, rack, anti-roll-bar arms) and
+    every spring is preloaded (virtual work) to hold the design position under them.
+    """
+    from flexpipe.vehicle.corners import static_wheel_loads
+    from flexpipe.vehicle.suspension.statics import point_masses, preloaded, with_wheels
+
+    links = car.suspension.corners()
+    wheels = {c.name: (c.unsprung_mass - sum(p.mass for p in links[c.name].parts),
+                       c.unsprung_inertia) for c in car.corners}
+    susp = with_wheels(car.suspension, wheels)
+    N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY,
+                           point_masses=point_masses(susp))
+    return preloaded(susp, dict(zip(CORNERS, N, strict=True)), g=GRAVITY), N
