@@ -15,15 +15,18 @@ Model (per corner ``fl, fr, rl, rr``)
   with a torsional spring-damper (the steering compliance) whose offset is the angle.
 * Wheel spin: one rotational coordinate (``Node1D`` + ``ObjectRotationalMass1D``) per
   wheel carrying the spin inertia.
-* Tyre vertical stiffness: its linear part is an implicit ``CartesianSpringDamper`` from
-  the ground to the wheel centre (z only), its zero moved with the road each step; this
-  keeps the stiffest coupling of the car inside the implicit integrator.
-* Everything else - spring with preload, dual-rate damper, bump and rebound stops,
-  anti-roll bars, the rest of the tyre force and moment (Magic Formula, nonlinear
-  vertical part, damping), drive and brake torques - is **explicit per step**: a
-  PreStepUserFunction reads the state once, a vectorized callback computes the loads,
-  which stay constant over the step (``LoadForceVector``, ``LoadTorqueVector``,
-  ``LoadCoordinate``).  The implicit solver sees no Python callbacks in its Newton loop.
+* Tyre: the whole contact force is a linear ``ObjectGenericODE2`` on the carrier node and
+  the spin coordinate whose damping, stiffness and force are set every step from the
+  tyre model's linearization (:mod:`flexpipe.vehicle.tire_coupling`), so the implicit
+  integrator balances it at the end of the step; the tyre's own moments (Mx, My, Mz) and
+  the drive and brake torques are loads held over the step.
+* Suspension: spring, damper and stops are one implicit ``ObjectConnectorSpringDamper``
+  per corner, linearized every step with secant slopes (the anti-roll bars come as loads
+  at the travel predicted for the end of the step).  A ``PreStepUserFunction`` reads the
+  state once per step and sets all of this.
+
+:class:`flexpipe.exu.linkage_car.LinkageCarSystem` builds the car with linkage
+suspensions instead of the prismatic corners and reuses the tyre coupling and time loop.
 """
 
 from __future__ import annotations
@@ -97,9 +100,6 @@ class CarBuild:
     spring_k: np.ndarray = None  # (4,) suspension spring rate (implicit connector), N/m
     spring_preload: np.ndarray = None  # (4,) spring force at the design position, N
     damper_c: np.ndarray = None  # (4,) initial damping of the implicit connector, N s/m
-    tire_k: np.ndarray = None  # (4,) linear vertical tyre stiffness kept implicit, N/m
-    tire_c: np.ndarray = None  # (4,) vertical tyre damping kept implicit, N s/m
-    tire_r0: np.ndarray = None  # (4,) unloaded radius, m
     steered: np.ndarray = None  # (4,) bool
     steer_stiffness: float = 2.0e4  # N m / rad, steering system at the road wheel
     steer_damping: float = 150.0  # N m s / rad

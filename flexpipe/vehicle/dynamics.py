@@ -1,5 +1,5 @@
-"""Per-step vehicle physics outside the integrator: tyres on the road, suspension force law,
-driver, steering geometry and the recording of output channels.
+"""Per-step vehicle physics: the linearization of the tyres and the suspension force law for
+the implicit step, the driver, the steering geometry and the recording of output channels.
 
 :class:`CarController` is called once per time step with the state read from the
 multibody model (:class:`flexpipe.exu.car.CarState`) and returns the loads for the step
@@ -98,7 +98,7 @@ class CarController:
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
-                 tire_k=None, tire_c=None, preview_time=0.3, linkage=None,
+                 preview_time=0.3, linkage=None,
                  body_motion=None):
         self.c = corners
         self.road = road
@@ -118,10 +118,7 @@ class CarController:
         self.body_motion = body_motion  # durability: () -> (q, p, R), one per output row
         self.motion = []
         self.gvec = np.array([0.0, 0.0, -float(gravity)])
-        self.tire_k = np.zeros(4) if tire_k is None else np.asarray(tire_k, dtype=float)
-        self.tire_c = np.zeros(4) if tire_c is None else np.asarray(tire_c, dtype=float)
         self.preview_time = float(preview_time)
-        self.r0 = np.array([t.unloaded_radius for t in tires])
         self._tire_lin = None
         self._prev_rate = None
         self.body_com = np.zeros(3) if body_com is None else np.asarray(body_com, dtype=float)

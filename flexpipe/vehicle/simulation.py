@@ -204,8 +204,11 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     body : {"flexible", "rigid", "full"}
         Body model (see module docstring).
     h : float
-        Time step, s (1e-5 .. 5e-3; default 2e-3, where the explicit tyre/suspension loads
-        and the FFRF body are both accurate to about 2 % in the hub forces against 1e-3).
+        Time step, s (1e-5 .. 5e-3; default 2e-3).  Measured against h/8 on ISO class C at
+        70/100 km/h and on the slalom (``bench/bench_convergence.py``, README): rigid cars'
+        hub forces within 0.1-1.1 % (z) and 0.2-10.5 % (x, y) of their fluctuating part;
+        flexible bodies 0.4-2 % (z) but 1.5-41 % (x, y).  Check any run with
+        :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float
         Output sampling interval, s (a multiple of ``h``).
     driver : (PurePursuit, SpeedPI) or str or Path, optional
@@ -324,12 +327,6 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    for t, wz in zip(tires, W[:, 2], strict=True)])
     spin0 = speed / re
 
-    # tangent vertical tyre stiffness at the static deflection (kept in the implicit solver)
-    tire_k = np.array([float(t.vertical.k + 3.0 * t.vertical.k3 * (t.unloaded_radius - wz) ** 2)
-                       for t, wz in zip(tires, W[:, 2], strict=True)])
-
-    tire_c = np.array([float(t.vertical.c) for t in tires])
-
     from flexpipe.exu.car import CarBuild, CarSystem
     from flexpipe.vehicle.dynamics import CarController
 
@@ -364,7 +361,6 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         inertia_origin=rb.inertia_origin, hardpoints=corners.hardpoint,
         wheel_centers=corners.wheel_center, m_unsprung=corners.m_unsprung,
         J_unsprung=corners.J_unsprung, spin_inertia=corners.spin_inertia,
-        tire_k=tire_k, tire_c=tire_c, tire_r0=np.array([t.unloaded_radius for t in tires]),
         spring_k=corners.k, spring_preload=corners.preload, damper_c=corners.c_jounce,
         steered=np.array([c.axle == car.steering.axle for c in car.corners]),
         position=p0, rotation=R0, speed=speed, spin_rate=spin0, gravity=GRAVITY,
@@ -383,7 +379,6 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                          point_acc=system.point_accelerations,
                          joint_forces=system.joint_forces,
                          wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
-                         tire_k=tire_k, tire_c=tire_c,
                          linkage=getattr(system, "linkage", None),
                          body_motion=system.body_motion_sample)
     bar = None
