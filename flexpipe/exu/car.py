@@ -266,13 +266,10 @@ class CarSystem:
                 ("local", list(map(float, spec.point_local[name])))
 
     # ------------------------------------------------------------------ state and loads
-    def state(self, t: float) -> CarState:
-        """Read the current state (suspension travel from the marker frames, which is
-        much cheaper than the joint outputs of a flexible-body marker)."""
-        mbs = self.mbs
-        g = mbs.GetNodeOutput
-        gm = mbs.GetMarkerOutput
-        bn = self.body_node
+    def _wheel_state(self):
+        """Carriers' position, velocity, rotation, angular velocity, spin rate, node
+        coordinates and their rates (global), as arrays over the wheels."""
+        g = self.mbs.GetNodeOutput
         wp = np.array([g(n, OV.Position) for n in self.wheel_node])
         wv = np.array([g(n, OV.Velocity) for n in self.wheel_node])
         wR = np.array([g(n, OV.RotationMatrix) for n in self.wheel_node]).reshape(4, 3, 3)
@@ -280,6 +277,16 @@ class CarSystem:
         spin = np.array([g(n, OV.Coordinates_t) for n in self.spin_node], dtype=float).ravel()
         wq = np.array([g(n, OV.Coordinates) for n in self.wheel_node], dtype=float)
         wqt = np.array([g(n, OV.Coordinates_t) for n in self.wheel_node], dtype=float)
+        return wp, wv, wR, ww, spin, wq, wqt
+
+    def state(self, t: float) -> CarState:
+        """Read the current state (suspension travel from the marker frames, which is
+        much cheaper than the joint outputs of a flexible-body marker)."""
+        mbs = self.mbs
+        g = mbs.GetNodeOutput
+        gm = mbs.GetMarkerOutput
+        bn = self.body_node
+        wp, wv, wR, ww, spin, wq, wqt = self._wheel_state()
         mp = np.array([gm(m, OV.Position) for m in self.mount])
         mv = np.array([gm(m, OV.Velocity) for m in self.mount])
         mR = np.array([gm(m, OV.RotationMatrix) for m in self.mount]).reshape(4, 3, 3)

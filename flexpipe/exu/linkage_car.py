@@ -104,13 +104,7 @@ class LinkageCarSystem(CarSystem):
         body_R = np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3)
         body_v = np.asarray(g(bn, OV.Velocity))
         body_w = np.asarray(g(bn, OV.AngularVelocity))
-        wp = np.array([g(n, OV.Position) for n in self.wheel_node])
-        wv = np.array([g(n, OV.Velocity) for n in self.wheel_node])
-        wR = np.array([g(n, OV.RotationMatrix) for n in self.wheel_node]).reshape(4, 3, 3)
-        ww = np.array([g(n, OV.AngularVelocity) for n in self.wheel_node])
-        spin = np.array([g(n, OV.Coordinates_t) for n in self.spin_node], dtype=float).ravel()
-        wq = np.array([g(n, OV.Coordinates) for n in self.wheel_node], dtype=float)
-        wqt = np.array([g(n, OV.Coordinates_t) for n in self.wheel_node], dtype=float)
+        wp, wv, wR, ww, spin, wq, wqt = self._wheel_state()
         local = (wp - body_p) @ body_R
         jounce = local[:, 2] - self.design_wheel[:, 2]
         vrel = (wv - body_v - np.cross(body_w, wp - body_p)) @ body_R

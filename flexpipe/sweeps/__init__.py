@@ -7,7 +7,7 @@ weightings in :mod:`flexpipe.sweeps.iso2631`.  See ``docs/sweeps.md``.
 
 from __future__ import annotations
 
-import importlib
+from flexpipe._lazy import lazy_exports
 
 _EXPORTS = {
     "sweep": "flexpipe.sweeps.execute",
@@ -16,14 +16,4 @@ _EXPORTS = {
     "SweepSpec": "flexpipe.sweeps.spec",
 }
 
-__all__ = sorted(_EXPORTS)
-
-
-def __getattr__(name):
-    if name in _EXPORTS:
-        return getattr(importlib.import_module(_EXPORTS[name]), name)
-    raise AttributeError(f"module 'flexpipe.sweeps' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__, __all__ = lazy_exports(__name__, _EXPORTS)

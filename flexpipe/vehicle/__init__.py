@@ -7,7 +7,7 @@ Submodules are imported lazily so that ``load_car`` does not pull in Exudyn.
 
 from __future__ import annotations
 
-import importlib
+from flexpipe._lazy import lazy_exports
 
 _EXPORTS = {
     "load_car": "flexpipe.vehicle.spec",
@@ -17,14 +17,4 @@ _EXPORTS = {
     "Result": "flexpipe.vehicle.result",
 }
 
-__all__ = sorted(_EXPORTS)
-
-
-def __getattr__(name):
-    if name in _EXPORTS:
-        return getattr(importlib.import_module(_EXPORTS[name]), name)
-    raise AttributeError(f"module 'flexpipe.vehicle' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__, __all__ = lazy_exports(__name__, _EXPORTS)

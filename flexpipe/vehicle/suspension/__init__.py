@@ -9,7 +9,7 @@ with bushings); ``kc`` runs the suspension analyses of a K&C rig; ``spec`` reads
 
 from __future__ import annotations
 
-import importlib
+from flexpipe._lazy import lazy_exports
 
 _EXPORTS = {
     "kc": "flexpipe.vehicle.suspension.kc",
@@ -24,14 +24,4 @@ _EXPORTS = {
     "wheel_rate": "flexpipe.vehicle.suspension.statics",
 }
 
-__all__ = sorted(_EXPORTS)
-
-
-def __getattr__(name):
-    if name in _EXPORTS:
-        return getattr(importlib.import_module(_EXPORTS[name]), name)
-    raise AttributeError(f"module 'flexpipe.vehicle.suspension' has no attribute {name!r}")
-
-
-def __dir__():
-    return __all__
+__getattr__, __dir__, __all__ = lazy_exports(__name__, _EXPORTS)
