@@ -11,11 +11,16 @@ whose ``markers`` are ready for joints, springs and loads.
 Interfaces as 6-DOF markers
 ---------------------------
 Exudyn's FFRF body carries 3 translations per mesh node.  For every interface the
-adapter appends seven massless *marker points* to the mode basis: the hardpoint and six
-points at ``+-arm`` along the body axes, whose mode-shape rows are the rigid motion of
-the hardpoint, ``u = u_h + theta_h x d``.  A ``MarkerSuperElementRigid`` on these seven
-points (equal weights, centred on the hardpoint, zero offset) therefore moves exactly
-like the hardpoint of the RBE2 spider (or the 6-DOF node) in the reduced model.  Being
+adapter appends four massless *marker points* to the mode basis: the hardpoint and the
+corners of an equilateral triangle of circumradius ``arm`` centred on it (in the body's
+x-y plane), whose mode-shape rows are the rigid motion of the hardpoint,
+``u = u_h + theta_h x d``.  A ``MarkerSuperElementRigid`` on the three corners (equal
+weights, centroid on the hardpoint, zero offset) therefore moves exactly like the
+hardpoint of the RBE2 spider (or the 6-DOF node) in the reduced model; three
+non-collinear points fix a rotation, and Exudyn's cost of such a marker grows with its
+point count (``bench/bench_markers.py``: per Newton iteration a generic joint on a
+7-point marker cost 22x a spherical joint on the one-point position marker, on the 3
+points 10x).  Being
 massless, the points do not change the inertia invariants.  A 3-DOF (translational)
 interface gets only the hardpoint itself: a ``MarkerSuperElementPosition`` on it moves
 with the hardpoint; it has no rigid marker (its rotation is not a boundary DOF of the
@@ -37,7 +42,11 @@ from flexpipe.flexbody.body import FlexBody
 
 #: rotation parameterization of the reference-frame node (works with implicit solvers)
 NODE_TYPE = exu.NodeType.RotationEulerParameters
-_ARMS = np.vstack([np.eye(3), -np.eye(3)])
+_ANGLES = np.deg2rad([90.0, 210.0, 330.0])
+#: unit offsets of a 6-DOF interface's three rotation points (equilateral triangle)
+_ARMS = np.column_stack([np.cos(_ANGLES), np.sin(_ANGLES), np.zeros(3)])
+#: marker points per 6-DOF interface: the hardpoint and the triangle
+_POINTS_6DOF = 1 + len(_ARMS)
 
 
 @dataclass(frozen=True)
@@ -134,8 +143,9 @@ def _check_vec(v, key):
 def marker_points(body: FlexBody, *, arm: float | None = None):
     """Reference positions (p, 3) and elastic mode rows (p, 3, m_e) of the marker points.
 
-    Per 6-DOF interface: the hardpoint, then ``hardpoint +- arm e_x, e_y, e_z`` (7
-    points); per 3-DOF interface the hardpoint only.
+    Per 6-DOF interface: the hardpoint, then the three corners of an equilateral
+    triangle of circumradius ``arm`` around it in the x-y plane (4 points); per 3-DOF
+    interface the hardpoint only.
     """
     if arm is None:
         size = np.ptp(body.nodes, axis=0).max() if body.n_nodes else 1.0
@@ -249,15 +259,15 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
         first[itf.name] = start
         label = f"{name}:{itf.name}" if name else ""
         if itf.dofs == 6:
-            pts = list(range(start, start + 7))
+            pts = list(range(start + 1, start + _POINTS_6DOF))
             markers[itf.name] = mbs.AddMarker(eii.MarkerSuperElementRigid(
                 name=label, bodyNumber=obj, offset=[0.0, 0.0, 0.0],
-                meshNodeNumbers=pts, weightingFactors=[1.0 / 7.0] * 7,
+                meshNodeNumbers=pts, weightingFactors=[1.0 / len(pts)] * len(pts),
                 useAlternativeApproach=True, rotationsExponentialMap=2))
         position_markers[itf.name] = mbs.AddMarker(eii.MarkerSuperElementPosition(
             name=f"{label}:position" if label else "", bodyNumber=obj,
             meshNodeNumbers=[start], weightingFactors=[1.0]))
-        start += 7 if itf.dofs == 6 else 1
+        start += _POINTS_6DOF if itf.dofs == 6 else 1
     m_node = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_frame))
     m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
     load = None

@@ -40,6 +40,7 @@ import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
+from flexpipe.reduction._threads import openblas_single_threaded
 
 OV = exu.OutputVariableType
 
@@ -394,8 +395,10 @@ class CarSystem:
 
     # ------------------------------------------------------------------ time loop
     def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.7,
-            progress=None, jacobian_every_step: bool = False):
+            progress=None, jacobian_every_step: bool = False, output_step: float | None = None):
         """Integrate to ``t_end`` with step ``h``; ``step(state) -> CarLoads | None``.
+
+        Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
 
         ``step`` returns ``None`` to stop (e.g. divergence).  Returns
         ``(completed, t_reached, cpu_seconds, wall_seconds, solver_message)``.
@@ -452,6 +455,7 @@ class CarSystem:
         ti.newton.absoluteTolerance = self.newton_atol
         ti.adaptiveStep = True
         s.solution.file.write = False
+        s.solution.sensors.writePeriod = float(output_step or h)
         s.solution.file.writeInitialValues = False
         s.show.statistics = False
         s.show.computationTime = False
@@ -461,7 +465,9 @@ class CarSystem:
         printing = exu.config.printToConsole
         exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
         try:
-            with deferred_interrupts() as sig:  # flexpipe#14: signals only set sig.signum
+            # flexpipe#14: signals only set sig.signum; one BLAS thread (the per-step
+            # matrices are tiny: more threads only spin against Exudyn for the cores)
+            with deferred_interrupts() as sig, openblas_single_threaded():
                 ok = bool(exu.SolveDynamic(mbs, s,
                                            solverType=exu.DynamicSolverType.GeneralizedAlpha,
                                            updateInitialValues=False, storeSolver=True))

@@ -159,6 +159,8 @@ class CarController:
         for p in self.points:
             names += [f"acc_{p}_x", f"acc_{p}_y", f"acc_{p}_z"]
         self.mounts = []
+        #: per-mount forces recorded by Exudyn sensors (LinkageModel.add_mount_sensors)
+        self.mount_sensors = bool(getattr(linkage, "_sensors", None))
         if linkage is not None:  # force on the body at every mount (body axes)
             self.mounts = sorted({m for m, *_ in linkage.body_links})
             for m in self.mounts:
@@ -316,6 +318,17 @@ class CarController:
         self.step_no += 1
         return loads
 
+    def fill_mounts(self) -> None:
+        """Per-mount channels of the rows after the first from the linkage's sensors
+        (:meth:`flexpipe.exu.linkage.LinkageModel.mount_force_history`)."""
+        if not (self.mounts and self.mount_sensors) or self.rec.rows < 2:
+            return
+        rows = slice(1, self.rec.rows)
+        hist = self.linkage.mount_force_history(self.rec.t[rows])
+        for m in self.mounts:
+            for k, ax in enumerate("xyz"):
+                self.rec.data[rows, self.rec.index[f"mount_{m}_{ax}"]] = hist[m][:, k]
+
     def _fail(self, t: float, why: str):
         self.status = -1
         self.message = f"simulation stopped at t = {t:.4f} s: {why}"
@@ -373,9 +386,12 @@ class CarController:
             for p in self.points:
                 row += list(R.T @ acc[p])
         if self.mounts:
-            mf = self.linkage.mount_forces()
-            for m in self.mounts:
-                row += list(R.T @ mf[m])
+            if self.rec.rows == 0 or not self.mount_sensors:
+                mf = self.linkage.mount_forces()
+                for m in self.mounts:
+                    row += list(R.T @ mf[m])
+            else:  # filled after the run from Exudyn's sensors (fill_mounts)
+                row += [np.nan] * (3 * len(self.mounts))
         self.rec.add(st.t, np.array(row, dtype=float))
         if self.body_motion is not None and len(self.motion) < self.rec.rows:
             self.motion.append(self.body_motion())

@@ -19,6 +19,11 @@ from flexpipe.vehicle.spec import CORNERS, Car
 INTERFACE_F_MAX_HZ = 400.0
 #: body nodes within this distance of a suspension mount are tied to it (RBE2), m
 MOUNT_RADIUS_M = 0.005
+#: interface DOFs of every mount unless ``[body.mounts.<name>] dofs`` says otherwise;
+#: None: 6 where a moment passes into the body, else 3 (``Suspension.mount_dofs``).  A
+#: joint at a 3-DOF mount that needs a frame (an inline joint) takes the body frame's
+#: axes through a bracket (flexpipe.exu.linkage_car).
+MOUNT_DOFS = None
 
 
 def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, log=None):
@@ -36,12 +41,15 @@ def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, 
 def body_mounts(car: Car) -> list:
     """The body's interfaces for a linkage car: every suspension mount, tied as
     ``[body.mounts.<name>]`` says (point + radius, node set or node ids) or else the nodes
-    within :data:`MOUNT_RADIUS_M` of the mount point; 6 DOF where a joint or bushing needs
-    the mount's frame, else 3 (``Suspension.mount_dofs``)."""
+    within :data:`MOUNT_RADIUS_M` of the mount point; :data:`MOUNT_DOFS` DOF unless the car
+    file says otherwise (``None``: 6 where a joint or bushing needs the mount's frame, else
+    3, ``Suspension.mount_dofs``)."""
     from flexpipe.vehicle.mounts import Mount
 
     points = car.suspension.mounts()
     dofs = car.suspension.mount_dofs()
+    if MOUNT_DOFS is not None:
+        dofs = dict.fromkeys(dofs, MOUNT_DOFS)
     given = car.body.mounts or {}
     for name in given:
         if name not in points:

@@ -217,7 +217,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     f_max : float, optional
         Band of the flexible body in Hz (default: chosen from speed and road).
     max_mode_hz : float, optional
-        Keep only the reduced body's modes up to this frequency (default: all).
+        Keep only the reduced body's modes up to this frequency (default: all); 0 (or
+        below the lowest mode) keeps none: the flexible body with every elastic mode off,
+        which reproduces the rigid car (tests/test_linkage_car.py).
     initial_rates : (3,) float
         Extra initial heave velocity (m/s), roll and pitch rate (rad/s) of the body, e.g.
         to excite the ride modes in a validation run (wheels start without them).
@@ -254,7 +256,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         raise InputError(f"h = {h:g} s is longer than t_end = {t_end:g} s; choose h <= t_end",
                          key="h")
     if max_mode_hz is not None:  # flexpipe#14 (robust)
-        max_mode_hz = _number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6)
+        max_mode_hz = _number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
     every = max(1, int(round(output_step / h)))
     if body in ("full", "flexible") and car.body.mesh is None and car.body.body_file is None:
         raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
@@ -349,11 +351,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     q0 = None
     if fb is not None:
         if max_mode_hz is not None:
+            # 0 keeps none: the flexible body's own frame, markers and mounts with every
+            # elastic mode off, the consistency check against the rigid twin (issue 9)
             n_modes = int(np.count_nonzero(fb.frequencies_hz[fb.n_rigid:] <= max_mode_hz))
-            if n_modes == 0:  # flexpipe#14 (robust)
-                raise InputError(f"max_mode_hz = {max_mode_hz:g} Hz keeps no elastic mode: the "
-                                 f"lowest is {fb.frequencies_hz[fb.n_rigid]:.4g} Hz; use "
-                                 "body='rigid' or a higher max_mode_hz", key="max_mode_hz")
         q0 = None if car.suspension is not None else static_deflection(fb, corners, n_modes)
     build = CarBuild(
         chassis=kind, flexbody=fb, n_modes=n_modes, modal_q0=q0, mass=rb.mass,
@@ -389,7 +389,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    leave=True, mininterval=0.5)
     try:
         completed, t_reached, cpu, wall, solver_msg = system.run(
-            ctrl, t_end=t_end, h=h, progress=bar.update if bar is not None else None)
+            ctrl, t_end=t_end, h=h, progress=bar.update if bar is not None else None,
+            output_step=every * h)
     finally:
         if bar is not None:
             bar.close()
@@ -402,6 +403,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    f"step h = {h:g} s for the stiffness of the model, or a diverging state")
     else:
         status, message = 0, f"reached t_end = {t_end:g} s"
+    ctrl.fill_mounts()
     ch = ctrl.rec.channels()
     if status != 0:  # flexpipe#14 (robust): say what diverged and which input is implausible
         from flexpipe.vehicle.diagnose import explain

@@ -57,13 +57,15 @@ class Suspension:
         return out
 
     def mount_dofs(self) -> dict:
-        """``{mount: 3 | 6}``: 6 where the body side needs the mount's frame (a bushing, a
-        revolute, universal or inline joint, the rack housing, an anti-roll-bar bushing),
-        3 where only a force passes (ball joints, links, spring and damper seats)."""
+        """``{mount: 3 | 6}``: 6 where a moment passes into the body (a bushing, a
+        revolute or universal joint, the rack housing, an anti-roll-bar bearing), 3 where
+        only a force passes (ball joints, inline joints, links, spring and damper
+        seats)."""
         out = {name: 3 for name in self.mounts()}
         for c in self.corners().values():
             for j in c.joints:
-                if j.mount is not None and (j.bushing is not None or j.kind != "spherical"):
+                if j.mount is not None and (j.bushing is not None
+                                            or j.kind not in ("spherical", "inline")):
                     out[j.mount] = 6
         if self.rack is not None:
             out.update({n: 6 for n in self.rack.mounts})

@@ -1,0 +1,99 @@
+"""Exudyn's cost of a joint on the flexible body, by marker kind.
+
+The linkage car's flexible body (``cars/sedan_linkage.toml``) alone, its mounts joined to
+the ground, integrated for a fixed number of steps with one Newton iteration each: the
+constraint time per joint and Newton iteration for a spherical joint on the one-point
+position marker of a mount and for a generic joint on the rigid (6-DOF) marker of a
+mount (three points, :mod:`flexpipe.exu.body`).  The peer is the bare body in the same
+run.  Measured 2026-12-01 (46 modes): on the former seven-point rigid markers a generic
+joint cost 0.124 ms per iteration, 22x a spherical joint (0.0056 ms); on three points
+0.058 ms, 10x.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+
+from flexpipe.exu.body import add_flexible_body
+from flexpipe.vehicle import load_car
+from flexpipe.vehicle.simulation import prepare
+
+ROOT = Path(__file__).resolve().parents[1]
+STEPS = 500
+
+
+def _run(fb, kind: str, n_joints: int) -> dict:
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    bh = add_flexible_body(mbs, fb, gravity=(0.0, 0.0, 0.0))
+    ground = mbs.AddObject(eii.ObjectGround())
+    made = 0
+    for itf in fb.interfaces:
+        if made == n_joints:
+            break
+        p = [float(v) for v in itf.point]
+        if kind == "spherical":
+            mg = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground, localPosition=p))
+            mbs.AddObject(eii.ObjectJointSpherical(
+                markerNumbers=[mg, bh.position_markers[itf.name]]))
+        elif itf.name in bh.markers:  # one axis each: never redundant
+            mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=p))
+            axes = [0] * 6
+            axes[made % 6] = 1
+            mbs.AddObject(eii.GenericJoint(markerNumbers=[mg, bh.markers[itf.name]],
+                                           constrainedAxes=axes))
+        else:
+            continue
+        made += 1
+    mbs.Assemble()
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.numberOfSteps, ti.endTime, ti.verboseMode = STEPS, STEPS * 2e-3, 0
+    ti.newton.useModifiedNewton = True
+    s.linearSolver.solverType = exu.LinearSolverType.EXUdense
+    s.solution.file.write = False
+    s.show.computationTime = True  # switches Exudyn's timers on
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False
+    try:
+        t0 = time.thread_time()
+        exu.SolveDynamic(mbs, s, storeSolver=True)
+        cpu = time.thread_time() - t0
+    finally:
+        exu.config.printToConsole = printing
+    solver = mbs.sys["dynamicSolver"]
+    iters = solver.it.newtonStepsCount
+    tm = solver.timer
+    return {"joints": made, "ms_per_step": 1e3 * cpu / STEPS,
+            "ms_constraints_per_iteration": 1e3 * (tm.AERHS + tm.reactionForces) / iters}
+
+
+def run() -> dict:
+    """Run the benchmark; returns a flat dict of figures."""
+    fb = prepare(load_car(ROOT / "cars" / "sedan_linkage.toml"), body="flexible",
+                 speed=70 / 3.6)["flexbody"]
+    bare = _run(fb, "spherical", 0)
+    sph = _run(fb, "spherical", 30)
+    gen = _run(fb, "generic", 12)
+    per_sph = sph["ms_constraints_per_iteration"] / sph["joints"]
+    per_gen = gen["ms_constraints_per_iteration"] / gen["joints"]
+    out = {
+        "elastic_modes": fb.n_elastic,
+        "bare_body_ms_per_step": round(bare["ms_per_step"], 4),
+        "spherical_joints": sph["joints"],
+        "spherical_ms_per_joint_iteration": round(per_sph, 5),
+        "generic_joints": gen["joints"],
+        "generic_ms_per_joint_iteration": round(per_gen, 5),
+        "ratio_generic_to_spherical": round(per_gen / per_sph, 2),
+    }
+    for k, v in out.items():
+        print(f"{k:36s} {v}")
+    return out
+
+
+if __name__ == "__main__":
+    run()
