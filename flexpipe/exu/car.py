@@ -360,7 +360,8 @@ class CarSystem:
         """Linear ODE2 elements (damping D, stiffness K, force f on each carrier's 7 node
         coordinates and its spin coordinate; arrays over the wheels) that apply the
         linearized tyre force ``F0 + Dv (v_P - v_P,n) + dw (omega - omega_n) + A (z - z_n)``
-        at the contact point (Exudyn's convention: ``D q_t + K q = f``)."""
+        at the contact point, plus ``S theta`` for a rotation of the carrier (Exudyn's
+        convention: ``D q_t + K q = f``)."""
         n = len(self.wheel_node)
         ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
         e0, e1, e2, e3 = ep.T
@@ -390,6 +391,10 @@ class CarSystem:
         K[:, :, 2] = -(JT @ ts.A[:, :, None])[:, :, 0]
         rhs = ts.F0 - (ts.Dv @ vP[:, :, None])[:, :, 0] - ts.dw * om[:, None] \
             - ts.A * st.wheel_q[:, 2:3]
+        if ts.S is not None:  # carrier rotation: theta = G (e - e_n), global
+            SG = ts.S @ G
+            K[:, :, 3:7] = -JT @ SG
+            rhs = rhs - (SG @ st.wheel_q[:, 3:7, None])[:, :, 0]
         f = (JT @ rhs[:, :, None])[:, :, 0]
         return D, K, f
 

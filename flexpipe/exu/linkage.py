@@ -19,6 +19,8 @@ position marker, or a rigid one where a joint or bushing needs the mount's frame
 
 from __future__ import annotations
 
+import math
+
 import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
@@ -310,12 +312,15 @@ class LinkageModel:
         """
         gm = self.mbs.GetMarkerOutput
         so = self.mbs.SetObjectParameter
-        for _i, f, co, mb, ma in self.forces:
-            pb, pa = np.asarray(gm(mb, OV.Position)), np.asarray(gm(ma, OV.Position))
-            vb, va = np.asarray(gm(mb, OV.Velocity)), np.asarray(gm(ma, OV.Velocity))
-            d = pa - pb
-            L = float(np.sqrt(d @ d))
-            Ld = float(d @ (va - vb)) / L
+        pos, vel = OV.Position, OV.Velocity
+        for _i, f, co, mb, ma in self.forces:  # plain floats: 3-vectors cost numpy more
+            xb, yb, zb = gm(mb, pos).tolist()
+            xa, ya, za = gm(ma, pos).tolist()
+            ub, vb_, wb = gm(mb, vel).tolist()
+            ua, va_, wa = gm(ma, vel).tolist()
+            dx, dy, dz = xa - xb, ya - yb, za - zb
+            L = math.sqrt(dx * dx + dy * dy + dz * dz)
+            Ld = (dx * (ua - ub) + dy * (va_ - vb_) + dz * (wa - wb)) / L
             if f.kind == "damper":
                 Ld_prev = self._rate.get(co, Ld)
                 self._rate[co] = Ld

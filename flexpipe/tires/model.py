@@ -7,8 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.tires import _fast
 from flexpipe.tires.checks import probe_forces
-from flexpipe.tires.contact import TireModel
+from flexpipe.tires.contact import SlipState, TireModel, WheelForces
 from flexpipe.tires.fiala import FialaTire
 from flexpipe.tires.pac2002 import MagicFormula, SlipForces
 from flexpipe.tires.tir import TireProperties, read_tir
@@ -105,6 +106,59 @@ class Pac2002Tire(TireModel):
                     mu_scale=1.0) -> SlipForces:
         """Steady-state contact forces/moments, W-axes (see :meth:`MagicFormula.forces`)."""
         return self.mf.forces(kappa, alpha, Fz, gamma, vx=vx, mirror=mirror, mu_scale=mu_scale)
+
+    def wheel_forces(self, center, spin_axis, omega, velocity, *, road_height,
+                     road_normal=(0.0, 0.0, 1.0), angular_velocity=None, mirror=False,
+                     mu_scale=1.0, state: SlipState | None = None, dt: float | None = None):
+        """As :meth:`TireModel.wheel_forces`, compiled (:mod:`flexpipe.tires._fast`; the
+        NumPy code when ``FLEXPIPE_NO_JIT=1`` or without numba)."""
+        kw = dict(road_height=road_height, road_normal=road_normal,
+                  angular_velocity=angular_velocity, mirror=mirror, mu_scale=mu_scale,
+                  state=state, dt=dt)
+        if not _fast.enabled():
+            return super().wheel_forces(center, spin_axis, omega, velocity, **kw)
+        C = np.atleast_2d(np.asarray(center, dtype=float))
+        m = C.shape[0]
+
+        def rows(a, width=0, dtype=float):
+            a = np.asarray(a, dtype=dtype)
+            shape = (m, width) if width else (m,)
+            if a.shape != shape:
+                a = np.broadcast_to(a, shape)
+            return a if a.flags.c_contiguous else np.ascontiguousarray(a)
+
+        s, n, v = rows(spin_axis, 3), rows(road_normal, 3), rows(velocity, 3)
+        has_w = angular_velocity is not None
+        w = rows(angular_velocity, 3) if has_w else v
+        C = rows(C, 3)
+        if self.relaxation and state is not None and (dt is None or not dt > 0):
+            raise InputError("dt > 0 is required with a relaxation state", key="dt")
+        st = state if state is not None else SlipState.zeros(m)
+        q = self._packed()
+        out = np.empty((m, 31))
+        bad = _fast.wheel_kernel(q, C, s, n, rows(omega), v, w, has_w, rows(road_height),
+                                 rows(mirror, dtype=np.bool_), rows(mu_scale),
+                                 rows(st.kappa), rows(st.tan_alpha), state is not None,
+                                 float(dt or 0.0), out)
+        if bad >= 0:
+            name = "spin_axis" if not np.isfinite(s[bad]).all() or not s[bad].any() \
+                else "road_normal"
+            raise InputError(f"{name} must be non-zero, finite vectors", key=name)
+        new_state = SlipState(out[:, 29].copy(), out[:, 30].copy()) if state is not None \
+            else None
+        return WheelForces(
+            force=out[:, 0:3], moment=out[:, 3:6], contact_point=out[:, 6:9],
+            frame=out[:, 9:18].reshape(m, 3, 3), Fx=out[:, 18], Fy=out[:, 19], Fz=out[:, 20],
+            Mx=out[:, 21], My=out[:, 22], Mz=out[:, 23], kappa=out[:, 24], alpha=out[:, 25],
+            gamma=out[:, 26], deflection=out[:, 27], deflection_rate=out[:, 28],
+            state=new_state)
+
+    def _packed(self):
+        q = self.__dict__.get("_packed_numbers")
+        if q is None:
+            q = _fast.pack(self)
+            object.__setattr__(self, "_packed_numbers", q)
+        return q
 
 
 def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:

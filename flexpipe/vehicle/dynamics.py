@@ -345,9 +345,15 @@ class CarController:
             * ts.spin_axis
         vP = st.wheel_v + _cross(wc, ts.r)
         vP0 = st0.wheel_v + _cross(wc0, ts.r)
-        return (ts.F0 + np.einsum("nij,nj->ni", ts.Dv, vP - vP0)
-                + ts.dw * (omega - om0)[:, None]
-                + ts.A * (st.wheel_p[:, 2] - st0.wheel_p[:, 2])[:, None])
+        F = (ts.F0 + np.einsum("nij,nj->ni", ts.Dv, vP - vP0)
+             + ts.dw * (omega - om0)[:, None]
+             + ts.A * (st.wheel_p[:, 2] - st0.wheel_p[:, 2])[:, None])
+        if ts.S is not None:  # rotation of the carriers over the step (small angles)
+            dR = st.wheel_R @ st0.wheel_R.transpose(0, 2, 1)
+            th = 0.5 * np.stack([dR[:, 2, 1] - dR[:, 1, 2], dR[:, 0, 2] - dR[:, 2, 0],
+                                 dR[:, 1, 0] - dR[:, 0, 1]], axis=1)
+            F = F + np.einsum("nij,nj->ni", ts.S, th)
+        return F
 
     def _record(self, st, Fs, Fw, v, roll, pitch, yaw, F_tire=None):
         R = st.body_R

@@ -6,11 +6,14 @@ splitting) makes the longitudinal and lateral hub forces first-order accurate in
 (measured on the sample sedan: 50 % error at 2 ms against 0.25 ms).  Instead, per step,
 the force on each wheel at the *end* of the step is written as
 
-    F(v_P, omega, z) = F0 + D_v (v_P - v_P,n) + d_w (omega - omega_n) + A (z - z_n)
+    F(v_P, omega, z, theta) = F0 + D_v (v_P - v_P,n) + d_w (omega - omega_n) + A (z - z_n)
+                              + S theta
 
 (contact-point velocity of the wheel carrier ``v_P``, spin rate ``omega``, wheel-centre
-height ``z``) and handed to the implicit integrator as a linear force element, so the
-integrator balances it at the end of the step like any spring or damper.  ``F0`` is the
+height ``z``, small rotation ``theta`` of the carrier over the step: steer, toe and camber
+changes turn the contact frame and the slip velocities) and handed to the implicit
+integrator as a linear force element, so the integrator balances it at the end of the
+step like any spring or damper.  ``F0`` is the
 force predicted for the end of the step with the velocities held (road height taken
 under the wheel where it will be), the derivatives come from one batched evaluation of the
 tyre model with perturbed inputs.
@@ -34,10 +37,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flexpipe.tires.contact import _cross
+from flexpipe.tires.contact import SlipState, _cross
 
-#: finite-difference steps: velocity (m/s), spin rate (rad/s), height (m)
-DV, DW, DZ = 1e-3, 1e-2, 1e-5
+#: finite-difference steps: velocity (m/s), spin rate (rad/s), height (m), rotation (rad)
+DV, DW, DZ, DTH = 1e-3, 1e-2, 1e-5, 1e-5
+#: wheel inputs the corrector averages over the step
+_TRACKED = ("C", "s", "v", "w", "omega", "h_road", "n_road")
+#: step (s) for reading the force of a relaxation state without advancing it (the state
+#: then moves by |Vx| dt / sigma ~ 1e-9 of itself)
+_NO_ADVANCE = 1e-10
 
 
 @dataclass
@@ -51,6 +59,7 @@ class TireStep:
     r: np.ndarray  # (n, 3) contact point - wheel centre, global
     moment: np.ndarray  # (n, 3) tyre moments (Mx, My, Mz; not the moment of F), global
     spin_axis: np.ndarray  # (n, 3)
+    S: np.ndarray | None = None  # (n, 3, 3) dF/dtheta, small global rotation of the carrier
 
 
 class ImplicitTires:
@@ -88,20 +97,22 @@ class ImplicitTires:
         out["force"] = np.zeros((self.n, 3))
         prev = self._prev
         for tire, ix in self.groups:
-            if prev is None:
-                v, w, om = kin["v"][ix], kin["w"][ix], kin["omega"][ix]
-            else:
-                v = 0.5 * (kin["v"][ix] + prev["v"][ix])
-                w = 0.5 * (kin["w"][ix] + prev["w"][ix])
-                om = 0.5 * (kin["omega"][ix] + prev["omega"][ix])
             st = self.state[id(tire)]
-            wf = tire.wheel_forces(kin["C"][ix], kin["s"][ix], om, v,
+            if prev is not None and tire.relaxation:
+                # the relaxation over the step: every input (velocities and geometry) at
+                # the mean of its values at the two ends (trapezoidal, second order)
+                mid = {k: 0.5 * (kin[k][ix] + prev[k][ix]) for k in _TRACKED}
+                st = tire.wheel_forces(mid["C"], mid["s"], mid["omega"], mid["v"],
+                                       road_height=mid["h_road"], road_normal=mid["n_road"],
+                                       angular_velocity=mid["w"], mirror=self.mirror[ix],
+                                       state=st, dt=h).state
+                self.state[id(tire)] = st
+            # the force now: the new state, nothing advanced
+            wf = tire.wheel_forces(kin["C"][ix], kin["s"][ix], kin["omega"][ix], kin["v"][ix],
                                    road_height=kin["h_road"][ix],
-                                   road_normal=kin["n_road"][ix], angular_velocity=w,
-                                   mirror=self.mirror[ix], state=st if prev else None,
-                                   dt=h if prev else None)
-            if prev is not None and wf.state is not None:
-                self.state[id(tire)] = wf.state
+                                   road_normal=kin["n_road"][ix], angular_velocity=kin["w"][ix],
+                                   mirror=self.mirror[ix], state=st if tire.relaxation else None,
+                                   dt=_NO_ADVANCE if tire.relaxation else None)
             out["Fx"][ix], out["Fy"][ix], out["Fz"][ix] = wf.Fx, wf.Fy, wf.Fz
             out["force"][ix] = wf.force
         return out
@@ -113,14 +124,20 @@ class ImplicitTires:
         Dv = np.zeros((n, 3, 3))
         dw = np.zeros((n, 3))
         A = np.zeros((n, 3))
+        S = np.zeros((n, 3, 3))
         r = np.zeros((n, 3))
         M = np.zeros((n, 3))
         for tire, ix in self.groups:
             m = len(ix)
             C, s, v = kin["C"][ix], kin["s"][ix], kin["v"][ix]
             w, om = kin["w"][ix], kin["omega"][ix]
-            rows = 6
+            rows = 9
             CC = self._stack(C, rows)
+            SS = self._stack(s, rows)
+            for k in range(3):  # the carrier turned by DTH about global x, y, z
+                e = np.zeros(3)
+                e[k] = DTH
+                SS[(6 + k) * m:(7 + k) * m] += np.cross(e, s)
             VV = self._stack(v, rows)
             OM = np.concatenate([om] * rows)
             VV[m:2 * m, 0] += DV
@@ -134,33 +151,38 @@ class ImplicitTires:
             dz = np.where(np.abs(dz) > DZ, dz, DZ)
             CC[5 * m:6 * m, 2] += dz
             st = self.state[id(tire)]
-            from flexpipe.tires import SlipState
-
-            big = SlipState(np.concatenate([st.kappa] * rows),
-                            np.concatenate([st.tan_alpha] * rows))
             relax = bool(tire.relaxation)
+            args = dict(road_height=np.concatenate([road_ahead[ix]] * rows),
+                        road_normal=self._stack(kin["n_road"][ix], rows),
+                        angular_velocity=self._stack(w, rows),
+                        mirror=np.concatenate([self.mirror[ix]] * rows))
             wf = tire.wheel_forces(
-                CC, self._stack(s, rows), OM, VV, road_height=np.concatenate(
-                    [road_ahead[ix]] * rows), road_normal=self._stack(kin["n_road"][ix], rows),
-                angular_velocity=self._stack(w, rows),
-                mirror=np.concatenate([self.mirror[ix]] * rows), state=big if relax else None,
-                dt=h if relax else None)
+                CC, SS, OM, VV, **args, dt=h if relax else None,
+                state=SlipState(np.tile(st.kappa, rows), np.tile(st.tan_alpha, rows))
+                if relax else None)
             # force at the contact point and the tyre's own moments (not the moment of F)
             P = wf.contact_point[:m]
-            Fb = wf.force[:m]
             F = wf.force.reshape(rows, m, 3)
+            Fb = F[0]
             own = wf.moment - _cross(wf.contact_point - CC, wf.force)
-            half = 0.5 if relax else 1.0
-            horiz = np.array([half, half, 1.0])  # relaxed horizontal, direct vertical
+            G = F
+            if relax:
+                # each input acts directly (load, contact frame: full) and through the
+                # slip velocities the corrector averages over the step (half): the direct
+                # part is the force of the perturbed inputs with the slip state held
+                held = SlipState(np.tile(wf.state.kappa[:m], rows),
+                                 np.tile(wf.state.tan_alpha[:m], rows))
+                Fd = tire.wheel_forces(CC, SS, OM, VV, **args, state=held,
+                                       dt=_NO_ADVANCE).force.reshape(rows, m, 3)
+                G = Fd + 0.5 * (F - Fd)
             for k in range(3):
-                dF = (F[1 + k] - Fb) / DV
-                if k < 2:
-                    dF = dF * horiz
-                Dv[ix, :, k] = dF
-            dw[ix] = (F[4] - Fb) / DW * horiz
-            A[ix] = (F[5] - Fb) / dz[:, None]
+                Dv[ix, :, k] = (G[1 + k] - Fb) / DV
+                S[ix, :, k] = (G[6 + k] - Fb) / DTH
+            dw[ix] = (G[4] - Fb) / DW
+            A[ix] = (G[5] - Fb) / dz[:, None]
             F0[ix] = Fb
             r[ix] = P - C
             M[ix] = own[:m]
-        self._prev = {k: kin[k].copy() for k in ("v", "w", "omega")}
-        return TireStep(F0=F0, Dv=Dv, dw=dw, A=A, r=r, moment=M, spin_axis=kin["s"].copy())
+        self._prev = {k: kin[k].copy() for k in _TRACKED}
+        return TireStep(F0=F0, Dv=Dv, dw=dw, A=A, r=r, moment=M, spin_axis=kin["s"].copy(),
+                        S=S)

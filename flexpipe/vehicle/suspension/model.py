@@ -12,6 +12,7 @@ names the body mount (``front_lower_arm_front_l``) where the flexible body is lo
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -194,7 +195,7 @@ class ForceElement:
         object.__setattr__(self, "point", _vec(self.point))
         object.__setattr__(self, "body_point", _vec(self.body_point))
 
-    @property
+    @cached_property
     def design_length(self) -> float:
         """Length at the design position (m)."""
         return float(np.linalg.norm(self.point - self.body_point))
