@@ -98,7 +98,7 @@ def test_animate_frames_match_output_steps_nodes_and_hardpoint_motion(straight, 
             np.testing.assert_allclose(d[itf.nodes], want, rtol=0, atol=1e-6)
             assert np.abs(want).max() > 1e-6  # the interface does move
             checked += 1
-    assert checked == 12
+    assert checked == 3 * len(body.interfaces) >= 12  # every mount, three frames
 
 
 def test_stress_command_and_result_motion(straight, capsys):

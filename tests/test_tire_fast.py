@@ -79,3 +79,29 @@ def test_compiled_path_rejects_what_the_numpy_path_rejects():
     with pytest.raises(InputError, match="dt"):
         tire.wheel_forces([0.0, 0.0, 0.3], [0.0, 1.0, 0.0], 50.0, [15.0, 0.0, 0.0],
                           road_height=0.0, state=SlipState.zeros(1))
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_zero_step_reads_the_force_of_the_state_as_it_is(compiled):
+    """dt = 0: the relaxed slips stay as given (the exact update at dt = 0 is the
+    identity) and the force is the Magic Formula of those slips."""
+    tire = tire_from_file(FILES[0], relaxation=True)
+    rng = np.random.default_rng(3)
+    C, s, omega, v, kw = _inputs(rng, 8, tire.unloaded_radius)
+    kw["dt"] = 0.0
+    if compiled:
+        out = tire.wheel_forces(C, s, omega, v, **kw)
+    else:
+        out = TireModel.wheel_forces(tire, C, s, omega, v, **kw)
+    touch = out.Fz > 0
+    assert touch.sum() >= 6
+    np.testing.assert_allclose(out.state.kappa[touch], kw["state"].kappa[touch], rtol=1e-14)
+    np.testing.assert_allclose(out.state.tan_alpha[touch], kw["state"].tan_alpha[touch],
+                               rtol=1e-14)
+    # Fx and Fy (not My) are independent of the contact speed given the slips
+    sf = tire.slip_forces(out.kappa, out.alpha, out.Fz, out.gamma, mirror=kw["mirror"],
+                          mu_scale=kw["mu_scale"])
+    np.testing.assert_allclose(out.alpha[touch], np.arctan(kw["state"].tan_alpha[touch]),
+                               rtol=1e-14)
+    np.testing.assert_allclose(out.Fx, sf.Fx, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(out.Fy, sf.Fy, rtol=1e-12, atol=1e-9)

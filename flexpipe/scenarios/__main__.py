@@ -16,7 +16,7 @@ def main(argv=None) -> int:
                                             "summary.json.")
     p.add_argument("name", choices=sorted(SCENARIOS), help="scenario")
     p.add_argument("--out", required=True, help="output directory")
-    p.add_argument("--car", default=None, help="car file (default: cars/sedan.toml)")
+    p.add_argument("--car", default=None, help="car file (default: cars/sedan_linkage.toml)")
     p.add_argument("--t-end", type=float, default=None, help="simulated time, s")
     p.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
     args = p.parse_args(argv)

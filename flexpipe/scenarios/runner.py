@@ -13,7 +13,7 @@ from flexpipe._io import write_text_atomic
 from flexpipe.errors import FlexpipeError, InputError
 
 ROOT = Path(__file__).resolve().parents[2]
-DEFAULT_CAR = ROOT / "cars" / "sedan.toml"
+DEFAULT_CAR = ROOT / "cars" / "sedan_linkage.toml"
 
 
 def _straight_road():

@@ -197,7 +197,8 @@ class TireModel:
             state holds the kinematic slips).  Lifted wheels get a zero state; the state is
             bounded to ``|kappa'| <= 1.5``, ``|tan alpha'| <= 10``.
         dt : float, optional
-            Step length, s (needed with ``state``).
+            Step length, s (needed with ``state``); 0 gives the force of ``state`` as it
+            is, without advancing it.
 
         Returns
         -------
@@ -243,8 +244,9 @@ class TireModel:
 
         new_state = None
         if self.relaxation and state is not None:
-            if dt is None or not dt > 0:
-                raise InputError("dt > 0 is required with a relaxation state", key="dt")
+            if dt is None or not dt >= 0:
+                raise InputError("dt >= 0 is required with a relaxation state (0: the "
+                                 "force of the state as it is)", key="dt")
             sk, sa = self.relaxation_lengths(np.maximum(Fz, 1e-3), gamma)
             has_k = sk > 0  # False for nan (no relaxation data)
             has_a = sa > 0

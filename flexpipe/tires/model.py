@@ -131,8 +131,9 @@ class Pac2002Tire(TireModel):
         has_w = angular_velocity is not None
         w = rows(angular_velocity, 3) if has_w else v
         C = rows(C, 3)
-        if self.relaxation and state is not None and (dt is None or not dt > 0):
-            raise InputError("dt > 0 is required with a relaxation state", key="dt")
+        if self.relaxation and state is not None and (dt is None or not dt >= 0):
+            raise InputError("dt >= 0 is required with a relaxation state (0: the force of "
+                             "the state as it is)", key="dt")
         st = state if state is not None else SlipState.zeros(m)
         q = self._packed()
         out = np.empty((m, 31))

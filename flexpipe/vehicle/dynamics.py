@@ -262,11 +262,15 @@ class CarController:
         # brakes oppose the rolling direction
         if self.torque < 0:
             T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
-        Ms = np.einsum("ij,ij->i", ts.moment, s_axis)
         if self.v_target == 0.0:  # parking brake: viscous, at half the explicit limit
             T = -0.5 * self.spin_inertia / self.h * st.spin_rate
-        spin_torque = T + Ms
-        carrier_moment = ts.moment - Ms[:, None] * s_axis
+        if ts.moment_lin is not None:  # the tyre's own moment is in the implicit element
+            spin_torque = np.asarray(T, dtype=float) * np.ones(4)
+            carrier_moment = np.zeros((4, 3))
+        else:
+            Ms = np.einsum("ij,ij->i", ts.moment, s_axis)
+            spin_torque = T + Ms
+            carrier_moment = ts.moment - Ms[:, None] * s_axis
 
         from flexpipe.exu.car import CarLoads
 

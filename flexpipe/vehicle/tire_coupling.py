@@ -13,18 +13,20 @@ the force on each wheel at the *end* of the step is written as
 height ``z``, small rotation ``theta`` of the carrier over the step: steer, toe and camber
 changes turn the contact frame and the slip velocities) and handed to the implicit
 integrator as a linear force element, so the integrator balances it at the end of the
-step like any spring or damper.  ``F0`` is the
-force predicted for the end of the step with the velocities held (road height taken
-under the wheel where it will be), the derivatives come from one batched evaluation of the
-tyre model with perturbed inputs.
+step like any spring or damper.  The tyre's own moments (aligning, overturning, rolling
+resistance) are linearized the same way and enter the same element.  ``F0`` is the force
+predicted for the end of the step with the inputs held (road height taken under the wheel
+where it will be); the derivatives come from batched evaluations of the tyre model with
+perturbed inputs.
 
-Relaxation (first-order, slip-velocity form) is integrated with the input varying
-linearly over the step: at the start of the next step the state is *corrected* with the
-mean of the old and the new slip velocities (trapezoidal input in the exact exponential
-update, second order), and the sensitivity of the end-of-step force to the end-of-step
-velocities is half the full-step one for the relaxed channels.  The channels without
-relaxation (vertical force, everything for a model without relaxation) use the full
-sensitivity.
+Relaxation (first-order, slip-velocity form) is integrated with the inputs varying
+linearly over the step: at the start of the next step the state is *corrected* with every
+input (velocities, spin, wheel position and axis, road height and normal) at the mean of
+its values at the two ends of the step (trapezoidal input in the exact exponential update,
+second order).  Each input therefore acts on the end-of-step force directly (load,
+contact frame: full sensitivity) and through the relaxed slips (half): the predictor
+separates the two by evaluating the perturbed inputs once with the slip state advanced
+and once with it held.
 
 Low speed: the slip velocities are regularised at ``VXLOW`` by the tyre model; at
 standstill the relaxation state is a spring (``du/dt = w``) that is now implicit, so a
@@ -43,9 +45,6 @@ from flexpipe.tires.contact import SlipState, _cross
 DV, DW, DZ, DTH = 1e-3, 1e-2, 1e-5, 1e-5
 #: wheel inputs the corrector averages over the step
 _TRACKED = ("C", "s", "v", "w", "omega", "h_road", "n_road")
-#: step (s) for reading the force of a relaxation state without advancing it (the state
-#: then moves by |Vx| dt / sigma ~ 1e-9 of itself)
-_NO_ADVANCE = 1e-10
 
 
 @dataclass
@@ -60,6 +59,15 @@ class TireStep:
     moment: np.ndarray  # (n, 3) tyre moments (Mx, My, Mz; not the moment of F), global
     spin_axis: np.ndarray  # (n, 3)
     S: np.ndarray | None = None  # (n, 3, 3) dF/dtheta, small global rotation of the carrier
+    #: the own moment's derivatives (dM/dv_P, dM/domega, dM/dz, dM/dtheta), like the force's
+    moment_lin: tuple | None = None
+
+
+def _force_and_moment(out, C, rows, m):
+    """(rows, m, 6): the force at the contact point and the tyre's own moment (not the
+    moment of the force about the wheel centre ``C``)."""
+    own = out.moment - _cross(out.contact_point - C, out.force)
+    return np.concatenate([out.force, own], axis=1).reshape(rows, m, 6)
 
 
 class ImplicitTires:
@@ -112,7 +120,7 @@ class ImplicitTires:
                                    road_height=kin["h_road"][ix],
                                    road_normal=kin["n_road"][ix], angular_velocity=kin["w"][ix],
                                    mirror=self.mirror[ix], state=st if tire.relaxation else None,
-                                   dt=_NO_ADVANCE if tire.relaxation else None)
+                                   dt=0.0 if tire.relaxation else None)
             out["Fx"][ix], out["Fy"][ix], out["Fz"][ix] = wf.Fx, wf.Fy, wf.Fz
             out["force"][ix] = wf.force
         return out
@@ -121,10 +129,10 @@ class ImplicitTires:
         """Force predicted for the end of the coming step and its derivatives."""
         n = self.n
         F0 = np.zeros((n, 3))
-        Dv = np.zeros((n, 3, 3))
-        dw = np.zeros((n, 3))
-        A = np.zeros((n, 3))
-        S = np.zeros((n, 3, 3))
+        Dv = np.zeros((n, 6, 3))  # rows: force (3), the tyre's own moment (3)
+        dw = np.zeros((n, 6))
+        A = np.zeros((n, 6))
+        S = np.zeros((n, 6, 3))
         r = np.zeros((n, 3))
         M = np.zeros((n, 3))
         for tire, ix in self.groups:
@@ -160,29 +168,31 @@ class ImplicitTires:
                 CC, SS, OM, VV, **args, dt=h if relax else None,
                 state=SlipState(np.tile(st.kappa, rows), np.tile(st.tan_alpha, rows))
                 if relax else None)
-            # force at the contact point and the tyre's own moments (not the moment of F)
+            # force at the contact point and the tyre's own moments (not the moment of F),
+            # one 6-vector per row
             P = wf.contact_point[:m]
-            F = wf.force.reshape(rows, m, 3)
-            Fb = F[0]
-            own = wf.moment - _cross(wf.contact_point - CC, wf.force)
-            G = F
+
+            Y = _force_and_moment(wf, CC, rows, m)
+            Yb = Y[0]
+            G = Y
             if relax:
                 # each input acts directly (load, contact frame: full) and through the
                 # slip velocities the corrector averages over the step (half): the direct
                 # part is the force of the perturbed inputs with the slip state held
                 held = SlipState(np.tile(wf.state.kappa[:m], rows),
                                  np.tile(wf.state.tan_alpha[:m], rows))
-                Fd = tire.wheel_forces(CC, SS, OM, VV, **args, state=held,
-                                       dt=_NO_ADVANCE).force.reshape(rows, m, 3)
-                G = Fd + 0.5 * (F - Fd)
+                Yd = _force_and_moment(tire.wheel_forces(CC, SS, OM, VV, **args, state=held,
+                                                         dt=0.0), CC, rows, m)
+                G = Yd + 0.5 * (Y - Yd)
             for k in range(3):
-                Dv[ix, :, k] = (G[1 + k] - Fb) / DV
-                S[ix, :, k] = (G[6 + k] - Fb) / DTH
-            dw[ix] = (G[4] - Fb) / DW
-            A[ix] = (G[5] - Fb) / dz[:, None]
-            F0[ix] = Fb
+                Dv[ix, :, k] = (G[1 + k] - Yb) / DV
+                S[ix, :, k] = (G[6 + k] - Yb) / DTH
+            dw[ix] = (G[4] - Yb) / DW
+            A[ix] = (G[5] - Yb) / dz[:, None]
+            F0[ix] = Yb[:, :3]
             r[ix] = P - C
-            M[ix] = own[:m]
+            M[ix] = Yb[:, 3:]
         self._prev = {k: kin[k].copy() for k in _TRACKED}
-        return TireStep(F0=F0, Dv=Dv, dw=dw, A=A, r=r, moment=M, spin_axis=kin["s"].copy(),
-                        S=S)
+        return TireStep(F0=F0, Dv=Dv[:, :3], dw=dw[:, :3], A=A[:, :3], r=r, moment=M,
+                        spin_axis=kin["s"].copy(), S=S[:, :3],
+                        moment_lin=(Dv[:, 3:], dw[:, 3:], A[:, 3:], S[:, 3:]))
