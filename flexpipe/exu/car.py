@@ -46,8 +46,11 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
+from flexpipe.exu._tire_element import element, element_numpy
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
 from flexpipe.reduction._threads import openblas_single_threaded
+from flexpipe.tires._fast import enabled as jit_enabled
+from flexpipe.tires.contact import _cross
 
 OV = exu.OutputVariableType
 
@@ -300,7 +303,7 @@ class CarSystem:
         mR = np.array([gm(m, OV.RotationMatrix) for m in self.mount]).reshape(4, 3, 3)
         r = np.einsum("nij,nj->ni", wR, self.slide_local)
         ps = wp + r
-        vs = wv + np.cross(ww, r)
+        vs = wv + _cross(ww, r)
         jounce = np.einsum("ni,ni->n", mR[:, :, 2], ps - mp) - self.travel0
         rate = np.einsum("ni,ni->n", mR[:, :, 2], vs - mv)
         return CarState(
@@ -371,52 +374,17 @@ class CarSystem:
         tyre's own moment linearized alike (Exudyn's convention: ``D q_t + K q = f``)."""
         n = len(self.wheel_node)
         ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
-        e0, e1, e2, e3 = ep.T
-        G = 2.0 * np.stack([np.stack([-e1, e0, -e3, e2], 1), np.stack([-e2, e3, e0, -e1], 1),
-                            np.stack([-e3, -e2, e1, e0], 1)], 1)  # (n, 3, 4)
-        r, s = ts.r, ts.spin_axis
-        z = np.zeros(n)
-        rx = np.stack([np.stack([z, -r[:, 2], r[:, 1]], 1), np.stack([r[:, 2], z, -r[:, 0]], 1),
-                       np.stack([-r[:, 1], r[:, 0], z], 1)], 1)  # (n, 3, 3)
-        P = np.eye(3) - s[:, :, None] * s[:, None, :]
-        J = np.zeros((n, 3, 8))  # contact-point velocity of the wheel (spin included)
-        J[:, :, :3] = np.eye(3)
-        J[:, :, 3:7] = -rx @ G
-        J[:, :, 7] = -(rx @ s[:, :, None])[:, :, 0]  # s x r
-        Jc = J.copy()  # contact-point velocity of the carrier (no spin)
-        Jc[:, :, 3:7] = -rx @ P @ G
-        Jc[:, :, 7] = 0.0
-        Jw = np.zeros((n, 8))  # absolute spin rate about s
-        Jw[:, 3:7] = (s[:, None, :] @ G)[:, 0]
-        Jw[:, 7] = 1.0
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
-        vP = (Jc @ qt[:, :, None])[:, :, 0]
-        om = (Jw * qt).sum(axis=1)
-        JT = J.transpose(0, 2, 1)
-        D = -JT @ (ts.Dv @ Jc + ts.dw[:, :, None] * Jw[:, None, :])
-        K = np.zeros((n, 8, 8))
-        K[:, :, 2] = -(JT @ ts.A[:, :, None])[:, :, 0]
-        rhs = ts.F0 - (ts.Dv @ vP[:, :, None])[:, :, 0] - ts.dw * om[:, None] \
-            - ts.A * st.wheel_q[:, 2:3]
-        if ts.S is not None:  # carrier rotation: theta = G (e - e_n), global
-            SG = ts.S @ G
-            K[:, :, 3:7] = -JT @ SG
-            rhs = rhs - (SG @ st.wheel_q[:, 3:7, None])[:, :, 0]
-        f = (JT @ rhs[:, :, None])[:, :, 0]
-        if ts.moment_lin is not None:  # the tyre's own moment, linearized alike: the part
-            # about the spin axis on the spin coordinate, the rest on the carrier
-            DMv, dMw, AM, SM = ts.moment_lin
-            JM = np.zeros((n, 3, 8))
-            JM[:, :, 3:7] = P @ G
-            JM[:, :, 7] = s
-            JMT = JM.transpose(0, 2, 1)
-            D = D - JMT @ (DMv @ Jc + dMw[:, :, None] * Jw[:, None, :])
-            K[:, :, 2] -= (JMT @ AM[:, :, None])[:, :, 0]
-            SMG = SM @ G
-            K[:, :, 3:7] -= JMT @ SMG
-            rhs_m = ts.moment - (DMv @ vP[:, :, None])[:, :, 0] - dMw * om[:, None] \
-                - AM * st.wheel_q[:, 2:3] - (SMG @ st.wheel_q[:, 3:7, None])[:, :, 0]
-            f = f + (JMT @ rhs_m[:, :, None])[:, :, 0]
+        zero3, zero33 = np.zeros((n, 3)), np.zeros((n, 3, 3))
+        DMv, dMw, AM, SM = ts.moment_lin or (zero33, zero3, zero3, zero33)
+        S = ts.S if ts.S is not None else zero33
+        M0 = ts.moment if ts.moment_lin is not None else zero3
+        args = [np.ascontiguousarray(a, dtype=float) for a in (
+            ep, ts.r, ts.spin_axis, qt, st.wheel_q, np.concatenate([ts.F0, M0], axis=1),
+            np.concatenate([ts.Dv, DMv], axis=1), np.concatenate([ts.dw, dMw], axis=1),
+            np.concatenate([ts.A, AM], axis=1), np.concatenate([S, SM], axis=1))]
+        kernel = element if jit_enabled() else element_numpy
+        D, K, f = kernel(*args)
         return D, K, f
 
     # ------------------------------------------------------------------ time loop

@@ -26,6 +26,7 @@ from flexpipe.errors import InputError
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
 from flexpipe.exu.car import CarState, CarSystem
 from flexpipe.exu.linkage import LinkageModel
+from flexpipe.tires.contact import _cross
 
 OV = exu.OutputVariableType
 #: mass and inertia of a mount bracket (numerical only: its motion is fully constrained,
@@ -157,7 +158,7 @@ class LinkageCarSystem(CarSystem):
         wp, wv, wR, ww, spin, wq, wqt = self._wheel_state()
         local = (wp - body_p) @ body_R
         jounce = local[:, 2] - self.design_wheel[:, 2]
-        vrel = (wv - body_v - np.cross(body_w, wp - body_p)) @ body_R
+        vrel = (wv - body_v - _cross(np.broadcast_to(body_w, wp.shape), wp - body_p)) @ body_R
         return CarState(t=t, body_p=body_p, body_R=body_R, body_v=body_v, body_w=body_w,
                         wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
                         jounce=jounce, jounce_rate=vrel[:, 2], joint_force=None,

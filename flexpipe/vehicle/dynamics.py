@@ -171,7 +171,7 @@ class CarController:
 
     # ------------------------------------------------------------------ pieces
     def road_contact(self, P: np.ndarray):
-        """Road height (4,) and upward unit normal (4, 3) under points P (4, 3)."""
+        """Road height (n,) and upward unit normal (n, 3) under points P (n, 3)."""
         e = 0.05
         x = np.concatenate([P[:, 0], P[:, 0] + e, P[:, 0] - e, P[:, 0], P[:, 0]])
         y = np.concatenate([P[:, 1], P[:, 1], P[:, 1], P[:, 1] + e, P[:, 1] - e])
@@ -243,17 +243,24 @@ class CarController:
         # force for the coming one (solved implicitly, flexpipe.vehicle.tire_coupling)
         s_axis = st.wheel_R[:, :, 1]
         omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
-        h_road, n_road = self.road_contact(st.wheel_p)
+        # road under the wheels now and where they will be at the end of the step (the
+        # force is balanced there: the normal's tilt carries the road slope into Fx, Fy)
+        ahead = st.wheel_p + self.h * st.wheel_v
+        heights, normals = self.road_contact(np.vstack([st.wheel_p, ahead]))
+        h_road, n_road = heights[:4], normals[:4]
+        road_ahead, n_ahead = heights[4:], normals[4:]
         kin = {"C": st.wheel_p, "s": s_axis, "v": st.wheel_v, "omega": omega,
                "w": st.wheel_w + st.spin_rate[:, None] * s_axis,
                "h_road": h_road, "n_road": n_road}
         now = self.tires.correct(kin, self.h)
         Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
         F_applied = self._applied_tire_force(st, s_axis, omega)
-        # road height and normal where the wheels will be at the end of the step (the
-        # force is balanced there): the normal's tilt carries the road slope into Fx, Fy
+        # road under the wheels now and where they will be at the end of the step (the
+        # force is balanced there: the normal's tilt carries the road slope into Fx, Fy)
         ahead = st.wheel_p + self.h * st.wheel_v
-        road_ahead, n_ahead = self.road_contact(ahead)
+        heights, normals = self.road_contact(np.vstack([st.wheel_p, ahead]))
+        h_road, n_road = heights[:4], normals[:4]
+        road_ahead, n_ahead = heights[4:], normals[4:]
         ts = self.tires.predict(dict(kin, n_road=n_ahead), self.h, road_ahead)
         if not (np.all(np.isfinite(ts.F0)) and np.all(np.isfinite(ts.Dv))):
             return self._fail(st.t, "tyre forces became non-finite")

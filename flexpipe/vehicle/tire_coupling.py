@@ -142,10 +142,9 @@ class ImplicitTires:
             rows = 9
             CC = self._stack(C, rows)
             SS = self._stack(s, rows)
-            for k in range(3):  # the carrier turned by DTH about global x, y, z
-                e = np.zeros(3)
-                e[k] = DTH
-                SS[(6 + k) * m:(7 + k) * m] += np.cross(e, s)
+            E = np.zeros((3 * m, 3))  # the carrier turned by DTH about global x, y, z
+            E[np.arange(3 * m), np.repeat(np.arange(3), m)] = DTH
+            SS[6 * m:] += _cross(E, np.concatenate([s] * 3))
             VV = self._stack(v, rows)
             OM = np.concatenate([om] * rows)
             VV[m:2 * m, 0] += DV

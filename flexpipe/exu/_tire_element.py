@@ -1,0 +1,136 @@
+"""The tyre's linear element on a wheel carrier, compiled (Numba): D, K, f per wheel.
+
+:meth:`flexpipe.exu.car.CarSystem.tire_matrices` maps the per-step linearization of the
+tyre force and moment (:class:`flexpipe.vehicle.tire_coupling.TireStep`) onto the eight
+coordinates of a wheel: the carrier node's position and Euler parameters and the spin
+coordinate.  With ``Y = (F, M)`` (force at the contact point, the tyre's own moment),
+
+    Y = Y0 + DY (v_P - v_P,n) + dY (omega - omega_n) + AY (z - z_n) + SY G (e - e_n)
+
+and ``JY`` the map from coordinate rates to (contact-point velocity of the wheel, the
+rotation the moment works on), the element is ``D = -JY^T (DY Jc + dY Jw)``,
+``K[:, z] = -JY^T AY``, ``K[:, e] = -JY^T SY G`` and ``f = JY^T (Y0 - DY v_P,n - ...)``.
+The moment's part about the spin axis goes to the spin coordinate, the rest to the
+carrier.  ``tests/test_tire_element.py`` checks the compiled kernel against the NumPy
+formulation (:func:`element_numpy`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flexpipe.tires._fast import _jit
+
+
+def _g_matrix(e):
+    """Global G of Euler parameters: omega = G de/dt, (3, 4)."""
+    e0, e1, e2, e3 = e
+    return 2.0 * np.array([[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]])
+
+
+def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
+    """Reference formulation, one wheel at a time with NumPy (see module docstring)."""
+    n = ep.shape[0]
+    D, K, f = np.zeros((n, 8, 8)), np.zeros((n, 8, 8)), np.zeros((n, 8))
+    for i in range(n):
+        G = _g_matrix(ep[i])
+        rx = np.array([[0.0, -r[i, 2], r[i, 1]], [r[i, 2], 0.0, -r[i, 0]],
+                       [-r[i, 1], r[i, 0], 0.0]])
+        P = np.eye(3) - np.outer(s[i], s[i])
+        JY = np.zeros((6, 8))
+        JY[:3, :3] = np.eye(3)
+        JY[:3, 3:7] = -rx @ G
+        JY[:3, 7] = -rx @ s[i]
+        JY[3:, 3:7] = P @ G
+        JY[3:, 7] = s[i]
+        Jc = np.zeros((3, 8))
+        Jc[:, :3] = np.eye(3)
+        Jc[:, 3:7] = -rx @ P @ G
+        Jw = np.zeros(8)
+        Jw[3:7] = s[i] @ G
+        Jw[7] = 1.0
+        vP, om = Jc @ qt[i], Jw @ qt[i]
+        SG = SY[i] @ G
+        D[i] = -JY.T @ (DY[i] @ Jc + np.outer(dY[i], Jw))
+        K[i, :, 2] = -JY.T @ AY[i]
+        K[i, :, 3:7] = -JY.T @ SG
+        rhs = Y0[i] - DY[i] @ vP - dY[i] * om - AY[i] * q[i, 2] - SG @ q[i, 3:7]
+        f[i] = JY.T @ rhs
+    return D, K, f
+
+
+@_jit
+def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
+    """Compiled :func:`element_numpy` (explicit loops over the small matrices)."""
+    n = ep.shape[0]
+    D = np.zeros((n, 8, 8))
+    K = np.zeros((n, 8, 8))
+    f = np.zeros((n, 8))
+    G = np.zeros((3, 4))
+    JY = np.zeros((6, 8))
+    Jc = np.zeros((3, 8))
+    Jw = np.zeros(8)
+    PG = np.zeros((3, 4))
+    for i in range(n):
+        e0, e1, e2, e3 = ep[i, 0], ep[i, 1], ep[i, 2], ep[i, 3]
+        G[0, 0], G[0, 1], G[0, 2], G[0, 3] = -2 * e1, 2 * e0, -2 * e3, 2 * e2
+        G[1, 0], G[1, 1], G[1, 2], G[1, 3] = -2 * e2, 2 * e3, 2 * e0, -2 * e1
+        G[2, 0], G[2, 1], G[2, 2], G[2, 3] = -2 * e3, -2 * e2, 2 * e1, 2 * e0
+        r0, r1, r2 = r[i, 0], r[i, 1], r[i, 2]
+        s0, s1, s2 = s[i, 0], s[i, 1], s[i, 2]
+        sv = (s0, s1, s2)
+        JY[:, :] = 0.0
+        Jc[:, :] = 0.0
+        for a in range(3):
+            JY[a, a] = 1.0
+            Jc[a, a] = 1.0
+        # P G and s^T G
+        for c in range(4):
+            sg = s0 * G[0, c] + s1 * G[1, c] + s2 * G[2, c]
+            Jw[3 + c] = sg
+            for a in range(3):
+                PG[a, c] = G[a, c] - sv[a] * sg
+        Jw[0], Jw[1], Jw[2], Jw[7] = 0.0, 0.0, 0.0, 1.0
+        for c in range(4):
+            # -r x (G col), -r x (PG col): rows of -rx @ X
+            g0, g1, g2 = G[0, c], G[1, c], G[2, c]
+            JY[0, 3 + c] = -(r1 * g2 - r2 * g1)
+            JY[1, 3 + c] = -(r2 * g0 - r0 * g2)
+            JY[2, 3 + c] = -(r0 * g1 - r1 * g0)
+            p0, p1, p2 = PG[0, c], PG[1, c], PG[2, c]
+            Jc[0, 3 + c] = -(r1 * p2 - r2 * p1)
+            Jc[1, 3 + c] = -(r2 * p0 - r0 * p2)
+            Jc[2, 3 + c] = -(r0 * p1 - r1 * p0)
+            JY[3, 3 + c], JY[4, 3 + c], JY[5, 3 + c] = p0, p1, p2
+        JY[0, 7] = -(r1 * s2 - r2 * s1)
+        JY[1, 7] = -(r2 * s0 - r0 * s2)
+        JY[2, 7] = -(r0 * s1 - r1 * s0)
+        JY[3, 7], JY[4, 7], JY[5, 7] = s0, s1, s2
+        vP = np.zeros(3)
+        om = 0.0
+        for c in range(8):
+            om += Jw[c] * qt[i, c]
+            for a in range(3):
+                vP[a] += Jc[a, c] * qt[i, c]
+        # B = DY Jc + dY Jw^T (6, 8); SG = SY G (6, 4); rhs (6)
+        rhs = np.zeros(6)
+        for k in range(6):
+            acc = Y0[i, k] - dY[i, k] * om - AY[i, k] * q[i, 2]
+            for a in range(3):
+                acc -= DY[i, k, a] * vP[a]
+            for c in range(4):
+                sgk = SY[i, k, 0] * G[0, c] + SY[i, k, 1] * G[1, c] + SY[i, k, 2] * G[2, c]
+                acc -= sgk * q[i, 3 + c]
+                for j in range(8):
+                    K[i, j, 3 + c] -= JY[k, j] * sgk
+            rhs[k] = acc
+            for c in range(8):
+                b = dY[i, k] * Jw[c]
+                for a in range(3):
+                    b += DY[i, k, a] * Jc[a, c]
+                for j in range(8):
+                    D[i, j, c] -= JY[k, j] * b
+            for j in range(8):
+                K[i, j, 2] -= JY[k, j] * AY[i, k]
+                f[i, j] += JY[k, j] * rhs[k]
+    return D, K, f

@@ -1,0 +1,72 @@
+"""The tyre's linear element on a wheel carrier (flexpipe.exu._tire_element).
+
+References: rigid-body kinematics written out here (virtual power of a force at the
+contact point and of a moment on the wheel, a spinning wheel on a carrier parameterized
+by position and Euler parameters), and the NumPy formulation for the compiled kernel.
+"""
+
+import numpy as np
+import pytest
+
+from flexpipe.exu._tire_element import element, element_numpy
+from flexpipe.tires import _fast
+
+
+def _case(rng, n=4):
+    e = rng.normal(size=(n, 4))
+    e /= np.linalg.norm(e, axis=1, keepdims=True)
+    s = rng.normal(size=(n, 3))
+    s /= np.linalg.norm(s, axis=1, keepdims=True)
+    return dict(ep=e, r=0.3 * rng.normal(size=(n, 3)), s=s, qt=rng.normal(size=(n, 8)),
+                q=0.01 * rng.normal(size=(n, 7)), Y0=rng.normal(size=(n, 6)) * 1e3,
+                DY=rng.normal(size=(n, 6, 3)) * 1e3, dY=rng.normal(size=(n, 6)) * 10.0,
+                AY=rng.normal(size=(n, 6)) * 1e5, SY=rng.normal(size=(n, 6, 3)) * 1e3)
+
+
+def _g(e):
+    e0, e1, e2, e3 = e
+    return 2.0 * np.array([[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]])
+
+
+@pytest.mark.skipif(not _fast.enabled(), reason="numba not installed")
+def test_compiled_element_equals_the_numpy_formulation():
+    c = _case(np.random.default_rng(0), n=6)
+    for a, b in zip(element(*c.values()), element_numpy(*c.values()), strict=True):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-9 * np.abs(b).max())
+
+
+def test_generalized_force_is_the_virtual_power_of_force_and_moment():
+    """At the linearization point (q, q_t) the element applies f - D q_t - K q; for any
+    virtual rate dq its power must be F . v_P(dq) + M . w(dq): v_P = dx + (w_c + s dth)
+    x r with w_c = G de (the wheel turning with its carrier and spinning about s), and
+    the moment's part about s on the spin, the rest on the carrier."""
+    rng = np.random.default_rng(1)
+    c = _case(rng)
+    D, K, f = element_numpy(*c.values())
+    for i in range(4):
+        gen = f[i] - D[i] @ c["qt"][i] - K[i, :, :7] @ c["q"][i]
+        F, M = c["Y0"][i, :3], c["Y0"][i, 3:]
+        s, r = c["s"][i], c["r"][i]
+        for _ in range(5):
+            dq = rng.normal(size=8)
+            w_c = _g(c["ep"][i]) @ dq[3:7]
+            vP = dq[:3] + np.cross(w_c + s * dq[7], r)
+            w_m = w_c - s * (s @ w_c) + s * dq[7]
+            np.testing.assert_allclose(gen @ dq, F @ vP + M @ w_m, rtol=1e-10)
+
+
+def test_linearized_force_follows_its_derivatives():
+    """Moving the carrier up by dz changes the applied generalized force by exactly
+    -K[:, z] dz, i.e. by J^T (AY dz): the height slope acts as a spring."""
+    c = _case(np.random.default_rng(2))
+    D, K, f = element_numpy(*c.values())
+    c2 = dict(c, q=c["q"].copy())
+    c2["q"][:, 2] += 1e-3
+    D2, K2, f2 = element_numpy(*c2.values())
+    for i in range(4):
+        g1 = f[i] - D[i] @ c["qt"][i] - K[i, :, :7] @ c["q"][i]
+        g2 = f[i] - D[i] @ c["qt"][i] - K[i, :, :7] @ c2["q"][i]
+        np.testing.assert_allclose(g2 - g1, -K[i, :, 2] * 1e-3, rtol=1e-12)
+        # the z coordinate moves the contact point by dz e_z and turns nothing: its row
+        # of the change is the vertical force's slope times dz
+        np.testing.assert_allclose((g2 - g1)[2], c["AY"][i, 2] * 1e-3, rtol=1e-9)
