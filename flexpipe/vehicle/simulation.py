@@ -205,9 +205,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Body model (see module docstring).
     h : float
         Time step, s (1e-5 .. 5e-3; default 2e-3).  Measured against h/8 on ISO class C at
-        70/100 km/h and on the slalom (``bench/bench_convergence.py``, README): rigid cars'
-        hub forces within 0.1-1.1 % (z) and 0.2-10.5 % (x, y) of their fluctuating part;
-        flexible bodies 0.4-2 % (z) but 1.5-41 % (x, y).  Check any run with
+        70/100 km/h and on the slalom (``bench/bench_convergence.py``, README, worst
+        corner): rigid cars' hub forces within 0.2-1.3 % (z) and 0.1-6.8 % (x, y) of
+        their fluctuating part; flexible bodies 0.5-2.3 % (z) but 1.2-41 % (x, y); the
+        flexible linkage car needs h = 0.5 ms for 5 % in x and y.  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float
         Output sampling interval, s (a multiple of ``h``).
