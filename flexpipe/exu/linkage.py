@@ -26,6 +26,7 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
+from flexpipe.exu import mount_sensors
 from flexpipe.exu.body import NODE_TYPE
 from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, BODY, RACK, RACK_MASS
 
@@ -374,72 +375,13 @@ class LinkageModel:
         return out
 
     def add_mount_sensors(self, body_node) -> None:
-        """Exudyn sensors (stored in memory) for everything :meth:`mount_forces` reads,
-        plus the body node's rotation: the per-mount forces of a whole run are then
-        recorded by Exudyn after every output step instead of by Python calls (measured
-        ~1 ms per step for the 30 mounts of ``cars/sedan_linkage.toml``).  Call before
-        the system is assembled; read with :meth:`mount_force_history`."""
-        mbs = self.mbs
-
-        def sensor(item):
-            return mbs.AddSensor(item(storeInternal=True, writeToFile=False))
-
-        def obj(co, ov):
-            return sensor(lambda **k: eii.SensorObject(objectNumber=co, outputVariableType=ov,
-                                                       **k))
-
-        def mark(m, ov):
-            return sensor(lambda **k: eii.SensorMarker(markerNumber=m, outputVariableType=ov,
-                                                       **k))
-
-        self._sensors = []
-        for _mount, co, kind, (m0, m1), _A in self.body_links:
-            if kind == "distance":
-                s = (obj(co, OV.Force), mark(m0, OV.Position), mark(m1, OV.Position))
-            elif kind.startswith("vector"):
-                s = (obj(co, OV.Force),)
-            else:
-                s = (obj(co, OV.ForceLocal), mark(m0, OV.RotationMatrix))
-            self._sensors.append(s)
-        self._body_sensor = sensor(lambda **k: eii.SensorNode(
-            nodeNumber=body_node, outputVariableType=OV.RotationMatrix, **k))
+        """Exudyn sensors for the per-mount forces (:mod:`flexpipe.exu.mount_sensors`)."""
+        mount_sensors.add(self, body_node)
 
     def mount_force_history(self, t: np.ndarray):
-        """Per-mount forces (body axes, N) at the times ``t`` from the sensors of
-        :meth:`add_mount_sensors`: ``{mount: (n, 3)}``, rows NaN where no sensor sample
-        lies within 1e-9 s of ``t`` (None without sensors)."""
-        if not getattr(self, "_sensors", None):
-            return None
-        mbs = self.mbs
-        get = mbs.GetSensorStoredData
-        rb = np.asarray(get(self._body_sensor), dtype=float).reshape(-1, 10)
-        ts = rb[:, 0]
-        t = np.asarray(t, dtype=float)
-        j = np.clip(np.searchsorted(ts, t - 1e-9), 0, max(len(ts) - 1, 0))
-        ok = (len(ts) > 0) & (np.abs(ts[j] - t) < 1e-9) if len(ts) else np.zeros(len(t), bool)
-        Rb = rb[j, 1:].reshape(-1, 3, 3)
-
-        def data(sid, width):
-            return np.asarray(get(sid), dtype=float).reshape(len(ts), -1)[j, 1:1 + width]
-
-        out = {}
-        for (mount, _co, kind, _m, A), sens in zip(self.body_links, self._sensors, strict=True):
-            if kind == "distance":
-                d = data(sens[2], 3) - data(sens[1], 3)
-                F = data(sens[0], 1) * d / np.linalg.norm(d, axis=1, keepdims=True)
-            elif kind.startswith("vector"):
-                F = data(sens[0], 3)
-            else:
-                R0 = data(sens[1], 9).reshape(-1, 3, 3)
-                F = np.einsum("nij,jk,nk->ni", R0, A, data(sens[0], 3))
-            if kind.endswith("-"):
-                F = -F
-            out[mount] = out.get(mount, 0.0) + F
-        for mount in out:
-            F = np.einsum("nji,nj->ni", Rb, out[mount])  # global -> body axes
-            F[~ok] = np.nan
-            out[mount] = F
-        return out
+        """Per-mount forces (body axes, N) at the times ``t`` from the sensors
+        (:func:`flexpipe.exu.mount_sensors.history`)."""
+        return mount_sensors.history(self, t)
 
     def hub_forces(self, F_tire: np.ndarray) -> np.ndarray:
         """Force (4, 3, global) each corner applies to the body through its own mounts:
