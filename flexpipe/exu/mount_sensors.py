@@ -50,7 +50,7 @@ def history(model, t: np.ndarray):
     """Per-mount forces (body axes, N) at the times ``t`` from the sensors of
     :func:`add`: ``{mount: (n, 3)}``, rows NaN where no sensor sample
     lies within 1e-9 s of ``t`` (None without sensors)."""
-    if not getattr(self, "_sensors", None):
+    if not getattr(model, "_sensors", None):
         return None
     mbs = model.mbs
     get = mbs.GetSensorStoredData
