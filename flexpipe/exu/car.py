@@ -38,7 +38,6 @@ suspensions instead of the prismatic corners and reuses the tyre coupling and ti
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 
 import exudyn as exu
@@ -46,9 +45,9 @@ import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
+from flexpipe.exu import timeloop
 from flexpipe.exu._tire_element import element, element_numpy
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
-from flexpipe.reduction._threads import openblas_single_threaded
 from flexpipe.tires._fast import enabled as jit_enabled
 from flexpipe.tires.contact import _cross
 
@@ -390,92 +389,7 @@ class CarSystem:
     # ------------------------------------------------------------------ time loop
     def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
             progress=None, jacobian_every_step: bool = False, output_step: float | None = None):
-        """Integrate to ``t_end`` with step ``h``; ``step(state) -> CarLoads | None``.
-
-        Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
-
-        ``step`` returns ``None`` to stop (e.g. divergence).  Returns
-        ``(completed, t_reached, cpu_seconds, wall_seconds, solver_message)``.
-        """
-        mbs = self.mbs
-        n_steps = int(round(t_end / h))
-        st = self.state(0.0)
-        loads = step(st)
-        if loads is None:
-            return False, 0.0, 0.0, 0.0, "stopped at the initial state"
-        self.apply(loads, st.mount_R, st)
-        last = {"t": 0.0, "n": 0}
-
-        self.prestep_cpu = 0.0  # CPU seconds spent in the Python step (profile)
-
-        def prestep(mbs_, t):
-            t0 = t - h  # the state is at the start of the step
-            if t0 <= 1e-12:
-                return True
-            c0 = time.thread_time()
-            st = self.state(t0)
-            loads = step(st)
-            last["t"] = t0
-            last["n"] += 1
-            if progress is not None and last["n"] % 100 == 0:
-                progress(100)
-            if loads is None:
-                return False
-            self.apply(loads, st.mount_R, st)
-            self.prestep_cpu += time.thread_time() - c0
-            return True
-
-        from flexpipe._signals import Interrupted, deferred_interrupts  # flexpipe#14
-
-        def guarded(mbs_, t):  # flexpipe#14: Ctrl-C/SIGTERM stop the run, re-raised below
-            if sig.signum is not None:
-                return False
-            try:
-                return prestep(mbs_, t)
-            except KeyboardInterrupt as exc:
-                last["interrupt"] = exc
-                return False
-
-        mbs.SetPreStepUserFunction(guarded)
-        s = exu.SimulationSettings()
-        ti = s.timeIntegration
-        ti.numberOfSteps = n_steps
-        ti.endTime = t_end
-        ti.verboseMode = 0
-        ti.generalizedAlpha.spectralRadius = spectral_radius
-        ti.generalizedAlpha.computeInitialAccelerations = True
-        ti.newton.useModifiedNewton = not jacobian_every_step
-        ti.newton.relativeTolerance = self.newton_rtol
-        ti.newton.absoluteTolerance = self.newton_atol
-        ti.adaptiveStep = True
-        s.solution.file.write = False
-        s.solution.sensors.writePeriod = float(output_step or h)
-        s.solution.file.writeInitialValues = False
-        s.show.statistics = False
-        s.show.computationTime = False
-        s.linearSolver.solverType = exu.LinearSolverType.EXUdense
-        cpu0, wall0 = time.thread_time(), time.perf_counter()
-        message = ""
-        printing = exu.config.printToConsole
-        exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
-        try:
-            # flexpipe#14: signals only set sig.signum; one BLAS thread (the per-step
-            # matrices are tiny: more threads only spin against Exudyn for the cores)
-            with deferred_interrupts() as sig, openblas_single_threaded():
-                ok = bool(exu.SolveDynamic(mbs, s,
-                                           solverType=exu.DynamicSolverType.GeneralizedAlpha,
-                                           updateInitialValues=False, storeSolver=True))
-        except (RuntimeError, ValueError) as exc:  # Exudyn raises on Newton failure
-            ok = False
-            message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
-        finally:
-            exu.config.printToConsole = printing
-        if sig.signum is not None:  # flexpipe#14: an interrupt, not a solver failure
-            raise Interrupted(sig.signum, t=last["t"])
-        if "interrupt" in last:
-            last["interrupt"].t = last["t"]
-            raise last["interrupt"]
-        cpu = time.thread_time() - cpu0
-        wall = time.perf_counter() - wall0
-        completed = ok and last["t"] >= t_end - 1.5 * h
-        return completed, last["t"], cpu, wall, message
+        """Integrate to ``t_end`` with step ``h`` (:func:`flexpipe.exu.timeloop.run`)."""
+        return timeloop.run(self, step, t_end=t_end, h=h, spectral_radius=spectral_radius,
+                            progress=progress, jacobian_every_step=jacobian_every_step,
+                            output_step=output_step)

@@ -1,0 +1,109 @@
+"""The time loop of a car: Exudyn's generalized-alpha with a Python step before each step.
+
+The step (:class:`flexpipe.vehicle.dynamics.CarController`) reads the state, linearizes the
+tyres and force elements and sets the loads; Exudyn then integrates one step implicitly.
+Spectral radius 0.5 (see :mod:`flexpipe.exu.car`), modified Newton (one Jacobian unless
+Newton stalls), dense solver (a few hundred coordinates).  Ctrl-C and SIGTERM stop the run
+between steps and are re-raised as :class:`flexpipe._signals.Interrupted` (flexpipe#14).
+"""
+
+from __future__ import annotations
+
+import time
+
+import exudyn as exu
+
+from flexpipe._signals import Interrupted, deferred_interrupts
+from flexpipe.reduction._threads import openblas_single_threaded
+
+
+def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
+        progress=None, jacobian_every_step: bool = False, output_step: float | None = None):
+    """Integrate ``system`` (a :class:`~flexpipe.exu.car.CarSystem`) to ``t_end`` with step
+    ``h``; ``step(state) -> CarLoads | None`` runs before every step.
+
+    Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
+
+    ``step`` returns ``None`` to stop (e.g. divergence).  Returns
+    ``(completed, t_reached, cpu_seconds, wall_seconds, solver_message)``.
+    """
+    mbs = system.mbs
+    n_steps = int(round(t_end / h))
+    st = system.state(0.0)
+    loads = step(st)
+    if loads is None:
+        return False, 0.0, 0.0, 0.0, "stopped at the initial state"
+    system.apply(loads, st.mount_R, st)
+    last = {"t": 0.0, "n": 0}
+
+    system.prestep_cpu = 0.0  # CPU seconds spent in the Python step (profile)
+
+    def prestep(mbs_, t):
+        t0 = t - h  # the state is at the start of the step
+        if t0 <= 1e-12:
+            return True
+        c0 = time.thread_time()
+        st = system.state(t0)
+        loads = step(st)
+        last["t"] = t0
+        last["n"] += 1
+        if progress is not None and last["n"] % 100 == 0:
+            progress(100)
+        if loads is None:
+            return False
+        system.apply(loads, st.mount_R, st)
+        system.prestep_cpu += time.thread_time() - c0
+        return True
+
+    def guarded(mbs_, t):  # flexpipe#14: Ctrl-C/SIGTERM stop the run, re-raised below
+        if sig.signum is not None:
+            return False
+        try:
+            return prestep(mbs_, t)
+        except KeyboardInterrupt as exc:
+            last["interrupt"] = exc
+            return False
+
+    mbs.SetPreStepUserFunction(guarded)
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.numberOfSteps = n_steps
+    ti.endTime = t_end
+    ti.verboseMode = 0
+    ti.generalizedAlpha.spectralRadius = spectral_radius
+    ti.generalizedAlpha.computeInitialAccelerations = True
+    ti.newton.useModifiedNewton = not jacobian_every_step
+    ti.newton.relativeTolerance = system.newton_rtol
+    ti.newton.absoluteTolerance = system.newton_atol
+    ti.adaptiveStep = True
+    s.solution.file.write = False
+    s.solution.sensors.writePeriod = float(output_step or h)
+    s.solution.file.writeInitialValues = False
+    s.show.statistics = False
+    s.show.computationTime = False
+    s.linearSolver.solverType = exu.LinearSolverType.EXUdense
+    cpu0, wall0 = time.thread_time(), time.perf_counter()
+    message = ""
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
+    try:
+        # flexpipe#14: signals only set sig.signum; one BLAS thread (the per-step
+        # matrices are tiny: more threads only spin against Exudyn for the cores)
+        with deferred_interrupts() as sig, openblas_single_threaded():
+            ok = bool(exu.SolveDynamic(mbs, s,
+                                       solverType=exu.DynamicSolverType.GeneralizedAlpha,
+                                       updateInitialValues=False, storeSolver=True))
+    except (RuntimeError, ValueError) as exc:  # Exudyn raises on Newton failure
+        ok = False
+        message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
+    finally:
+        exu.config.printToConsole = printing
+    if sig.signum is not None:  # flexpipe#14: an interrupt, not a solver failure
+        raise Interrupted(sig.signum, t=last["t"])
+    if "interrupt" in last:
+        last["interrupt"].t = last["t"]
+        raise last["interrupt"]
+    cpu = time.thread_time() - cpu0
+    wall = time.perf_counter() - wall0
+    completed = ok and last["t"] >= t_end - 1.5 * h
+    return completed, last["t"], cpu, wall, message
