@@ -83,7 +83,6 @@ class CarLoads:
     suspension: np.ndarray  # (4,) explicit part, along the chassis z axis at the hardpoint
     damper_c: np.ndarray  # (4,) damping coefficient of the implicit damper for the step
     tire: object  # flexpipe.vehicle.tire_coupling.TireStep: contact force, linearized
-    tire_moment: np.ndarray  # (4, 3) global, non-spin part on the carrier
     spin_torque: np.ndarray  # (4,) about the spin axis, on the wheel spin coordinate
     steer: np.ndarray  # (4,) steering angle offsets (rad), used on steered corners
     suspension_k: np.ndarray = None  # (4,) tangent stiffness of the suspension connector
@@ -189,7 +188,7 @@ class CarSystem:
         self.tire_elem = []
         self.susp_spring = []
         self.spin_node, self.load_body, self.load_carrier = [], [], []
-        self.load_tire_m, self.load_spin = [], []
+        self.load_spin = []
         self.travel0 = np.zeros(4)
         self.slide_local = np.zeros((4, 3))
         for i in range(4):
@@ -206,7 +205,6 @@ class CarSystem:
             # carrier marker on the travel axis (below the hardpoint, at wheel-centre height)
             m_slide = mbs.AddMarker(eii.MarkerBodyRigid(
                 bodyNumber=o_w, localPosition=[H[0] - W[0], H[1] - W[1], 0.0]))
-            m_center = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
             m_mass = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=o_w))
             mbs.AddLoad(eii.LoadMassProportional(markerNumber=m_mass, loadVector=list(g)))
             steered = bool(spec.steered[i])
@@ -249,8 +247,6 @@ class CarSystem:
                 markerNumber=load_at[i], loadVector=[0.0, 0.0, 0.0], bodyFixed=False)))
             self.load_carrier.append(mbs.AddLoad(eii.LoadForceVector(
                 markerNumber=m_slide, loadVector=[0.0, 0.0, 0.0], bodyFixed=True)))
-            self.load_tire_m.append(mbs.AddLoad(eii.LoadTorqueVector(
-                markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
             self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
                                                                  load=0.0)))
             self.wheel_node.append(n_w)
@@ -353,7 +349,6 @@ class CarSystem:
             F = float(loads.suspension[i])
             setp(self.load_body[i], "loadVector", (F * mount_R[i][:, 2]).tolist())
             setp(self.load_carrier[i], "loadVector", [0.0, 0.0, -F])
-            setp(self.load_tire_m[i], "loadVector", loads.tire_moment[i].tolist())
             setp(self.load_spin[i], "load", float(loads.spin_torque[i]))
             if self.torsion[i] is not None:
                 so(self.torsion[i], "offset", float(loads.steer[i]))
@@ -371,17 +366,13 @@ class CarSystem:
         linearized tyre force ``F0 + Dv (v_P - v_P,n) + dw (omega - omega_n) + A (z - z_n)``
         at the contact point, plus ``S theta`` for a rotation of the carrier, and the
         tyre's own moment linearized alike (Exudyn's convention: ``D q_t + K q = f``)."""
-        n = len(self.wheel_node)
         ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
-        zero3, zero33 = np.zeros((n, 3)), np.zeros((n, 3, 3))
-        DMv, dMw, AM, SM = ts.moment_lin or (zero33, zero3, zero3, zero33)
-        S = ts.S if ts.S is not None else zero33
-        M0 = ts.moment if ts.moment_lin is not None else zero3
+        DMv, dMw, AM, SM = ts.moment_lin
         args = [np.ascontiguousarray(a, dtype=float) for a in (
-            ep, ts.r, ts.spin_axis, qt, st.wheel_q, np.concatenate([ts.F0, M0], axis=1),
+            ep, ts.r, ts.spin_axis, qt, st.wheel_q, np.concatenate([ts.F0, ts.moment], axis=1),
             np.concatenate([ts.Dv, DMv], axis=1), np.concatenate([ts.dw, dMw], axis=1),
-            np.concatenate([ts.A, AM], axis=1), np.concatenate([S, SM], axis=1))]
+            np.concatenate([ts.A, AM], axis=1), np.concatenate([ts.S, SM], axis=1))]
         kernel = element if jit_enabled() else element_numpy
         D, K, f = kernel(*args)
         return D, K, f

@@ -123,7 +123,7 @@ class LinkageCarSystem(CarSystem):
         self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker,
                                          p0=p0, R0=R0, v0=v0, gravity=g)
         self.wheel_node = list(lk.knuckle_node)
-        self.spin_node, self.load_tire_m, self.load_spin, self.tire_elem = [], [], [], []
+        self.spin_node, self.load_spin, self.tire_elem = [], [], []
         for i in range(4):
             n_w = self.wheel_node[i]
             n_s = mbs.AddNode(eii.Node1D(referenceCoordinates=[0.0], initialCoordinates=[0.0],
@@ -131,13 +131,10 @@ class LinkageCarSystem(CarSystem):
             mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
                                                      nodeNumber=n_s))
             m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
-            m_center = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
             self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
                 nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
                 stiffnessMatrix=np.zeros((8, 8)), dampingMatrix=np.zeros((8, 8)),
                 forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
-            self.load_tire_m.append(mbs.AddLoad(eii.LoadTorqueVector(
-                markerNumber=m_center, loadVector=[0.0, 0.0, 0.0])))
             self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
                                                                  load=0.0)))
             self.spin_node.append(n_s)
@@ -176,8 +173,6 @@ class LinkageCarSystem(CarSystem):
         so = mbs.SetObjectParameter
         D, K, f = self.tire_matrices(loads.tire, st)
         for i in range(4):
-            mbs.SetLoadParameter(self.load_tire_m[i], "loadVector",
-                                 loads.tire_moment[i].tolist())
             mbs.SetLoadParameter(self.load_spin[i], "load", float(loads.spin_torque[i]))
             so(self.tire_elem[i], "dampingMatrix", D[i])
             so(self.tire_elem[i], "stiffnessMatrix", K[i])

@@ -271,13 +271,8 @@ class CarController:
             T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
         if self.v_target == 0.0:  # parking brake: viscous, at half the explicit limit
             T = -0.5 * self.spin_inertia / self.h * st.spin_rate
-        if ts.moment_lin is not None:  # the tyre's own moment is in the implicit element
-            spin_torque = np.asarray(T, dtype=float) * np.ones(4)
-            carrier_moment = np.zeros((4, 3))
-        else:
-            Ms = np.einsum("ij,ij->i", ts.moment, s_axis)
-            spin_torque = T + Ms
-            carrier_moment = ts.moment - Ms[:, None] * s_axis
+        # the tyre's own moments are in the implicit element: only drive and brake here
+        spin_torque = np.broadcast_to(np.asarray(T, dtype=float), (4,)).copy()
 
         from flexpipe.exu.car import CarLoads
 
@@ -287,7 +282,7 @@ class CarController:
             if rk is not None:
                 s_rack = -self.delta * self.ratio * rk.travel_per_rev / (2 * math.pi)
             loads = CarLoads(suspension=np.zeros(4), damper_c=np.zeros(4), tire=ts,
-                             tire_moment=carrier_moment, spin_torque=spin_torque,
+                             spin_torque=spin_torque,
                              steer=steer, rack_travel=s_rack)
             self._tire_lin = (ts, st, omega)
             if self.step_no % self.output_every == 0:  # at t = 0: the tyre force now
@@ -321,7 +316,7 @@ class CarController:
         f0 = Fs_own - k_t * st.jounce - c_step * st.jounce_rate
 
         loads = CarLoads(suspension=F_arb, damper_c=c_step, tire=ts,
-                         tire_moment=carrier_moment, spin_torque=spin_torque, steer=steer,
+                         spin_torque=spin_torque, steer=steer,
                          suspension_k=k_t, suspension_f0=f0)
         self._tire_lin = (ts, st, omega)
         if self.step_no % self.output_every == 0:
@@ -359,12 +354,11 @@ class CarController:
         F = (ts.F0 + np.einsum("nij,nj->ni", ts.Dv, vP - vP0)
              + ts.dw * (omega - om0)[:, None]
              + ts.A * (st.wheel_p[:, 2] - st0.wheel_p[:, 2])[:, None])
-        if ts.S is not None:  # rotation of the carriers over the step (small angles)
-            dR = st.wheel_R @ st0.wheel_R.transpose(0, 2, 1)
-            th = 0.5 * np.stack([dR[:, 2, 1] - dR[:, 1, 2], dR[:, 0, 2] - dR[:, 2, 0],
-                                 dR[:, 1, 0] - dR[:, 0, 1]], axis=1)
-            F = F + np.einsum("nij,nj->ni", ts.S, th)
-        return F
+        # rotation of the carriers over the step (small angles)
+        dR = st.wheel_R @ st0.wheel_R.transpose(0, 2, 1)
+        th = 0.5 * np.stack([dR[:, 2, 1] - dR[:, 1, 2], dR[:, 0, 2] - dR[:, 2, 0],
+                             dR[:, 1, 0] - dR[:, 0, 1]], axis=1)
+        return F + np.einsum("nij,nj->ni", ts.S, th)
 
     def _record(self, st, Fs, Fw, v, roll, pitch, yaw, F_tire=None):
         R = st.body_R

@@ -58,9 +58,9 @@ class TireStep:
     r: np.ndarray  # (n, 3) contact point - wheel centre, global
     moment: np.ndarray  # (n, 3) tyre moments (Mx, My, Mz; not the moment of F), global
     spin_axis: np.ndarray  # (n, 3)
-    S: np.ndarray | None = None  # (n, 3, 3) dF/dtheta, small global rotation of the carrier
+    S: np.ndarray  # (n, 3, 3) dF/dtheta, small global rotation of the carrier
     #: the own moment's derivatives (dM/dv_P, dM/domega, dM/dz, dM/dtheta), like the force's
-    moment_lin: tuple | None = None
+    moment_lin: tuple
 
 
 def _force_and_moment(out, C, rows, m):
@@ -88,8 +88,6 @@ class ImplicitTires:
         self.groups = [(t, np.array(ix)) for t, ix in groups.values()]
         self.mirror = np.asarray(mirror, dtype=bool)
         n = len(tires)
-        from flexpipe.tires import SlipState
-
         self.state = {id(t): SlipState.zeros(len(ix)) for t, ix in self.groups}
         self.n = n
         self._prev = None  # inputs of the last step, for the corrector
