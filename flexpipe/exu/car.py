@@ -319,6 +319,16 @@ class CarSystem:
         return (q, np.asarray(g(self.body_node, OV.Position), dtype=float),
                 np.asarray(g(self.body_node, OV.RotationMatrix), dtype=float).reshape(3, 3))
 
+    def coordinates(self) -> np.ndarray:
+        """All second-order coordinates now (displacements from the reference)."""
+        return np.array(self.mbs.systemData.GetODE2Coordinates(), dtype=float)
+
+    def set_initial_coordinates(self, q) -> None:
+        """Start from the coordinates ``q`` (of a system built from the same car; the
+        initial velocities stay as built)."""
+        self.mbs.systemData.SetODE2Coordinates(
+            [float(v) for v in q], configuration=exu.ConfigurationType.Initial)
+
     def joint_forces(self) -> np.ndarray:
         """Constraint force of every suspension joint in its hardpoint frame (4, 3)."""
         return np.array([self.mbs.GetObjectOutput(j, OV.ForceLocal) for j in self.joint])

@@ -80,7 +80,8 @@ class LinkageModel:
         #: kinematic mode (Adams/Car): every bushing replaced by its joint, links rigid
         self.kinematic = getattr(suspension, "mode", "compliant") == "kinematic"
         self.corners = suspension.corners()
-        self.knuckle_node, self.part_nodes, self.forces = [], [], []
+        self.knuckle_node, self.part_nodes, self.forces = [], [], []  # part_nodes: per
+        # corner (object, mass, centre of mass in the part's frame)
         self._kc = {}  # connector -> (stiffness, damping) last set
         self._rate = {}  # damper connector -> extension rate at the last step
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
@@ -137,7 +138,7 @@ class LinkageModel:
             J += np.eye(3) * max(1e-4, 1e-3 * mass) * (np.trace(J) <= 0)
             node, obj = self._body(mass, J, p.cm, ref)
             owners[p.name] = (obj, ref)
-            nodes.append((node, mass))
+            nodes.append((obj, mass, [float(v) for v in np.asarray(p.cm, float) - ref]))
             if p.name == c.knuckle:
                 self.knuckle_node.append(node)
                 self.knuckle_obj = getattr(self, "knuckle_obj", []) + [obj]
@@ -386,11 +387,11 @@ class LinkageModel:
     def hub_forces(self, F_tire: np.ndarray) -> np.ndarray:
         """Force (4, 3, global) each corner applies to the body through its own mounts:
         tyre force + weight - m a of its parts + the forces of the links to rack and bar."""
-        g = self.mbs.GetNodeOutput
+        gb = self.mbs.GetObjectOutputBody
         out = np.array(F_tire, dtype=float)
-        for i, nodes in enumerate(self.part_nodes):
-            for node, m in nodes:
-                out[i] += m * (self.g - np.asarray(g(node, OV.Acceleration)))
+        for i, parts in enumerate(self.part_nodes):
+            for obj, m, cm in parts:  # the acceleration of each part's centre of mass
+                out[i] += m * (self.g - np.asarray(gb(obj, OV.Acceleration, cm)))
         gm = self.mbs.GetMarkerOutput
         for i, co, mb, ma in self.to_other:
             d = np.asarray(gm(ma, OV.Position)) - np.asarray(gm(mb, OV.Position))

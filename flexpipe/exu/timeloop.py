@@ -40,7 +40,10 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
 
     def prestep(mbs_, t):
         t0 = t - h  # the state is at the start of the step
-        if t0 <= 1e-12:
+        if t0 <= 1e-12:  # t = 0: the constraint forces now exist; the first output row
+            refresh = getattr(step, "refresh_first_row", None)  # may read them again
+            if refresh is not None:
+                refresh()
             return True
         c0 = time.thread_time()
         st = system.state(t0)

@@ -117,6 +117,7 @@ class CarController:
         self.wheel_acc = wheel_acc
         self.body_motion = body_motion  # durability: () -> (q, p, R), one per output row
         self.motion = []
+        self._first_row = None  # arguments of the t = 0 row (refresh_first_row)
         self.gvec = np.array([0.0, 0.0, -float(gravity)])
         self.preview_time = float(preview_time)
         self._tire_lin = None
@@ -360,7 +361,18 @@ class CarController:
                              dR[:, 1, 0] - dR[:, 0, 1]], axis=1)
         return F + np.einsum("nij,nj->ni", ts.S, th)
 
+    def refresh_first_row(self) -> None:
+        """Record the t = 0 row again once the integrator has solved the initial
+        accelerations and constraint forces (before, joint and link forces read 0)."""
+        if self._first_row is None or self.rec.rows != 1:
+            return
+        self.rec.rows, self._prev_v = 0, None
+        self.motion.clear()
+        self._record(*self._first_row)
+
     def _record(self, st, Fs, Fw, v, roll, pitch, yaw, F_tire=None):
+        if self.rec.rows == 0:
+            self._first_row = (st, Fs, Fw, v, roll, pitch, yaw, F_tire)
         R = st.body_R
         # hub force on the body at each hardpoint, in that mount's frame (~ body axes)
         if F_tire is None or self.wheel_acc is None:

@@ -37,6 +37,7 @@ from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
     reduce_car_body,
 )
 from flexpipe.vehicle.result import Result
+from flexpipe.vehicle.settle import settled_start
 from flexpipe.vehicle.spec import Car, load_car
 
 BODIES = ("flexible", "rigid", "full")
@@ -183,7 +184,7 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
 def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
              h: float = 2e-3, output_step: float = 2e-3, driver=None, f_max=None,
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
-             cache: bool = True, log=None, prepared=None) -> Result:
+             cache: bool = True, log=None, prepared=None, settle: bool = True) -> Result:
     """Simulate the car on a road following a path at constant target speed.
 
     Parameters
@@ -226,6 +227,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         to excite the ride modes in a validation run (wheels start without them).
     progress : bool
         Show a progress bar.
+    settle : bool
+        Start from the car settled at rest (:func:`flexpipe.vehicle.settle.settled_start`:
+        body deflection, parts, steering and tyres in static equilibrium); False starts
+        at the design position.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
@@ -368,20 +373,31 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         body_rates=rates,
         point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
         suspension=susp)
-    if susp is not None:
-        from flexpipe.exu.linkage_car import LinkageCarSystem
+    def make_system(b):
+        if susp is not None:
+            from flexpipe.exu.linkage_car import LinkageCarSystem
 
-        system = LinkageCarSystem(build)
-    else:
-        system = CarSystem(build)
-    ctrl = CarController(corners=corners, tires=tires, road=road_obj, steering=steering,
-                         speed_pi=speed_pi, target_speed=speed, car=car, h=h, t_end=t_end,
-                         output_every=every, points=names,
-                         point_acc=system.point_accelerations,
-                         joint_forces=system.joint_forces,
-                         wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
-                         linkage=getattr(system, "linkage", None),
-                         body_motion=system.body_motion_sample)
+            return LinkageCarSystem(b)
+        return CarSystem(b)
+
+    def make_controller(system, *, target_speed, h, t_end):
+        return CarController(corners=corners, tires=tires, road=road_obj, steering=steering,
+                             speed_pi=speed_pi, target_speed=target_speed, car=car, h=h,
+                             t_end=t_end, output_every=every, points=names,
+                             point_acc=system.point_accelerations,
+                             joint_forces=system.joint_forces,
+                             wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
+                             linkage=getattr(system, "linkage", None),
+                             body_motion=system.body_motion_sample)
+
+    start = settled_start(build, make_system, make_controller) if settle else None
+    system = make_system(build)
+    ctrl = make_controller(system, target_speed=speed, h=h, t_end=t_end)
+    if start is not None:
+        system.set_initial_coordinates(start[0])
+        if speed == 0.0:  # parked: the tyres keep the deflection they settled in
+            ctrl.tires.state = start[1]
+    speed_pi.reset()
     bar = None
     if progress:
         from tqdm import tqdm
@@ -419,6 +435,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
         "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
         "cpu_python_step_s": float(getattr(system, "prestep_cpu", 0.0)),
+        "cpu_settle_s": float(start[2]) if start is not None else 0.0,
         "suspension": "prismatic" if car.suspension is None else
         f"linkage ({car.suspension.mode} mode)",
     }
