@@ -224,11 +224,7 @@ class CarSystem:
                 tsd = mbs.AddObject(eii.ObjectConnectorTorsionalSpringDamper(
                     markerNumbers=[self.frame_marker, m_slide], stiffness=spec.steer_stiffness,
                     damping=spec.steer_damping, offset=0.0))
-            n_s = mbs.AddNode(eii.Node1D(referenceCoordinates=[0.0], initialCoordinates=[0.0],
-                                         initialVelocities=[float(spec.spin_rate[i])]))
-            mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
-                                                     nodeNumber=n_s))
-            m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
+            self._add_wheel(n_w, spec, i)
             # spring (with preload) and damper, implicit; the damping coefficient is set per
             # step (dual rate: jounce or rebound), stops and anti-roll bars come explicitly
             self.susp_spring.append(mbs.AddObject(eii.ObjectConnectorSpringDamper(
@@ -236,24 +232,14 @@ class CarSystem:
                 stiffness=float(spec.spring_k[i]), damping=float(spec.damper_c[i]),
                 force=-float(spec.spring_preload[i]),
                 visualization=eii.VObjectConnectorSpringDamper(show=False))))
-            # tyre force at the contact point, linearized per step and solved implicitly:
-            # a linear ODE2 element on the carrier node and the spin coordinate whose
-            # damping, stiffness and force are set every step (flexpipe.vehicle.tire_coupling)
-            self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
-                nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
-                stiffnessMatrix=np.zeros((8, 8)), dampingMatrix=np.zeros((8, 8)),
-                forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
             self.load_body.append(mbs.AddLoad(eii.LoadForceVector(
                 markerNumber=load_at[i], loadVector=[0.0, 0.0, 0.0], bodyFixed=False)))
             self.load_carrier.append(mbs.AddLoad(eii.LoadForceVector(
                 markerNumber=m_slide, loadVector=[0.0, 0.0, 0.0], bodyFixed=True)))
-            self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
-                                                                 load=0.0)))
             self.wheel_node.append(n_w)
             self.wheel_obj.append(o_w)
             self.joint.append(jnt)
             self.torsion.append(tsd)
-            self.spin_node.append(n_s)
             self.travel0[i] = W[2] - H[2]
             self.slide_local[i] = [H[0] - W[0], H[1] - W[1], 0.0]
         self._finish(spec)
@@ -354,21 +340,46 @@ class CarSystem:
         mbs = self.mbs
         setp = mbs.SetLoadParameter
         so = mbs.SetObjectParameter
-        D, K, f = self.tire_matrices(loads.tire, st)
+        self._apply_wheels(loads, st)
         for i in range(4):
             F = float(loads.suspension[i])
             setp(self.load_body[i], "loadVector", (F * mount_R[i][:, 2]).tolist())
             setp(self.load_carrier[i], "loadVector", [0.0, 0.0, -F])
-            setp(self.load_spin[i], "load", float(loads.spin_torque[i]))
             if self.torsion[i] is not None:
                 so(self.torsion[i], "offset", float(loads.steer[i]))
-            so(self.tire_elem[i], "dampingMatrix", D[i])
-            so(self.tire_elem[i], "stiffnessMatrix", K[i])
-            so(self.tire_elem[i], "forceVector", f[i])
             so(self.susp_spring[i], "damping", float(loads.damper_c[i]))
             if loads.suspension_k is not None:
                 so(self.susp_spring[i], "stiffness", float(loads.suspension_k[i]))
                 so(self.susp_spring[i], "force", -float(loads.suspension_f0[i]))
+
+    # ------------------------------------------------------------------ wheels
+    def _add_wheel(self, n_w, spec, i: int) -> None:
+        """Spin coordinate of wheel ``i`` on carrier node ``n_w``, its drive/brake torque
+        load and the tyre element: a linear ODE2 element on the carrier node and the spin
+        coordinate whose damping, stiffness and force are set every step (the tyre force
+        and moments linearized, flexpipe.vehicle.tire_coupling)."""
+        mbs = self.mbs
+        n_s = mbs.AddNode(eii.Node1D(referenceCoordinates=[0.0], initialCoordinates=[0.0],
+                                     initialVelocities=[float(spec.spin_rate[i])]))
+        mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
+                                                 nodeNumber=n_s))
+        m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
+        self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
+            nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
+            stiffnessMatrix=np.zeros((8, 8)), dampingMatrix=np.zeros((8, 8)),
+            forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
+        self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin, load=0.0)))
+        self.spin_node.append(n_s)
+
+    def _apply_wheels(self, loads: CarLoads, st: CarState) -> None:
+        """The tyre elements and spin torques for the coming step."""
+        so = self.mbs.SetObjectParameter
+        D, K, f = self.tire_matrices(loads.tire, st)
+        for i, elem in enumerate(self.tire_elem):
+            self.mbs.SetLoadParameter(self.load_spin[i], "load", float(loads.spin_torque[i]))
+            so(elem, "dampingMatrix", D[i])
+            so(elem, "stiffnessMatrix", K[i])
+            so(elem, "forceVector", f[i])
 
     def tire_matrices(self, ts, st: CarState):
         """Linear ODE2 elements (damping D, stiffness K, force f on each carrier's 7 node

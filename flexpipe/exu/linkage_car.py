@@ -125,19 +125,7 @@ class LinkageCarSystem(CarSystem):
         self.wheel_node = list(lk.knuckle_node)
         self.spin_node, self.load_spin, self.tire_elem = [], [], []
         for i in range(4):
-            n_w = self.wheel_node[i]
-            n_s = mbs.AddNode(eii.Node1D(referenceCoordinates=[0.0], initialCoordinates=[0.0],
-                                         initialVelocities=[float(spec.spin_rate[i])]))
-            mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
-                                                     nodeNumber=n_s))
-            m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
-            self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
-                nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
-                stiffnessMatrix=np.zeros((8, 8)), dampingMatrix=np.zeros((8, 8)),
-                forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
-            self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin,
-                                                                 load=0.0)))
-            self.spin_node.append(n_s)
+            self._add_wheel(self.wheel_node[i], spec, i)
         lk.add_mount_sensors(self.body_node)
         order = spec.suspension.corners()
         self.design_wheel = np.array([order[c].wheel_center for c in ("fl", "fr", "rl", "rr")])
@@ -168,15 +156,8 @@ class LinkageCarSystem(CarSystem):
         return super().run(step, t_end=t_end, h=h, **kw)
 
     def apply(self, loads, mount_R, st) -> None:
-        """Tyre coupling, tyre moments, spin torques, rack travel; linearize the springs."""
-        mbs = self.mbs
-        so = mbs.SetObjectParameter
-        D, K, f = self.tire_matrices(loads.tire, st)
-        for i in range(4):
-            mbs.SetLoadParameter(self.load_spin[i], "load", float(loads.spin_torque[i]))
-            so(self.tire_elem[i], "dampingMatrix", D[i])
-            so(self.tire_elem[i], "stiffnessMatrix", K[i])
-            so(self.tire_elem[i], "forceVector", f[i])
+        """Tyre elements, spin torques, rack travel; linearize the springs."""
+        self._apply_wheels(loads, st)
         if loads.rack_travel is not None:
             self.linkage.set_rack_travel(loads.rack_travel)
         self.linkage.update_forces(self._h)
