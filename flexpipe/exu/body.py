@@ -173,11 +173,26 @@ def _elastic_selection(body, n_modes):
     return int(n_modes)
 
 
+def _prewarped(Mr, Kr, Dr, h, spectral_radius):
+    """Modal mass and damping fitted to the step (see :mod:`flexpipe.exu.prewarp`)."""
+    from flexpipe.exu.prewarp import prewarp_modes
+
+    m, k, c = np.diag(Mr), np.diag(Kr), np.diag(Dr)
+    if any(np.count_nonzero(A - np.diag(np.diag(A))) for A in (Mr, Kr, Dr)):
+        raise InputError("prewarp needs diagonal modal mass, stiffness and damping matrices",
+                         key="prewarp")
+    omega = np.sqrt(k / m)
+    zeta = c / (2.0 * np.sqrt(k * m))
+    factor, zp, _ = prewarp_modes(omega, zeta, h=float(h), spectral_radius=float(spectral_radius))
+    m2 = m * factor
+    return np.diag(m2), np.diag(2.0 * zp * np.sqrt(k * m2))
+
+
 def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=None,
                       velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0),
                       gravity=(0.0, 0.0, -9.81), damping=True, n_modes: int | None = None,
                       color=(0.2, 0.6, 0.9, 1.0), name: str = "flexbody",
-                      arm: float | None = None) -> BodyHandle:
+                      arm: float | None = None, prewarp=None) -> BodyHandle:
     """Add ``body`` as an Exudyn ``ObjectFFRFreducedOrder`` with interface markers.
 
     Parameters
@@ -202,6 +217,10 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
         Exudyn item name prefix.
     arm : float, optional
         Distance of the marker points from each hardpoint (default 2% of the body size).
+    prewarp : (h, spectral_radius), optional
+        Fit each elastic mode's modal mass and damping to the generalized-alpha step ``h``
+        with that spectral radius so the step rings it at its own frequency and damping
+        (:mod:`flexpipe.exu.prewarp`; stiffness, hence statics, unchanged).
 
     Returns
     -------
@@ -227,6 +246,8 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
     else:
         zeta = float(damping)
         Dr = np.diag(2 * zeta * body.omega[sel])
+    if prewarp is not None and me:
+        Mr, Dr = _prewarped(Mr, Kr, Dr, *prewarp)
     inv = body.invariants
     k3 = slice(0, 3 * me)
 

@@ -40,6 +40,10 @@ from flexpipe.vehicle.result import Result
 from flexpipe.vehicle.settle import settled_start
 from flexpipe.vehicle.spec import Car, load_car
 
+#: generalized-alpha spectral radius of the runs (see :mod:`flexpipe.exu.car`); the
+#: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`)
+SPECTRAL_RADIUS = 0.5
+
 BODIES = ("flexible", "rigid", "full")
 #: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
 FULL_CUTOFF_HZ = 250.0
@@ -184,7 +188,8 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
 def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
              h: float = 2e-3, output_step: float = 2e-3, driver=None, f_max=None,
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
-             cache: bool = True, log=None, prepared=None, settle: bool = True) -> Result:
+             cache: bool = True, log=None, prepared=None, settle: bool = True,
+             prewarp: bool = True) -> Result:
     """Simulate the car on a road following a path at constant target speed.
 
     Parameters
@@ -231,6 +236,11 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Start from the car settled at rest (:func:`flexpipe.vehicle.settle.settled_start`:
         body deflection, parts, steering and tyres in static equilibrium); False starts
         at the design position.
+    prewarp : bool
+        Fit the flexible body's modal masses and damping to the step so the integrator
+        rings every elastic mode at its own frequency and damping
+        (:mod:`flexpipe.exu.prewarp`; stiffness and statics unchanged, no effect as
+        h -> 0).  False integrates the modes as they are.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
@@ -372,7 +382,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         position=p0, rotation=R0, speed=speed, spin_rate=spin0, gravity=GRAVITY,
         body_rates=rates,
         point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
-        suspension=susp)
+        suspension=susp,
+        modal_prewarp=(h, SPECTRAL_RADIUS) if prewarp and fb is not None else None)
     def make_system(b):
         if susp is not None:
             from flexpipe.exu.linkage_car import LinkageCarSystem
@@ -406,8 +417,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    leave=True, mininterval=0.5)
     try:
         completed, t_reached, cpu, wall, solver_msg = system.run(
-            ctrl, t_end=t_end, h=h, progress=bar.update if bar is not None else None,
-            output_step=every * h)
+            ctrl, t_end=t_end, h=h, spectral_radius=SPECTRAL_RADIUS,
+            progress=bar.update if bar is not None else None, output_step=every * h)
     finally:
         if bar is not None:
             bar.close()
