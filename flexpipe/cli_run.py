@@ -38,6 +38,9 @@ def add_arguments(parser) -> None:
                         help="step-convergence study instead of a run: the first body model "
                              "at h, h/2 and h/4; prints the RMS hub-force differences and "
                              "writes step_check.csv")
+    parser.add_argument("--no-prewarp", action="store_true",
+                        help="integrate the flexible body's modes as they are instead of "
+                             "pre-warped to the step (see README, step convergence)")
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "
                              "(MATLAB); default csv")
@@ -75,7 +78,7 @@ def run(args) -> int:
                        plots=("hub_force_fl", "trajectory"), bodies=bodies,
                        cache=not args.no_cache, h=args.h, name="run", format=args.format,
                        log=(lambda *a: None) if args.quiet else print,
-                       progress=not args.quiet)
+                       progress=not args.quiet, prewarp=not args.no_prewarp)
     return 0 if summary["status"] == 0 else 1
 
 
@@ -91,7 +94,8 @@ def _check_step(args, body: str, out: Path) -> int:
     path = None if args.path in (None, "straight") else args.path
     chk = check_step(args.car, h=h, refinements=(2, 4), road=args.road, path=path,
                      speed=args.speed / 3.6, t_end=args.t_end, body=body,
-                     cache=not args.no_cache, progress=True)
+                     cache=not args.no_cache, progress=True,
+                     **({"prewarp": False} if args.no_prewarp else {}))
     print(chk.table())
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")

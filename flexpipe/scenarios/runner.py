@@ -76,7 +76,8 @@ def _summary_diffs(diff: dict) -> dict:
 def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
              h: float | None = None, notes=None, name: str = "run", log=print,
-             format: str = "csv", progress: bool = True) -> dict:  # noqa: A002
+             format: str = "csv", progress: bool = True,  # noqa: A002
+             prewarp: bool = True) -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
     The run is a transaction: everything is written into a staging folder next to
@@ -122,7 +123,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
     try:
-        kw = {} if h is None else {"h": h}
+        kw = ({} if h is None else {"h": h}) | ({} if prewarp else {"prewarp": False})
         for i, body in enumerate(bodies, 1):
             log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,

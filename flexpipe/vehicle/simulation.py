@@ -213,8 +213,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Time step, s (1e-5 .. 5e-3; default 2e-3).  Measured against h/8 on ISO class C at
         70/100 km/h and on the slalom (``bench/bench_convergence.py``, README, worst
         corner): rigid cars' hub forces within 0.2-1.3 % (z) and 0.1-6.8 % (x, y) of
-        their fluctuating part; flexible bodies 0.5-2.3 % (z) but 1.2-41 % (x, y); the
-        flexible linkage car needs h = 0.5 ms for 5 % in x and y.  Check any run with
+        their fluctuating part; the flexible linkage car (modes pre-warped) 0.5-1.3 % (z)
+        and 1.0-8.3 % (x, y); the flexible prismatic car 0.3-0.9 % (z) but 16-34 % (x, y),
+        its single hardpoint's lever artefact.  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float
         Output sampling interval, s (a multiple of ``h``).
@@ -447,6 +448,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
         "cpu_python_step_s": float(getattr(system, "prestep_cpu", 0.0)),
         "cpu_settle_s": float(start[2]) if start is not None else 0.0,
+        "modal_prewarp": build.modal_prewarp is not None,
         "suspension": "prismatic" if car.suspension is None else
         f"linkage ({car.suspension.mode} mode)",
     }
