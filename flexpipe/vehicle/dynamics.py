@@ -256,12 +256,6 @@ class CarController:
         now = self.tires.correct(kin, self.h)
         Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
         F_applied = self._applied_tire_force(st, s_axis, omega)
-        # road under the wheels now and where they will be at the end of the step (the
-        # force is balanced there: the normal's tilt carries the road slope into Fx, Fy)
-        ahead = st.wheel_p + self.h * st.wheel_v
-        heights, normals = self.road_contact(np.vstack([st.wheel_p, ahead]))
-        h_road, n_road = heights[:4], normals[:4]
-        road_ahead, n_ahead = heights[4:], normals[4:]
         ts = self.tires.predict(dict(kin, n_road=n_ahead), self.h, road_ahead)
         if not (np.all(np.isfinite(ts.F0)) and np.all(np.isfinite(ts.Dv))):
             return self._fail(st.t, "tyre forces became non-finite")
