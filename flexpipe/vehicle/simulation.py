@@ -212,8 +212,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     h : float
         Time step, s (1e-5 .. 5e-3; default 2e-3).  Measured against h/8 on ISO class C at
         70/100 km/h and on the slalom (``bench/bench_convergence.py``, README, worst
-        corner): rigid cars' hub forces within 0.2-1.3 % (z) and 0.1-6.8 % (x, y) of
-        their fluctuating part; the flexible linkage car (modes pre-warped) 0.5-1.3 % (z)
+        corner): rigid cars' hub forces within 0.2-1.3 % (z) and 0.1-6.7 % (x, y) of
+        their fluctuating part; the flexible linkage car (modes pre-warped) 0.5-1.2 % (z)
         and 1.0-8.3 % (x, y); the flexible prismatic car 0.3-0.9 % (z) but 16-34 % (x, y),
         its single hardpoint's lever artefact.  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
