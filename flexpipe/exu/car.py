@@ -258,7 +258,7 @@ class CarSystem:
         # Newton's relative tolerance: at 1e-3 the lateral hub forces of the rigid linkage
         # car converged at first order in h (ISO C 100 km/h, worst corner y against
         # 0.125 ms: 1.9 / 0.9 % at 1 / 0.5 ms), at 1e-4 at second order (0.9 / 0.2 %;
-        # 4.3 -> 3.5 % at 2 ms against h/8) for 10-14 % more CPU; 1e-6 adds nothing more
+        # 4.3 -> 3.5 % at 2 ms against h/8) for 10-17 % more CPU; 1e-6 adds nothing more
         self.newton_rtol = 1e-4
         self.newton_atol = 1e-4
         self.points = {}
