@@ -45,22 +45,20 @@ def alpha_parameters(spectral_radius: float):
     return am, af, gamma, 0.25 * (gamma + 0.5) ** 2
 
 
-def _amplification(omega, zeta, h, rho, mass=1.0):
-    """Step matrix of ``m q'' + c q' + k q = 0`` on the state (q, q', q'', a)."""
+def _amplification(omega, zeta, h, rho):
+    """Step matrix of ``q'' + 2 zeta omega q' + omega^2 q = 0`` on the state (q, q', q'', a)
+    (the mass scales out of the free motion)."""
     am, af, gamma, beta = alpha_parameters(rho)
-    k = omega * omega * mass
-    c = 2.0 * zeta * omega * mass
-    m = mass
-    # (1 - am) a1 + am a0 = (1 - af) q''1 + af q''0,  m q''1 = -c v1 - k q1,
+    k = omega * omega
+    c = 2.0 * zeta * omega
+    # (1 - am) a1 + am a0 = (1 - af) q''1 + af q''0,  q''1 = -c v1 - k q1,
     # q1 = q + h v + h^2 ((1/2 - beta) a + beta a1),  v1 = v + h ((1 - gamma) a + gamma a1)
-    lhs = (1.0 - am) + (1.0 - af) * (c * h * gamma + k * h * h * beta) / m
-    r = np.array([-(1.0 - af) * k / m, -(1.0 - af) * (c + k * h) / m, af,
-                  -(1.0 - af) * (c * h * (1.0 - gamma) + k * h * h * (0.5 - beta)) / m
-                  - am]) / lhs
+    lhs = (1.0 - am) + (1.0 - af) * (c * h * gamma + k * h * h * beta)
+    r = np.array([-(1.0 - af) * k, -(1.0 - af) * (c + k * h), af,
+                  -(1.0 - af) * (c * h * (1.0 - gamma) + k * h * h * (0.5 - beta)) - am]) / lhs
     q1 = np.array([1.0, h, 0.0, h * h * (0.5 - beta)]) + h * h * beta * r
     v1 = np.array([0.0, 1.0, 0.0, h * (1.0 - gamma)]) + h * gamma * r
-    acc1 = (-c * v1 - k * q1) / m
-    return np.array([q1, v1, acc1, r])
+    return np.array([q1, v1, -c * v1 - k * q1, r])
 
 
 def discrete_mode(omega: float, zeta: float, *, h: float, spectral_radius: float):
