@@ -99,6 +99,9 @@ def test_modes_near_nyquist_are_left_alone():
     wd, zd = discrete_mode(2 * np.pi * 90.0 / np.sqrt(f[0]), 0.0, h=h, spectral_radius=0.5)
     assert wd == pytest.approx(2 * np.pi * 90.0, rel=1e-9) and zd > 0.02
     assert m[1] == 0 and f[1] == 1.0 and z[1] == 0.10
+    # critically damped (Adams/Flex default above 1 kHz): nothing rings, nothing to match
+    f, z, m = prewarp_modes([2 * np.pi * 1200.0], [1.0], h=1e-4, spectral_radius=0.5)
+    assert m[0] == 0 and f[0] == 1.0 and z[0] == 1.0
 
 
 def test_bad_arguments():

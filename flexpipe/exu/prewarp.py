@@ -17,9 +17,11 @@ static flexibility of the body at every mount is exact.  As ``h -> 0`` the corre
 vanish (``m' -> m``, ``c' -> c``): the model converges to the same continuous body, the
 step error of the modes is removed.
 
-Where the match would need ``c' < 0`` (a 2 % mode above about 87 Hz at h = 2 ms, a 10 %
-mode above about 165 Hz) only the frequency is matched, with ``c' = 0``; modes whose
-frequency the step cannot reach at all (near its Nyquist frequency) are left as they are.
+Critically damped or overdamped modes (the Adams/Flex default above 1 kHz) do not ring and
+are left as they are.  Where the match would need ``c' < 0`` (a 2 % mode above about
+87 Hz at h = 2 ms, a 10 % mode above about 165 Hz) only the frequency is matched, with
+``c' = 0``; modes whose frequency the step cannot reach at all (near its Nyquist
+frequency) are left as they are.
 
 The recurrence is Exudyn's generalized-alpha (Arnold and Brüls 2007, the form Exudyn
 implements): ``alpha_m = (2 rho - 1) / (rho + 1)``, ``alpha_f = rho / (rho + 1)``,
@@ -111,7 +113,7 @@ def prewarp_modes(omega, zeta, *, h: float, spectral_radius: float):
     zp = zeta.copy()
     matched = np.zeros(omega.shape, dtype=int)
     for i, (w, z) in enumerate(zip(omega, zeta, strict=True)):
-        if w <= 0 or w * h > 2.5:
+        if w <= 0 or w * h > 2.5 or z >= 1.0:  # beyond reach, or no ringing to match
             continue
 
         def residual(p, w=w, z=z):
