@@ -167,3 +167,14 @@ def test_prewarp_on_a_floating_frame_body():
         n = min(len(z), len(z_ref))
         err[pw] = np.sqrt(np.mean((z[:n] - z_ref[:n]) ** 2)) / np.std(z_ref[:n])
     assert err[True] < 0.15 and err[True] < 0.2 * err[False], err
+
+
+def test_simulate_rejects_a_non_boolean_prewarp():
+    from pathlib import Path
+
+    from flexpipe.errors import InputError
+    from flexpipe.vehicle.simulation import simulate
+
+    car = Path(__file__).resolve().parents[1] / "cars" / "sedan.toml"
+    with pytest.raises(InputError, match="prewarp must be True or False"):
+        simulate(car, speed=10.0, t_end=0.1, body="rigid", prewarp="yes")

@@ -263,6 +263,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     car = _car(car)
     if body not in BODIES:
         raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
+    if not isinstance(prewarp, (bool, np.bool_)):
+        raise InputError(f"prewarp must be True or False, got {prewarp!r}", key="prewarp")
     speed = _number(speed, "speed", lo=0.0, hi=80.0, lo_closed=True)
     t_end = _number(t_end, "t_end", lo=0.0, hi=3600.0)
     h = _number(h, "h", lo=0.0, hi=5e-3)
