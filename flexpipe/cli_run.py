@@ -94,8 +94,7 @@ def _check_step(args, body: str, out: Path) -> int:
     path = None if args.path in (None, "straight") else args.path
     chk = check_step(args.car, h=h, refinements=(2, 4), road=args.road, path=path,
                      speed=args.speed / 3.6, t_end=args.t_end, body=body,
-                     cache=not args.no_cache, progress=True,
-                     **({"prewarp": False} if args.no_prewarp else {}))
+                     cache=not args.no_cache, progress=True, prewarp=not args.no_prewarp)
     print(chk.table())
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")

@@ -30,7 +30,7 @@ Model (per corner ``fl, fr, rl, rr``)
   The flexible body's modal masses and damping are pre-warped to the step and this
   spectral radius (``CarBuild.modal_prewarp``, :mod:`flexpipe.exu.prewarp`): flexible
   linkage car, ISO C 70 km/h, worst corner x / y 26.6 / 12.6 % plain, 8.3 / 6.7 %
-  pre-warped (0.3 / 0.7: 9.0 / 7.4, 8.5 / 7.9 %).
+  pre-warped (0.3 / 0.7: 9.0 / 7.4, 8.5 / 7.9 %), at Newton tolerance 1e-3.
 * Suspension: spring, damper and stops are one implicit ``ObjectConnectorSpringDamper``
   per corner, linearized every step with secant slopes (the anti-roll bars come as loads
   at the travel predicted for the end of the step).  A ``PreStepUserFunction`` reads the

@@ -123,11 +123,12 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
     try:
-        kw = ({} if h is None else {"h": h}) | ({} if prewarp else {"prewarp": False})
+        kw = {} if h is None else {"h": h}
         for i, body in enumerate(bodies, 1):
             log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
-                         progress=progress, cache=cache, log=lambda m: log("      " + m), **kw)
+                         progress=progress, cache=cache, log=lambda m: log("      " + m),
+                         prewarp=prewarp, **kw)
             results[body] = r
             files.append(r.save(stage / f"{body}{SUFFIX.get(format, '.csv')}",
                                 format=format).name)
