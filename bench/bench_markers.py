@@ -7,7 +7,9 @@ position marker of a mount and for a generic joint on the rigid (6-DOF) marker o
 mount (three points, :mod:`flexpipe.exu.body`).  The peer is the bare body in the same
 run.  Measured 2026-12-01 (46 modes): on the former seven-point rigid markers a generic
 joint cost 0.124 ms per iteration, 22x a spherical joint (0.0056 ms); on three points
-0.058 ms, 10x.
+0.058 ms, 10x.  The third case puts each generic joint on a 6-DOF bracket of the mount
+(:func:`flexpipe.exu.brackets.mount_bracket`); its figure includes the bracket's own
+constraints.
 """
 
 from __future__ import annotations
@@ -17,8 +19,10 @@ from pathlib import Path
 
 import exudyn as exu
 import exudyn.itemInterface as eii
+import numpy as np
 
 from flexpipe.exu.body import add_flexible_body
+from flexpipe.exu.brackets import mount_bracket
 from flexpipe.vehicle import load_car
 from flexpipe.vehicle.simulation import prepare
 
@@ -44,8 +48,9 @@ def _run(fb, kind: str, n_joints: int) -> dict:
             mg = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=p))
             axes = [0] * 6
             axes[made % 6] = 1
-            mbs.AddObject(eii.GenericJoint(markerNumbers=[mg, bh.markers[itf.name]],
-                                           constrainedAxes=axes))
+            mb = bh.markers[itf.name] if kind == "generic" else mount_bracket(
+                mbs, bh, fb, itf.name, p0=(0.0, 0.0, 0.0), R0=np.eye(3), v0=(0.0, 0.0, 0.0))
+            mbs.AddObject(eii.GenericJoint(markerNumbers=[mg, mb], constrainedAxes=axes))
         else:
             continue
         made += 1
@@ -79,8 +84,10 @@ def run() -> dict:
     bare = _run(fb, "spherical", 0)
     sph = _run(fb, "spherical", 30)
     gen = _run(fb, "generic", 12)
+    brk = _run(fb, "bracket", 12)
     per_sph = sph["ms_constraints_per_iteration"] / sph["joints"]
     per_gen = gen["ms_constraints_per_iteration"] / gen["joints"]
+    per_brk = brk["ms_constraints_per_iteration"] / brk["joints"]
     out = {
         "elastic_modes": fb.n_elastic,
         "bare_body_ms_per_step": round(bare["ms_per_step"], 4),
@@ -89,6 +96,8 @@ def run() -> dict:
         "generic_joints": gen["joints"],
         "generic_ms_per_joint_iteration": round(per_gen, 5),
         "ratio_generic_to_spherical": round(per_gen / per_sph, 2),
+        "bracket_ms_per_joint_iteration": round(per_brk, 5),
+        "ratio_generic_to_bracket": round(per_gen / per_brk, 2),
     }
     for k, v in out.items():
         print(f"{k:36s} {v}")

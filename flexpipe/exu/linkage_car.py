@@ -3,16 +3,18 @@
 
 Every body-side mount of the suspension loads the body where it really sits: on the rigid
 body through a marker at the mount point, on the flexible body through the mount's
-interface.  Where a joint or a bushing needs the mount's frame, a 6-DOF interface gives
-its rigid marker (the frame turns with the mount's elastic rotation, moments load the
-body there); a 3-DOF interface gives a *bracket*: a tiny rigid body held at the mount by
-a spherical joint on the interface's position marker, its axes locked to the body frame,
-so forces load the body at the mount and moments load it as a whole.  The templates'
-inline joints (no moment passes) sit on 3-DOF mounts with brackets
-(``Suspension.mount_dofs``): on ``cars/sedan_linkage.toml`` (ISO C, 70 km/h, 3 s) that
-moved the hub forces by at most 0.7 % (x), 1.3 % (y), 0.05 % (z) of their fluctuation
-against 6-DOF mounts and cut the CPU time by 12 %; a bracket costs Exudyn about a tenth
-of a joint on a rigid marker of the flexible body (``bench/bench_markers.py``).
+interface.  Where a joint or a bushing needs the mount's frame, it acts on a *bracket*
+(:mod:`flexpipe.exu.brackets`), a tiny rigid body held by position markers only: at a
+6-DOF interface the bracket turns with the mount (moments load the body there); at a
+3-DOF interface its axes are the body frame's (forces load the body at the mount,
+moments load it as a whole).  The templates' inline joints (no moment passes) sit on
+3-DOF mounts (``Suspension.mount_dofs``): on ``cars/sedan_linkage.toml`` (ISO C,
+70 km/h, 3 s) that moved the hub forces by at most 0.7 % (x), 1.3 % (y), 0.05 % (z) of
+their fluctuation against 6-DOF mounts and cut the CPU time by 12 %.  The 6-DOF bracket
+replaced Exudyn's ``MarkerSuperElementRigid`` (same three marker points): on the same
+run the hub forces moved by at most 0.01 % of their fluctuation and Exudyn's share of
+the CPU time fell by 16 % (``bench/bench_markers.py``: a generic joint on the bracket
+costs 1.8x less than on the rigid marker).
 """
 
 from __future__ import annotations
@@ -24,15 +26,12 @@ from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.errors import InputError
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
+from flexpipe.exu.brackets import frame_bracket, mount_bracket
 from flexpipe.exu.car import CarState, CarSystem
 from flexpipe.exu.linkage import LinkageModel
 from flexpipe.tires.contact import _cross
 
 OV = exu.OutputVariableType
-#: mass and inertia of a mount bracket (numerical only: its motion is fully constrained,
-#: no gravity acts on it)
-BRACKET_MASS_KG = 1e-4
-BRACKET_INERTIA_KGM2 = 1e-9
 
 
 class LinkageCarSystem(CarSystem):
@@ -54,42 +53,21 @@ class LinkageCarSystem(CarSystem):
                                      [float(v) for v in spec.modal_q0])
 
             self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
-            itfs = {i.name: i for i in spec.flexbody.interfaces}
             fb = spec.flexbody
-
-            def bracket(name):
-                """Rigid marker at a 3-DOF mount: a bracket body whose point is held at
-                the mount (spherical joint on the body's position marker) and whose axes
-                are the body frame's (rotation-only joint to the frame node)."""
-                itf = itfs[name]
-                p = np.asarray(itf.point, float)
-                if spec.modal_q0 is not None:  # start where the deflected mount is
-                    sel = slice(fb.n_rigid, fb.n_rigid + len(spec.modal_q0))
-                    p = p + itf.shapes[:3, sel] @ np.asarray(spec.modal_q0, float)
-                node = mbs.AddNode(GetRigidBodyNode(
-                    nodeType=NODE_TYPE, position=list(p0 + R0 @ p), velocity=list(v0),
-                    rotationMatrix=R0, angularVelocity=[0.0, 0.0, 0.0]))
-                obj = mbs.AddObject(eii.ObjectRigidBody(
-                    mass=BRACKET_MASS_KG, nodeNumber=node,
-                    inertia=[BRACKET_INERTIA_KGM2] * 3 + [0.0] * 3))
-                mp = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=obj,
-                                                          localPosition=[0.0, 0.0, 0.0]))
-                mbs.AddObject(eii.ObjectJointSpherical(
-                    markerNumbers=[h.position_markers[name], mp],
-                    visualization=eii.VObjectJointSpherical(show=False)))
-                mr = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=obj,
-                                                       localPosition=[0.0, 0.0, 0.0]))
-                mbs.AddObject(eii.GenericJoint(
-                    markerNumbers=[self.frame_marker, mr], constrainedAxes=[0, 0, 0, 1, 1, 1],
-                    visualization=eii.VGenericJoint(show=False)))
-                return mr
+            at = dict(p0=p0, R0=R0, v0=v0, q0=spec.modal_q0)
 
             def mount_marker(name, rigid):
-                table = h.markers if rigid else h.position_markers
-                if rigid and name not in table and name in h.position_markers:
-                    key = (name, "bracket")
+                if rigid and name in h.markers:  # 6-DOF mount: a bracket turning with it
+                    key = (name, "mount")
                     if key not in cache:
-                        cache[key] = bracket(name)
+                        cache[key] = mount_bracket(mbs, h, fb, name, **at)
+                    return cache[key]
+                table = h.markers if rigid else h.position_markers
+                if rigid and name in h.position_markers:  # 3-DOF: axes of the body frame
+                    key = (name, "frame")
+                    if key not in cache:
+                        cache[key] = frame_bracket(mbs, h, fb, name,
+                                                   frame_marker=self.frame_marker, **at)
                     return cache[key]
                 if name not in table:
                     kind = "6-DOF (rigid)" if rigid else "position"
