@@ -39,6 +39,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexpipe.errors import InputError
+from flexpipe.tires import _fast
 from flexpipe.tires.contact import SlipState, _cross
 
 #: finite-difference steps: velocity (m/s), spin rate (rad/s), height (m), rotation (rad)
@@ -70,6 +72,14 @@ def _force_and_moment(out, C, rows, m):
     return np.concatenate([out.force, own], axis=1).reshape(rows, m, 6)
 
 
+def _check(bad, s, n):
+    """The compiled kernel's report of a bad row as the NumPy tyre reports it."""
+    if bad >= 0:
+        name = "spin_axis" if not np.isfinite(s[bad]).all() or not s[bad].any() \
+            else "road_normal"
+        raise InputError(f"{name} must be non-zero, finite vectors", key=name)
+
+
 class ImplicitTires:
     """Per-step linearization of the tyre forces of a car (see module docstring).
 
@@ -89,6 +99,9 @@ class ImplicitTires:
         self.mirror = np.asarray(mirror, dtype=bool)
         n = len(tires)
         self.state = {id(t): SlipState.zeros(len(ix)) for t, ix in self.groups}
+        #: groups evaluated by the compiled corrector and predictor (PAC2002 tyres)
+        self.compiled = {id(t) for t, _ in self.groups
+                         if _fast.enabled() and hasattr(t, "_packed")}
         self.n = n
         self._prev = None  # inputs of the last step, for the corrector
 
@@ -104,6 +117,9 @@ class ImplicitTires:
         prev = self._prev
         for tire, ix in self.groups:
             st = self.state[id(tire)]
+            if id(tire) in self.compiled:
+                self._correct_compiled(tire, ix, kin, prev, h, out)
+                continue
             if prev is not None and tire.relaxation:
                 # the relaxation over the step: every input (velocities and geometry) at
                 # the mean of its values at the two ends (trapezoidal, second order)
@@ -123,6 +139,24 @@ class ImplicitTires:
             out["force"][ix] = wf.force
         return out
 
+    def _correct_compiled(self, tire, ix, kin, prev, h, out):
+        from flexpipe.vehicle._tire_coupling_fast import correct_group
+
+        st = self.state[id(tire)]
+        kappa, tan_a = st.kappa.astype(float), st.tan_alpha.astype(float)
+        a = [np.ascontiguousarray(kin[k][ix], dtype=float) for k in _TRACKED]
+        p = a if prev is None else [np.ascontiguousarray(prev[k][ix], dtype=float)
+                                    for k in _TRACKED]
+        force, Fxyz = np.empty((len(ix), 3)), np.empty((len(ix), 3))
+        bad = correct_group(tire._packed(), a[0], a[1], a[2], a[3], a[4], a[5], a[6],
+                            p[0], p[1], p[2], p[3], p[4], p[5], p[6], prev is not None,
+                            np.ascontiguousarray(self.mirror[ix]), kappa, tan_a,
+                            bool(tire.relaxation), float(h), force, Fxyz)
+        _check(bad, a[1], a[6])
+        self.state[id(tire)] = SlipState(kappa, tan_a)
+        out["Fx"][ix], out["Fy"][ix], out["Fz"][ix] = Fxyz.T
+        out["force"][ix] = force
+
     def predict(self, kin, h: float, road_ahead) -> TireStep:
         """Force predicted for the end of the coming step and its derivatives."""
         n = self.n
@@ -134,6 +168,10 @@ class ImplicitTires:
         r = np.zeros((n, 3))
         M = np.zeros((n, 3))
         for tire, ix in self.groups:
+            if id(tire) in self.compiled:
+                self._predict_compiled(tire, ix, kin, h, road_ahead,
+                                       (F0, Dv, dw, A, S, r, M))
+                continue
             m = len(ix)
             C, s, v = kin["C"][ix], kin["s"][ix], kin["v"][ix]
             w, om = kin["w"][ix], kin["omega"][ix]
@@ -193,3 +231,21 @@ class ImplicitTires:
         return TireStep(F0=F0, Dv=Dv[:, :3], dw=dw[:, :3], A=A[:, :3], r=r, moment=M,
                         spin_axis=kin["s"].copy(), S=S[:, :3],
                         moment_lin=(Dv[:, 3:], dw[:, 3:], A[:, 3:], S[:, 3:]))
+
+    def _predict_compiled(self, tire, ix, kin, h, road_ahead, full):
+        from flexpipe.vehicle._tire_coupling_fast import predict_group
+
+        m = len(ix)
+        st = self.state[id(tire)]
+        g = {k: np.ascontiguousarray(kin[k][ix], dtype=float)
+             for k in ("C", "s", "v", "w", "omega", "n_road")}
+        part = (np.empty((m, 3)), np.empty((m, 6, 3)), np.empty((m, 6)), np.empty((m, 6)),
+                np.empty((m, 6, 3)), np.empty((m, 3)), np.empty((m, 3)))
+        bad = predict_group(tire._packed(), g["C"], g["s"], g["v"], g["w"], g["omega"],
+                            g["n_road"], np.ascontiguousarray(road_ahead[ix], dtype=float),
+                            np.ascontiguousarray(self.mirror[ix]),
+                            st.kappa.astype(float), st.tan_alpha.astype(float),
+                            bool(tire.relaxation), float(h), DV, DW, DZ, DTH, *part)
+        _check(bad, g["s"], g["n_road"])
+        for dst, src in zip(full, part, strict=True):
+            dst[ix] = src

@@ -1,0 +1,86 @@
+"""The compiled tyre corrector/predictor (flexpipe.vehicle._tire_coupling_fast) against
+the NumPy reference (:class:`flexpipe.vehicle.tire_coupling.ImplicitTires` with the
+compiled groups switched off), which drives the NumPy tyre model.
+
+Both must agree to rounding over a sequence of steps on random wheel states, with and
+without relaxation, for two tyres on one car (front and rear groups), mirrored wheels, a
+lifted wheel and a wheel at standstill.
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from flexpipe.errors import InputError
+from flexpipe.tires import _fast, tire_from_file
+from flexpipe.vehicle.tire_coupling import ImplicitTires
+
+ROOT = Path(__file__).resolve().parents[1]
+TIR = sorted(ROOT.glob("tires/*.tir"))
+
+pytestmark = pytest.mark.skipif(not _fast.enabled() or not TIR, reason="numba or .tir")
+
+
+def _kin(rng, r0):
+    n = 4
+    C = np.c_[rng.normal(size=(n, 2)), r0 * (0.9 + 0.08 * rng.random(n))]
+    C[0, 2] = 2.0 * r0  # a lifted wheel
+    s = np.c_[0.05 * rng.normal(size=n), np.ones(n), 0.05 * rng.normal(size=n)]
+    v = np.c_[rng.uniform(-3.0, 40.0, n), rng.normal(size=n), 0.2 * rng.normal(size=n)]
+    v[1] = 0.0  # standstill
+    return {"C": C, "s": s, "v": v, "w": rng.normal(size=(n, 3)),
+            "omega": v[:, 0] / r0 * (1.0 + 0.1 * rng.normal(size=n)),
+            "h_road": 0.01 * rng.normal(size=n),
+            "n_road": np.c_[0.05 * rng.normal(size=(n, 2)), np.ones(n)]}
+
+
+def _pair(relaxation):
+    front = tire_from_file(TIR[0], relaxation=relaxation)
+    rear = tire_from_file(TIR[-1], relaxation=relaxation)
+    if rear is front or len(TIR) == 1:
+        rear = tire_from_file(TIR[0], relaxation=relaxation)
+    tires = [front, front, rear, rear]
+    mirror = np.array([False, True, False, True])
+    fast, ref = ImplicitTires(tires, mirror), ImplicitTires(tires, mirror)
+    ref.compiled = set()
+    assert len(fast.compiled) == 2
+    return fast, ref, front.unloaded_radius
+
+
+@pytest.mark.parametrize("relaxation", [True, False])
+def test_compiled_steps_equal_the_numpy_reference(relaxation):
+    rng = np.random.default_rng(7)
+    fast, ref, r0 = _pair(relaxation)
+    h = 2e-3
+    for _ in range(5):
+        kin = _kin(rng, r0)
+        ahead = 0.01 * rng.normal(size=4)
+        a, b = fast.correct(kin, h), ref.correct(kin, h)
+        for k in ("Fx", "Fy", "Fz", "force"):
+            np.testing.assert_allclose(a[k], b[k], rtol=1e-10, atol=1e-8)
+        kin_ahead = dict(kin, n_road=kin["n_road"] + 0.01 * rng.normal(size=(4, 3)))
+        p, q = fast.predict(kin_ahead, h, ahead), ref.predict(kin_ahead, h, ahead)
+        for k in ("F0", "Dv", "dw", "A", "r", "moment", "S"):
+            scale = max(np.abs(getattr(q, k)).max(), 1.0)
+            np.testing.assert_allclose(getattr(p, k), getattr(q, k), rtol=0,
+                                       atol=1e-7 * scale, err_msg=k)
+        for x, y in zip(p.moment_lin, q.moment_lin, strict=True):
+            np.testing.assert_allclose(x, y, rtol=0, atol=1e-7 * max(np.abs(y).max(), 1.0))
+        for key in fast.state:
+            np.testing.assert_allclose(fast.state[key].kappa, ref.state[key].kappa,
+                                       rtol=1e-10, atol=1e-12)
+            np.testing.assert_allclose(fast.state[key].tan_alpha, ref.state[key].tan_alpha,
+                                       rtol=1e-10, atol=1e-12)
+    # the states did move: the test compares more than the initial zeros
+    assert not relaxation or any(np.abs(s.kappa).max() > 1e-4 for s in fast.state.values())
+
+
+def test_compiled_path_names_a_bad_spin_axis():
+    fast, _, r0 = _pair(True)
+    kin = _kin(np.random.default_rng(1), r0)
+    kin["s"][2] = 0.0
+    with pytest.raises(InputError, match="spin_axis must be non-zero"):
+        fast.correct(kin, 2e-3)
+    with pytest.raises(InputError, match="spin_axis must be non-zero"):
+        fast.predict(kin, 2e-3, np.zeros(4))
