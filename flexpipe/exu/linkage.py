@@ -7,8 +7,10 @@ Joints become Exudyn constraints (``spherical`` -> ``ObjectJointSpherical``; ``i
 massless two-force links ``ObjectConnectorDistance`` (``ObjectConnectorSpringDamper`` when
 compliant), bushings ``ObjectConnectorRigidBodySpringDamper`` (linear 6-DOF in the bushing
 frame).  Springs, dampers and stops act between their real seats through one
-``ObjectConnectorSpringDamper`` each, linearized at the start of every step (tangent
-stiffness or damping and the force at the start), so they are solved implicitly.  The
+``ObjectConnectorSpringDamper`` each whose force law (table, dual-rate damper, stop
+contact) is an Exudyn symbolic user function (:mod:`flexpipe.exu.force_laws`), evaluated
+in C++ at every Newton iteration: they are solved implicitly, nothing of them runs in
+Python during the step.  The
 steering rack is a rigid body sliding along the body y axis in its two housing mounts,
 held by the column stiffness at the travel the driver commands; an anti-roll bar is two
 arms turning in their body bushings, joined by the torsion bar and carried by drop links.
@@ -19,8 +21,6 @@ position marker, or a rigid one where a joint or bushing needs the mount's frame
 
 from __future__ import annotations
 
-import math
-
 import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
@@ -28,6 +28,7 @@ from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.exu import mount_sensors
 from flexpipe.exu.body import NODE_TYPE
+from flexpipe.exu.force_laws import symbolic_law
 from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, BODY, RACK, RACK_MASS
 
 OV = exu.OutputVariableType
@@ -82,8 +83,7 @@ class LinkageModel:
         self.corners = suspension.corners()
         self.knuckle_node, self.part_nodes, self.forces = [], [], []  # part_nodes: per
         # corner (object, mass, centre of mass in the part's frame)
-        self._kc = {}  # connector -> (stiffness, damping) last set
-        self._rate = {}  # damper connector -> extension rate at the last step
+        self._laws = []  # the force elements' symbolic laws (flexpipe.exu.force_laws)
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
         self._pos_markers = {}
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
@@ -173,9 +173,11 @@ class LinkageModel:
         for f in c.forces:
             mb = self.mount_marker(f.mount, False)
             ma = self._marker(own(f.part), f.point, False)
+            law = symbolic_law(mbs, f)  # evaluated by Exudyn in every Newton iteration
+            self._laws.append(law)  # keeps the expression tree alive
             co = mbs.AddObject(eii.ObjectConnectorSpringDamper(
                 markerNumbers=[mb, ma], referenceLength=f.design_length, stiffness=0.0,
-                damping=0.0, force=0.0,
+                damping=0.0, force=0.0, springForceUserFunction=law,
                 visualization=eii.VObjectConnectorSpringDamper(show=False)))
             self.forces.append((i, f, co, mb, ma))
             self.body_links.append((f.mount, co, "vector", (mb, ma), None))
@@ -303,56 +305,6 @@ class LinkageModel:
             visualization=eii.VObjectConnectorTorsionalSpringDamper(show=False)))
 
     # ------------------------------------------------------------------ per step
-    def update_forces(self, h: float) -> None:
-        """Linearize every spring, damper and stop for the coming step of length ``h``.
-
-        The slope is the secant between the current state and the one predicted for the
-        end of the step (length ``L + h dL/dt``, rate extrapolated from the last step), so
-        a kink of a table (stop contact, the dual-rate damper's change at zero velocity)
-        crossed during the step is met at its end, where the implicit integrator balances
-        the forces; away from kinks the secant is the tangent.
-        """
-        gm = self.mbs.GetMarkerOutput
-        so = self.mbs.SetObjectParameter
-        pos, vel = OV.Position, OV.Velocity
-        for _i, f, co, mb, ma in self.forces:  # plain floats: 3-vectors cost numpy more
-            xb, yb, zb = gm(mb, pos).tolist()
-            xa, ya, za = gm(ma, pos).tolist()
-            ub, vb_, wb = gm(mb, vel).tolist()
-            ua, va_, wa = gm(ma, vel).tolist()
-            dx, dy, dz = xa - xb, ya - yb, za - zb
-            L = math.sqrt(dx * dx + dy * dy + dz * dz)
-            Ld = (dx * (ua - ub) + dy * (va_ - vb_) + dz * (wa - wb)) / L
-            if f.kind == "damper":
-                Ld_prev = self._rate.get(co, Ld)
-                self._rate[co] = Ld
-                v1 = 2.0 * Ld - Ld_prev  # rate predicted for the end of the step
-                P = -f.damper_force(Ld)
-                if abs(v1 - Ld) > 1e-6:
-                    Pv = -(f.damper_force(v1) - f.damper_force(Ld)) / (v1 - Ld)
-                else:
-                    e = 1e-4
-                    Pv = -(f.damper_force(Ld + e) - f.damper_force(Ld - e)) / (2 * e)
-                k, c, force = 0.0, -Pv, -P + Pv * Ld
-            else:
-                L1 = L + h * Ld  # length predicted for the end of the step
-                P = f.static_force(L)
-                if abs(L1 - L) > 1e-7:
-                    PL = (f.static_force(L1) - P) / (L1 - L)
-                else:
-                    e = 1e-5
-                    PL = (f.static_force(L + e) - f.static_force(L - e)) / (2 * e)
-                k, c, force = -PL, 0.0, -P
-            # F = k (L - L_ref) + c dL/dt + force with L_ref fixed at the design length:
-            # only the force changes every step; k and c only when the tangent changes
-            force += k * (f.design_length - L)
-            last = self._kc.get(co)
-            if last != (k, c):
-                so(co, "stiffness", k)
-                so(co, "damping", c)
-                self._kc[co] = (k, c)
-            so(co, "force", force)
-
     def mount_forces(self) -> dict:
         """Force (global, N) the suspension applies to the body at each mount, summed over
         the joints, links, bushings and force elements there.  Exudyn reports every

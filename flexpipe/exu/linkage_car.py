@@ -128,18 +128,12 @@ class LinkageCarSystem(CarSystem):
                         jounce=jounce, jounce_rate=vrel[:, 2], joint_force=None,
                         mount_R=np.repeat(body_R[None], 4, axis=0), wheel_q=wq, wheel_qt=wqt)
 
-    _h = 2e-3  # step length, set by run()
-
-    def run(self, step, *, t_end: float, h: float, **kw):  # noqa: D102 - as CarSystem.run
-        self._h = float(h)
-        return super().run(step, t_end=t_end, h=h, **kw)
-
     def apply(self, loads, mount_R, st) -> None:
-        """Tyre elements, spin torques, rack travel; linearize the springs."""
+        """Tyre elements, spin torques, rack travel (the springs, dampers and stops need
+        nothing: their laws run inside Exudyn)."""
         self._apply_wheels(loads, st)
         if loads.rack_travel is not None:
             self.linkage.set_rack_travel(loads.rack_travel)
-        self.linkage.update_forces(self._h)
 
     def joint_forces(self):  # the hub force comes from hub_forces for linkage cars
         return np.zeros((4, 3))

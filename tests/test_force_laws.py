@@ -1,0 +1,96 @@
+"""Symbolic force laws of the suspension's springs, dampers and stops
+(:mod:`flexpipe.exu.force_laws`) against the elements' own NumPy methods
+(:meth:`ForceElement.static_force`, :meth:`ForceElement.damper_force`), and a mass on a
+symbolic spring-damper against the closed-form damped oscillation.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+exu = pytest.importorskip("exudyn")
+import exudyn.itemInterface as eii  # noqa: E402
+
+from flexpipe.exu.force_laws import interp, symbolic_law  # noqa: E402
+from flexpipe.vehicle.suspension.model import ForceElement  # noqa: E402
+
+A, B = (0.0, 0.6, -0.27), (-0.04, 0.52, 0.23)  # seats: lower (part), upper (body)
+L0 = float(np.linalg.norm(np.subtract(A, B)))
+ELEMENTS = {
+    "spring_rate": ForceElement("s", "spring", "arm", A, "m", B, rate=111e3,
+                                free_length=L0 + 0.03),
+    "spring_table": ForceElement("s", "spring", "arm", A, "m", B, free_length=L0 + 0.03,
+                                 table=(np.array([0.0, 0.02, 0.05, 0.08]),
+                                        np.array([0.0, 2e3, 6e3, 15e3]))),
+    "damper": ForceElement("d", "damper", "arm", A, "m", B,
+                           table=(np.array([-1.0, -0.1, 0.0, 0.1, 1.0]),
+                                  np.array([-6680.0, -1200.0, 0.0, 2500.0, 13360.0]))),
+    "bump_stop": ForceElement("b", "bump_stop", "arm", A, "m", B, clearance=0.036,
+                              table=(np.array([0.0, 0.005, 0.01, 0.02]),
+                                     np.array([0.0, 1e3, 3.5e3, 12e3]))),
+    "rebound_stop": ForceElement("r", "rebound_stop", "arm", A, "m", B, clearance=0.047,
+                                 table=(np.array([0.0, 0.005, 0.01]),
+                                        np.array([0.0, 2e3, 8e3]))),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ELEMENTS))
+def test_law_equals_the_elements_numpy_force(name):
+    f = ELEMENTS[name]
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    law = symbolic_law(mbs, f)
+    rng = np.random.default_rng(3)
+    us = np.concatenate([np.linspace(-0.12, 0.12, 241), rng.uniform(-0.2, 0.2, 50)])
+    vs = np.concatenate([np.linspace(-1.5, 1.5, 241), rng.uniform(-2.0, 2.0, 50)])
+    for u, v in zip(us, vs, strict=True):
+        got = law.Evaluate(mbs, 0.0, 0, float(u), float(v), 0.0, 0.0, 0.0)
+        # Exudyn's connector force is tension > 0: the spring's and the stops' push
+        # apart with a minus, the damper's resisting force as it is
+        want = f.damper_force(v) if f.kind == "damper" else -f.static_force(L0 + u)
+        assert got == pytest.approx(want, rel=1e-12, abs=1e-9), (u, v)
+
+
+def test_interp_equals_numpy_interp_with_clamping():
+    xs, ys = [-1.0, -0.2, 0.0, 0.3, 1.0], [-5.0, -1.0, 0.0, 2.0, 4.0]
+    for x in np.linspace(-2.0, 2.0, 81):
+        assert interp(float(x), xs, ys) == pytest.approx(np.interp(x, xs, ys), abs=1e-12)
+
+
+def test_mass_on_symbolic_spring_damper_rings_as_the_closed_form():
+    """1 kg on the linear spring (111 kN/m) and a linear damper (zeta 0.05), released
+    from 1 mm: the exact damped oscillation (h = 1e-5 s)."""
+    k, m = 111e3, 1.0
+    c = 2 * 0.05 * math.sqrt(k * m)
+    spring = ForceElement("s", "spring", "arm", A, "m", B, rate=k, free_length=L0)
+    damper = ForceElement("d", "damper", "arm", A, "m", B,
+                          table=(np.array([-10.0, 10.0]), np.array([-10.0 * c, 10.0 * c])))
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    d = np.subtract(A, B) / L0
+    node = mbs.AddNode(eii.NodePoint(referenceCoordinates=list(np.add(B, L0 * d)),
+                                     initialCoordinates=list(1e-3 * d)))
+    mass = mbs.AddObject(eii.MassPoint(nodeNumber=node, mass=m))
+    m0 = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=ground, localPosition=list(B)))
+    m1 = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=mass, localPosition=[0, 0, 0]))
+    laws = [symbolic_law(mbs, e) for e in (spring, damper)]
+    for law in laws:
+        mbs.AddObject(eii.ObjectConnectorSpringDamper(
+            markerNumbers=[m0, m1], referenceLength=L0, springForceUserFunction=law))
+    mbs.Assemble()
+    s = exu.SimulationSettings()
+    T = 0.01
+    s.timeIntegration.numberOfSteps = 1000
+    s.timeIntegration.endTime = T
+    s.timeIntegration.verboseMode = 0
+    s.solution.file.write = False
+    mbs.SolveDynamic(s)
+    x = float(np.dot(mbs.GetNodeOutput(node, exu.OutputVariableType.Displacement), d))
+    wn = math.sqrt(k / m)
+    z = c / (2 * math.sqrt(k * m))
+    wd = wn * math.sqrt(1 - z * z)
+    exact = 1e-3 * math.exp(-z * wn * T) * (math.cos(wd * T) + z / math.sqrt(1 - z * z)
+                                           * math.sin(wd * T))
+    assert x == pytest.approx(exact, abs=2e-3 * 1e-3)
