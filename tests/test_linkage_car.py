@@ -104,6 +104,28 @@ def test_mount_forces_sum_to_the_corner_hub_force(output_step):
             assert abs(d.mean()) < 0.5, (c, k)
 
 
+@pytest.mark.parametrize("output_step", [2e-3, 6e-3])
+def test_hub_forces_from_sensors_equal_the_python_reads(output_step, monkeypatch):
+    """The hub channels made after the run from Exudyn's sensor records (parts'
+    accelerations, rack and bar links) against the same forces read from Python in the
+    step (``CarController.hub_sensors = False``): one trajectory, equal to rounding."""
+    from flexpipe.scenarios.runner import _straight_road
+    from flexpipe.vehicle.dynamics import CarController
+
+    car = fp.load_car(CAR)
+    kw = dict(road=_straight_road(), speed=70 / 3.6, t_end=0.4, body="rigid",
+              output_step=output_step, settle=False)
+    r = fp.simulate(car, **kw)
+    monkeypatch.setattr(CarController, "hub_sensors", False)
+    ref = fp.simulate(car, **kw)
+    assert r.status == ref.status == 0
+    for c in CORNERS:
+        for k in "xyz":
+            a, b = r[f"hub_{c}_{k}"], ref[f"hub_{c}_{k}"]
+            assert np.isfinite(a).all()
+            np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.abs(b).max() + 1e-9)
+
+
 @pytest.fixture(scope="module")
 def iso_c_runs():
     """Rigid twin and flexible bodies of the linkage car on ISO class C at 70 km/h."""

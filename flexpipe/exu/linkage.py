@@ -336,6 +336,11 @@ class LinkageModel:
         (:func:`flexpipe.exu.mount_sensors.history`)."""
         return mount_sensors.history(self, t)
 
+    def hub_force_history(self, t: np.ndarray, F_tire: np.ndarray):
+        """The corners' hub forces (n, 4, 3, global, N) at the times ``t`` from the sensors
+        and the tyre forces applied then (:func:`flexpipe.exu.mount_sensors.hub_history`)."""
+        return mount_sensors.hub_history(self, t, F_tire)
+
     def hub_forces(self, F_tire: np.ndarray) -> np.ndarray:
         """Force (4, 3, global) each corner applies to the body through its own mounts:
         tyre force + weight - m a of its parts + the forces of the links to rack and bar."""

@@ -45,6 +45,50 @@ def add(model, body_node) -> None:
         model._sensors.append(s)
     model._body_sensor = sensor(lambda **k: eii.SensorNode(
         nodeNumber=body_node, outputVariableType=OV.RotationMatrix, **k))
+    # the corners' hub forces (LinkageModel.hub_forces): each part's centre-of-mass
+    # acceleration and the links from a corner to the rack or an anti-roll-bar arm
+    def acc(o, cm):
+        return sensor(lambda **k: eii.SensorBody(bodyNumber=o, localPosition=cm,
+                                                 outputVariableType=OV.Acceleration, **k))
+
+    model._hub_sensors = (
+        [[(acc(o, cm), m) for o, m, cm in parts] for parts in model.part_nodes],
+        [(i, obj(co, OV.Force), mark(ma, OV.Position), mark(mb, OV.Position))
+         for i, co, mb, ma in model.to_other])
+
+
+def _rows(model, t):
+    """Sample index of every time in ``t`` and whether a sample lies within 1e-9 s."""
+    get = model.mbs.GetSensorStoredData
+    ts = np.asarray(get(model._body_sensor), dtype=float).reshape(-1, 10)[:, 0]
+    t = np.asarray(t, dtype=float)
+    j = np.clip(np.searchsorted(ts, t - 1e-9), 0, max(len(ts) - 1, 0))
+    ok = (len(ts) > 0) & (np.abs(ts[j] - t) < 1e-9) if len(ts) else np.zeros(len(t), bool)
+    return ts, j, ok
+
+
+def hub_history(model, t: np.ndarray, F_tire: np.ndarray):
+    """The corners' hub forces (n, 4, 3, global, N) at the times ``t`` from the sensors of
+    :func:`add` and the tyre forces ``F_tire`` (n, 4, 3) applied at those times, as
+    :meth:`flexpipe.exu.linkage.LinkageModel.hub_forces` computes them from Python
+    reads; rows NaN where no sensor sample lies within 1e-9 s of ``t``."""
+    get = model.mbs.GetSensorStoredData
+    ts, j, ok = _rows(model, t)
+
+    def data(sid, width):
+        return np.asarray(get(sid), dtype=float).reshape(len(ts), -1)[j, 1:1 + width]
+
+    parts, links = model._hub_sensors
+    out = np.array(F_tire, dtype=float)
+    g = np.asarray(model.g, dtype=float)
+    for i, corner in enumerate(parts):
+        for sid, m in corner:
+            out[:, i] += m * (g - data(sid, 3))
+    for i, sF, sa, sb in links:
+        d = data(sa, 3) - data(sb, 3)
+        out[:, i] -= data(sF, 1) * d / np.linalg.norm(d, axis=1, keepdims=True)
+    out[~ok] = np.nan
+    return out
 
 def history(model, t: np.ndarray):
     """Per-mount forces (body axes, N) at the times ``t`` from the sensors of

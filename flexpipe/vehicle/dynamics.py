@@ -95,6 +95,9 @@ class CarController:
         the driver acts at the first step at or after each sampling instant.
     """
 
+    #: linkage cars: hub forces from Exudyn's sensor records (see ``_record``)
+    hub_sensors = True
+
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
@@ -162,6 +165,10 @@ class CarController:
         self.mounts = []
         #: per-mount forces recorded by Exudyn sensors (LinkageModel.add_mount_sensors)
         self.mount_sensors = bool(getattr(linkage, "_sensors", None))
+        #: hub forces of the rows after the first made of Exudyn's sensor records after
+        #: the run (False: read every row in the step, the reference the tests compare)
+        self.hub_sensors = self.mount_sensors and self.hub_sensors
+        self._hub_rows = {}  # row -> (tyre force (4, 3), mount frames (4, 3, 3))
         if linkage is not None:  # force on the body at every mount (body axes)
             self.mounts = sorted({m for m, *_ in linkage.body_links})
             for m in self.mounts:
@@ -329,6 +336,15 @@ class CarController:
         for m in self.mounts:
             for k, ax in enumerate("xyz"):
                 self.rec.data[rows, self.rec.index[f"mount_{m}_{ax}"]] = hist[m][:, k]
+        if self._hub_rows:  # hub_<corner>_<axis>: tyre force + weight - m a + links
+            idx = np.array(sorted(self._hub_rows))
+            F = np.array([self._hub_rows[i][0] for i in idx])
+            R = np.array([self._hub_rows[i][1] for i in idx])
+            hub_g = self.linkage.hub_force_history(self.rec.t[idx], F)
+            hub = np.einsum("rnji,rnj->rni", R, hub_g)
+            for c, corner in enumerate(CORNERS):
+                for k, ax in enumerate("xyz"):
+                    self.rec.data[idx, self.rec.index[f"hub_{corner}_{ax}"]] = hub[:, c, k]
 
     def _fail(self, t: float, why: str):
         self.status = -1
@@ -376,12 +392,19 @@ class CarController:
         else:
             # Newton's law of each wheel carrier under the loads of the step just taken:
             # what the corner applies to the body = tyre force + weight - m a
-            if self.linkage is not None:
-                hub_g = self.linkage.hub_forces(F_tire)
+            if self.linkage is not None and self.rec.rows > 0 and self.hub_sensors:
+                # the parts' accelerations and the rack and bar links are recorded by
+                # Exudyn's sensors: the hub force is made of them after the run (fill_mounts)
+                self._hub_rows[self.rec.rows] = (np.array(F_tire, dtype=float),
+                                                 st.mount_R.copy())
+                hub = np.full((4, 3), np.nan)
             else:
-                a = self.wheel_acc()
-                hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
-            hub = np.einsum("nji,nj->ni", st.mount_R, hub_g)
+                if self.linkage is not None:
+                    hub_g = self.linkage.hub_forces(F_tire)
+                else:
+                    a = self.wheel_acc()
+                    hub_g = F_tire + self.c.m_unsprung[:, None] * (self.gvec - a)
+                hub = np.einsum("nji,nj->ni", st.mount_R, hub_g)
         # lateral acceleration of the body origin from its velocity history
         if self._prev_v is None:
             ay = 0.0
