@@ -1,10 +1,12 @@
-"""Per-mount forces of a linkage car recorded by Exudyn sensors.
+"""Per-mount and hub forces of a linkage car recorded by Exudyn sensors.
 
 Everything :meth:`flexpipe.exu.linkage.LinkageModel.mount_forces` reads per step (the
 force of every joint, link, bushing and force element at a body mount, the marker frames
-it is given in, and the body frame) is stored by Exudyn after every output step; the
-history is turned into per-mount forces in body axes after the run.
-"""
+it is given in, and the body frame) and everything
+:meth:`~flexpipe.exu.linkage.LinkageModel.hub_forces` reads (the corner parts'
+centre-of-mass accelerations, the forces and ends of the links to the rack and the
+anti-roll bars) is stored by Exudyn after every output step; the histories are turned
+into forces after the run (:func:`history`, :func:`hub_history`)"""
 
 from __future__ import annotations
 
