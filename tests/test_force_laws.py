@@ -12,7 +12,7 @@ import pytest
 exu = pytest.importorskip("exudyn")
 import exudyn.itemInterface as eii  # noqa: E402
 
-from flexpipe.exu.force_laws import interp, symbolic_law  # noqa: E402
+from flexpipe.exu.force_laws import bushing_law, interp, symbolic_law  # noqa: E402
 from flexpipe.vehicle.suspension.model import ForceElement  # noqa: E402
 
 A, B = (0.0, 0.6, -0.27), (-0.04, 0.52, 0.23)  # seats: lower (part), upper (body)
@@ -94,3 +94,87 @@ def test_mass_on_symbolic_spring_damper_rings_as_the_closed_form():
     exact = 1e-3 * math.exp(-z * wn * T) * (math.cos(wd * T) + z / math.sqrt(1 - z * z)
                                            * math.sin(wd * T))
     assert x == pytest.approx(exact, abs=2e-3 * 1e-3)
+
+
+def _bushing_run(bushing, *, law, load=(0.0, 0.0, 0.0), static=False):
+    """A 2 kg rigid body on ``bushing`` (frame turned off the body axes) to the ground:
+    free vibration from an initial velocity and spin (dynamic) or the deflection under
+    ``load`` (static).  Returns the body's position and rotation."""
+    from exudyn.rigidBodyUtilities import GetRigidBodyNode
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ground = mbs.AddObject(eii.ObjectGround())
+    node = mbs.AddNode(GetRigidBodyNode(
+        nodeType=exu.NodeType.RotationEulerParameters, position=[0.0, 0.0, 0.0],
+        velocity=[0.0 if static else 0.05, 0.0 if static else -0.03,
+                  0.0 if static else 0.08],
+        rotationMatrix=np.eye(3),
+        angularVelocity=[0.0, 0.0, 0.0] if static else [0.5, -0.4, 0.3]))
+    body = mbs.AddObject(eii.ObjectRigidBody(mass=2.0, nodeNumber=node,
+                                             inertia=[0.02, 0.03, 0.04, 0.0, 0.0, 0.0]))
+    m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
+    m1 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=body, localPosition=[0, 0, 0]))
+    kw = {"springForceTorqueUserFunction": bushing_law(mbs, bushing)} if law else {}
+    mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+        markerNumbers=[m0, m1], stiffness=np.diag(bushing.stiffness),
+        damping=np.diag(bushing.damping), rotationMarker0=bushing.frame,
+        rotationMarker1=bushing.frame, **kw))
+    mb = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=body, localPosition=[0, 0, 0]))
+    mbs.AddLoad(eii.LoadForceVector(markerNumber=mb, loadVector=list(load)))
+    mbs.Assemble()
+    s = exu.SimulationSettings()
+    s.solution.file.write = False
+    if static:
+        s.staticSolver.verboseMode = 0
+        s.staticSolver.newton.relativeTolerance = 1e-12
+        mbs.SolveStatic(s)
+    else:
+        s.timeIntegration.numberOfSteps = 500
+        s.timeIntegration.endTime = 0.05
+        s.timeIntegration.verboseMode = 0
+        mbs.SolveDynamic(s)
+    out = exu.OutputVariableType
+    return (np.asarray(mbs.GetNodeOutput(node, out.Position)),
+            np.asarray(mbs.GetNodeOutput(node, out.RotationMatrix)).reshape(3, 3))
+
+
+def _frame():
+    a, b = math.radians(30.0), math.radians(20.0)
+    Rz = np.array([[math.cos(a), -math.sin(a), 0], [math.sin(a), math.cos(a), 0], [0, 0, 1]])
+    Rx = np.array([[1, 0, 0], [0, math.cos(b), -math.sin(b)], [0, math.sin(b), math.cos(b)]])
+    return Rz @ Rx
+
+
+def test_bushing_law_with_linear_tables_is_exudyns_own_linear_bushing():
+    """Tables that are exactly the linear rates: the symbolic law must reproduce Exudyn's
+    own linear bushing (frames, signs, damping, rotations) along a free vibration."""
+    from flexpipe.vehicle.suspension.model import BUSHING_DOFS, Bushing
+
+    k = np.array([8e4, 6e4, 1e5, 50.0, 40.0, 30.0])
+    c = np.array([40.0, 30.0, 50.0, 0.05, 0.04, 0.03])
+    tables = {d: (np.array([-10.0, 10.0]), np.array([-10.0 * k[i], 10.0 * k[i]]))
+              for i, d in enumerate(BUSHING_DOFS)}
+    lin = Bushing(k, c, _frame())
+    tab = Bushing(k, c, _frame(), tables)
+    p_ref, R_ref = _bushing_run(lin, law=False)
+    p, R = _bushing_run(tab, law=True)
+    assert np.abs(p_ref).max() > 1e-4 and np.abs(R_ref - np.eye(3)).max() > 1e-3
+    np.testing.assert_allclose(p, p_ref, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(R, R_ref, rtol=0, atol=1e-9)
+
+
+def test_nonlinear_bushing_deflects_as_its_table():
+    """A progressive table along the bushing's local z under a static load along that
+    axis: the deflection is the table's inverse at the load (closed form)."""
+    from flexpipe.vehicle.suspension.model import Bushing
+
+    A = _frame()
+    x = np.array([-0.004, -0.002, 0.0, 0.002, 0.004])
+    f = np.array([-9000.0, -2500.0, 0.0, 2500.0, 9000.0])
+    bu = Bushing([8e6, 8e6, 1e6, 500.0, 500.0, 150.0], np.zeros(6), A, {"z": (x, f)})
+    F = 5000.0
+    p, _ = _bushing_run(bu, law=True, load=F * A[:, 2], static=True)
+    want = np.interp(F, f, x)  # the load is carried by the table along z
+    assert float(A[:, 2] @ p) == pytest.approx(want, rel=1e-6)
+    assert np.linalg.norm(p - (A[:, 2] @ p) * A[:, 2]) < 1e-9

@@ -110,3 +110,17 @@ def test_bad_tables_and_keys(tmp_path):
     p = _sample_with(tmp_path, "rate_N_per_m = 111000.0", "rate_N_per_m = 111000.0\nrte = 1")
     with pytest.raises(InputError, match=r"key 'suspension.front.spring.rte'.*unknown"):
         load_suspension(p)
+
+
+def test_nonlinear_tables_at_a_link_end_bushing_are_refused(tmp_path):
+    """At the body end of a two-force link only the bushing's rate along the link acts:
+    a table there would be silently ignored, so the file is refused, naming the key."""
+    extra = ("[suspension.rear.bushings.lateral_link_inner]\n"
+             "stiffness = [5.0e6, 5.0e6, 5.0e6, 100.0, 100.0, 100.0]\n\n"
+             "[suspension.rear.bushings.lateral_link_inner.tables.x]\n"
+             "deflection = [-0.002, 0.0, 0.002]\nforce = [-9000.0, 0.0, 9000.0]\n\n"
+             "[suspension.rear.bushings.trailing_link_front]")
+    p = _sample_with(tmp_path, "[suspension.rear.bushings.trailing_link_front]", extra)
+    with pytest.raises(InputError, match=r"key 'suspension.rear.bushings.lateral_link_inner'"
+                                         r".*nonlinear tables.*'stiffness' only"):
+        load_suspension(p)

@@ -10,7 +10,13 @@ clamped at the ends), written as a sum of clipped segments::
 
     f(x) = y_0 + sum_k s_k (min(max(x, x_k), x_{k+1}) - x_k),  s_k = slope of segment k
 
-``tests/test_force_laws.py`` checks every law against the element's own NumPy methods.
+A bushing with nonlinear force-deflection tables gets the same treatment
+(:func:`bushing_law`, the ``springForceTorqueUserFunction`` of its
+``ObjectConnectorRigidBodySpringDamper``); a linear bushing keeps Exudyn's own law.
+
+``tests/test_force_laws.py`` checks every law against the element's own NumPy methods
+(:meth:`ForceElement.static_force`, :meth:`ForceElement.damper_force`,
+:meth:`Bushing.force`).
 """
 
 from __future__ import annotations
@@ -77,3 +83,32 @@ def symbolic_law(mbs, element):
     the lifetime of the system: it owns the expression tree)."""
     return CreateSymbolicUserFunction(mbs, _law(element), "springForceUserFunction",
                                       itemTypeName=_ITEM)
+
+
+def bushing_law(mbs, bushing):
+    """A bushing with nonlinear tables (:class:`flexpipe.vehicle.suspension.model.Bushing`)
+    as the symbolic ``springForceTorqueUserFunction`` of an
+    ``ObjectConnectorRigidBodySpringDamper``: per direction of the bushing frame the
+    table's force (or the linear rate) of the deflection plus the linear damping, as
+    Exudyn's own linear law ``K (displacement, rotation) + D (velocity, angular
+    velocity)`` does without tables."""
+    from flexpipe.vehicle.suspension.model import BUSHING_DOFS
+
+    k = [float(v) for v in bushing.stiffness]
+    c = [float(v) for v in bushing.damping]
+    tables = {BUSHING_DOFS.index(d): t for d, t in bushing.tables.items()}
+
+    def law(mbs, t, item, displacement, rotation, velocity, angular_velocity, stiffness,
+            damping, rot0, rot1, offset):
+        x = [displacement[0], displacement[1], displacement[2],
+             rotation[0], rotation[1], rotation[2]]
+        v = [velocity[0], velocity[1], velocity[2],
+             angular_velocity[0], angular_velocity[1], angular_velocity[2]]
+        out = []
+        for i in range(6):
+            f = interp(x[i], *tables[i]) if i in tables else k[i] * x[i]
+            out.append(f + c[i] * v[i])
+        return out
+
+    return CreateSymbolicUserFunction(mbs, law, "springForceTorqueUserFunction",
+                                      itemTypeName="ObjectConnectorRigidBodySpringDamper")

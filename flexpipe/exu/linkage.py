@@ -28,7 +28,7 @@ from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.exu import mount_sensors
 from flexpipe.exu.body import NODE_TYPE
-from flexpipe.exu.force_laws import symbolic_law
+from flexpipe.exu.force_laws import bushing_law, symbolic_law
 from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, BODY, RACK, RACK_MASS
 
 OV = exu.OutputVariableType
@@ -192,10 +192,15 @@ class LinkageModel:
             m1 = self._marker(part, j.point, True)
             bu = j.bushing
             A = bu.frame
+            kw = {}
+            if bu.tables:  # nonlinear directions: the bushing's law inside Exudyn
+                law = bushing_law(mbs, bu)
+                self._laws.append(law)
+                kw["springForceTorqueUserFunction"] = law
             co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
                 markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
                 damping=np.diag(bu.damping), rotationMarker0=A, rotationMarker1=A,
-                visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False)))
+                visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
             self.body_links.append((j.mount, co, "local", (m0, m1), A))
             return
         if j.kind == "spherical":

@@ -108,6 +108,11 @@ class _Builder:
         k = None
         bush = self.bushings.pop(inner, None) if to == BODY else None
         if bush is not None:
+            if bush.tables:  # a two-force link: only the bushing's rate along it acts
+                raise InputError(f"bushing at '{inner}' has nonlinear tables, but it sits at "
+                                 f"the body end of the {name}, where only its linear rate "
+                                 "along the link acts; give 'stiffness' only",
+                                 file=self.file, key=inner)
             u = self.hp[outer] - self.hp[inner]
             u = bush.frame.T @ (u / np.linalg.norm(u))
             k = float(u @ (bush.stiffness[:3] * u))
