@@ -178,4 +178,3 @@ def test_nonlinear_bushing_deflects_as_its_table():
     want = np.interp(F, f, x)  # the load is carried by the table along z
     assert float(A[:, 2] @ p) == pytest.approx(want, rel=1e-6)
     assert np.linalg.norm(p - (A[:, 2] @ p) * A[:, 2]) < 1e-9
-

@@ -2,9 +2,8 @@
 
 Each corner's parts are rigid bodies (the knuckle carries the wheel; its node sits at the
 wheel centre so that the tyre coupling of :mod:`flexpipe.exu.car` applies unchanged).
-Joints become Exudyn constraints (``spherical`` -> ``ObjectJointSpherical``; ``revolute``
-and ``universal`` -> ``GenericJoint`` in a frame whose axes are the joint's; ``inline`` ->
-two ``ObjectConnectorDistance`` on position markers, see :meth:`LinkageModel._inline`),
+Joints become Exudyn constraints (``spherical`` -> ``ObjectJointSpherical``; ``inline``,
+``revolute`` and ``universal`` -> ``GenericJoint`` in a frame whose axes are the joint's),
 massless two-force links ``ObjectConnectorDistance`` (``ObjectConnectorSpringDamper`` when
 compliant), bushings ``ObjectConnectorRigidBodySpringDamper`` (linear 6-DOF in the bushing
 frame).  Springs, dampers and stops act between their real seats through one
@@ -33,8 +32,6 @@ from flexpipe.exu.force_laws import bushing_law, symbolic_law
 from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, BODY, RACK, RACK_MASS
 
 OV = exu.OutputVariableType
-#: distance (m) of the inline joint's two constraint points from its line (see _inline)
-INLINE_OFFSET = 0.1
 CORNERS = ("fl", "fr", "rl", "rr")
 #: mass given to a part the car file leaves massless (kg)
 MIN_PART_MASS = 0.2
@@ -218,12 +215,11 @@ class LinkageModel:
                 self.body_links.append((j.mount, co, "vector" if sign > 0 else "vector-",
                                         (m0, m1), None))
             return
-        if j.kind == "inline":
-            self._inline(j, a, b)
-            return
         m0 = self.mount_marker(j.mount, True) if a == BODY else self._marker(a, j.point, True)
         m1 = self.mount_marker(j.mount, True) if b == BODY else self._marker(b, j.point, True)
-        if j.kind == "revolute":
+        if j.kind == "inline":  # the point of b stays on the line along axis fixed in a
+            A, axes = _frame(j.axis), [1, 1, 0, 0, 0, 0]
+        elif j.kind == "revolute":
             A, axes = _frame(j.axis), [1, 1, 1, 1, 1, 0]
         else:  # universal: axis (in a) stays perpendicular to axis_b (in b)
             ey, ez = np.asarray(j.axis, float), np.asarray(j.axis_b, float)
@@ -236,29 +232,6 @@ class LinkageModel:
         if BODY in (a, b):
             self.body_links.append((j.mount, co, "local" if a == BODY else "local-",
                                     (m0, m1), A))
-
-    def _inline(self, j, a, b):
-        """Inline joint ``j``: a point stays on a line through ``j.point`` along ``j.axis``,
-        as two distance constraints of length :data:`INLINE_OFFSET` from points of the
-        line's owner, offset perpendicular to the line, to the point on the other side:
-        the joint's two equations to first order in the point's distance from the line
-        (the second-order term is ``d**2 / (2 L)``, 5e-6 mm at 1 mm), with position
-        markers only, so a flexible body needs no frame at the mount.  The line belongs
-        to ``a`` unless ``a`` is the body; then to the part: for an arm that turns about
-        the line through its two pivots, a line fixed in the arm and one fixed in the
-        body are the same set of positions."""
-        owner, other = (b, a) if a == BODY else (a, b)
-        A = _frame(j.axis)
-        p = np.asarray(j.point, float)
-        mp = (self.mount_marker(j.mount, False) if other == BODY
-              else self._marker(other, p, False))
-        for k in range(2):
-            mo = self._marker(owner, p + INLINE_OFFSET * A[:, k], False)
-            co = self.mbs.AddObject(eii.ObjectConnectorDistance(
-                markerNumbers=[mp, mo], distance=INLINE_OFFSET,
-                visualization=eii.VObjectConnectorDistance(show=False)))
-            if other == BODY:
-                self.body_links.append((j.mount, co, "distance", (mp, mo), None))
 
     # ------------------------------------------------------------------ rack, bars
     def _rack_owner(self):

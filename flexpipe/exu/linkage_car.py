@@ -7,17 +7,14 @@ interface.  Where a joint or a bushing needs the mount's frame, it acts on a *br
 (:mod:`flexpipe.exu.brackets`), a tiny rigid body held by position markers only: at a
 6-DOF interface the bracket turns with the mount (moments load the body there); at a
 3-DOF interface its axes are the body frame's (forces load the body at the mount,
-moments load it as a whole).  The templates' inline joints (arm pivots, strut top) need
-no frame: they are two distance constraints on position markers
-(:meth:`flexpipe.exu.linkage.LinkageModel._inline`); against the brackets they used
-before, on ``cars/sedan_linkage.toml`` (ISO C, 70 km/h, 3 s) the hub forces moved by at
-most 0.09 / 0.20 / 0.02 % (rigid) and 0.08 / 0.31 / 0.02 % (flexible) of their
-fluctuation (x / y / z), the step-convergence figures did not change, and the flexible
-run's CPU time fell by 15 %.  The 6-DOF bracket replaced Exudyn's
-``MarkerSuperElementRigid`` (same three marker points): on the same run the hub forces
-moved by at most 0.01 % of their fluctuation and Exudyn's share of the CPU time fell by
-16 % (``bench/bench_markers.py``: a generic joint on the bracket costs 1.8x less than on
-the rigid marker).
+moments load it as a whole).  The templates' inline joints (no moment passes) sit on
+3-DOF mounts (``Suspension.mount_dofs``): on ``cars/sedan_linkage.toml`` (ISO C,
+70 km/h, 3 s) that moved the hub forces by at most 0.7 % (x), 1.3 % (y), 0.05 % (z) of
+their fluctuation against 6-DOF mounts and cut the CPU time by 12 %.  The 6-DOF bracket
+replaced Exudyn's ``MarkerSuperElementRigid`` (same three marker points): on the same
+run the hub forces moved by at most 0.01 % of their fluctuation and Exudyn's share of
+the CPU time fell by 16 % (``bench/bench_markers.py``: a generic joint on the bracket
+costs 1.8x less than on the rigid marker).
 """
 
 from __future__ import annotations
