@@ -12,9 +12,9 @@ moments load it as a whole).  The templates' inline joints (no moment passes) si
 70 km/h, 3 s) that moved the hub forces by at most 0.7 % (x), 1.3 % (y), 0.05 % (z) of
 their fluctuation against 6-DOF mounts and cut the CPU time by 12 %.  The 6-DOF bracket
 replaced Exudyn's ``MarkerSuperElementRigid`` (same three marker points): on the same
-run the hub forces moved by at most 0.01 % of their fluctuation and Exudyn's share of
-the CPU time fell by 16 % (``bench/bench_markers.py``: a generic joint on the bracket
-costs 1.8x less than on the rigid marker).
+run the hub forces moved by at most 0.01 % of their fluctuation, and a generic joint on
+the bracket costs Exudyn 1.8-1.9x less per Newton iteration than one on the rigid marker
+(``bench/bench_markers.py``).
 """
 
 from __future__ import annotations

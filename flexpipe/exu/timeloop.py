@@ -86,9 +86,10 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
     s.show.statistics = False
     s.show.computationTime = False
     # sparse LU: the Newton increments (one back-substitution per iteration with the kept
-    # factorization) cost a quarter of the dense ones on the linkage car (~480
-    # coordinates); ISO C 70 km/h, 3 s, identical hub forces: Exudyn CPU 5.6 -> 4.3 s
-    # flexible, 0.9 -> 0.5 s rigid (2026-12-01)
+    # factorization) cost a third of the dense ones on the linkage car (~480
+    # coordinates; Exudyn's timer 0.77 -> 0.24 ms per step, flexible); ISO C 70 km/h,
+    # 3 s, identical hub forces, two interleaved pairs of runs: Exudyn CPU 5.6-6.3 ->
+    # 4.2-4.3 s flexible, 0.9 -> 0.5 s rigid (2026-12-01)
     s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     cpu0, wall0 = time.thread_time(), time.perf_counter()
     message = ""
