@@ -44,6 +44,17 @@ KAPPA_STATE_MAX = 1.5  # as flexpipe.tires.contact
 TAN_ALPHA_STATE_MAX = 10.0
 
 
+def check_rows(bad: int, spin_axis) -> None:
+    """Raise the NumPy tyre's error for the first bad row ``bad`` the kernel reported
+    (-1: none): a zero or non-finite spin axis, else road normal."""
+    if bad >= 0:
+        from flexpipe.errors import InputError
+
+        s = spin_axis[bad]
+        name = "spin_axis" if not np.isfinite(s).all() or not s.any() else "road_normal"
+        raise InputError(f"{name} must be non-zero, finite vectors", key=name)
+
+
 def enabled() -> bool:
     """True when the compiled path is available and not switched off."""
     return njit is not None and os.environ.get("FLEXPIPE_NO_JIT", "") not in ("1", "true")

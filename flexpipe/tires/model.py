@@ -141,10 +141,7 @@ class Pac2002Tire(TireModel):
                                  rows(mirror, dtype=np.bool_), rows(mu_scale),
                                  rows(st.kappa), rows(st.tan_alpha), state is not None,
                                  float(dt or 0.0), out)
-        if bad >= 0:
-            name = "spin_axis" if not np.isfinite(s[bad]).all() or not s[bad].any() \
-                else "road_normal"
-            raise InputError(f"{name} must be non-zero, finite vectors", key=name)
+        _fast.check_rows(bad, s)
         new_state = SlipState(out[:, 29].copy(), out[:, 30].copy()) if state is not None \
             else None
         return WheelForces(

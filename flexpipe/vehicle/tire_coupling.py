@@ -39,7 +39,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flexpipe.errors import InputError
 from flexpipe.tires import _fast
 from flexpipe.tires.contact import SlipState, _cross
 
@@ -70,14 +69,6 @@ def _force_and_moment(out, C, rows, m):
     moment of the force about the wheel centre ``C``)."""
     own = out.moment - _cross(out.contact_point - C, out.force)
     return np.concatenate([out.force, own], axis=1).reshape(rows, m, 6)
-
-
-def _check(bad, s, n):
-    """The compiled kernel's report of a bad row as the NumPy tyre reports it."""
-    if bad >= 0:
-        name = "spin_axis" if not np.isfinite(s[bad]).all() or not s[bad].any() \
-            else "road_normal"
-        raise InputError(f"{name} must be non-zero, finite vectors", key=name)
 
 
 class ImplicitTires:
@@ -152,7 +143,7 @@ class ImplicitTires:
                             p[0], p[1], p[2], p[3], p[4], p[5], p[6], prev is not None,
                             np.ascontiguousarray(self.mirror[ix]), kappa, tan_a,
                             bool(tire.relaxation), float(h), force, Fxyz)
-        _check(bad, a[1], a[6])
+        _fast.check_rows(bad, a[1])
         self.state[id(tire)] = SlipState(kappa, tan_a)
         out["Fx"][ix], out["Fy"][ix], out["Fz"][ix] = Fxyz.T
         out["force"][ix] = force
@@ -246,6 +237,6 @@ class ImplicitTires:
                             np.ascontiguousarray(self.mirror[ix]),
                             st.kappa.astype(float), st.tan_alpha.astype(float),
                             bool(tire.relaxation), float(h), DV, DW, DZ, DTH, *part)
-        _check(bad, g["s"], g["n_road"])
+        _fast.check_rows(bad, g["s"])
         for dst, src in zip(full, part, strict=True):
             dst[ix] = src
