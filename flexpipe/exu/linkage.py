@@ -5,14 +5,15 @@ wheel centre so that the tyre coupling of :mod:`flexpipe.exu.car` applies unchan
 Joints become Exudyn constraints (``spherical`` -> ``ObjectJointSpherical``; ``inline``,
 ``revolute`` and ``universal`` -> ``GenericJoint`` in a frame whose axes are the joint's),
 massless two-force links ``ObjectConnectorDistance`` (``ObjectConnectorSpringDamper`` when
-compliant), bushings ``ObjectConnectorRigidBodySpringDamper`` (linear 6-DOF in the bushing
-frame).  Springs, dampers and stops act between their real seats through one
+compliant), bushings ``ObjectConnectorRigidBodySpringDamper`` (6-DOF in the bushing frame,
+linear, or with its nonlinear tables as a symbolic law of :mod:`flexpipe.exu.force_laws`).
+Springs, dampers and stops act between their real seats through one
 ``ObjectConnectorSpringDamper`` each whose force law (table, dual-rate damper, stop
 contact) is an Exudyn symbolic user function (:mod:`flexpipe.exu.force_laws`), evaluated
 in C++ at every Newton iteration: they are solved implicitly, nothing of them runs in
-Python during the step.  The
-steering rack is a rigid body sliding along the body y axis in its two housing mounts,
-held by the column stiffness at the travel the driver commands; an anti-roll bar is two
+Python during the step.  The steering rack is a rigid body sliding along the body y axis
+in its two housing mounts, held by the column stiffness at the travel the driver
+commands; an anti-roll bar is two
 arms turning in their body bushings, joined by the torsion bar and carried by drop links.
 
 Body side: ``mount_marker(name, rigid)`` returns the body's marker at a mount (a
