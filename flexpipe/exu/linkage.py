@@ -82,7 +82,7 @@ class LinkageModel:
         #: kinematic mode (Adams/Car): every bushing replaced by its joint, links rigid
         self.kinematic = getattr(suspension, "mode", "compliant") == "kinematic"
         self.corners = suspension.corners()
-        self.knuckle_node, self.part_nodes, self.forces = [], [], []  # part_nodes: per
+        self.knuckle_node, self.part_nodes = [], []  # part_nodes: per
         # corner (object, mass, centre of mass in the part's frame)
         self._laws = []  # the force elements' symbolic laws (flexpipe.exu.force_laws)
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
@@ -180,7 +180,6 @@ class LinkageModel:
                 markerNumbers=[mb, ma], referenceLength=f.design_length, stiffness=0.0,
                 damping=0.0, force=0.0, springForceUserFunction=law,
                 visualization=eii.VObjectConnectorSpringDamper(show=False)))
-            self.forces.append((i, f, co, mb, ma))
             self.body_links.append((f.mount, co, "vector", (mb, ma), None))
 
     def _joint(self, j, a, b):

@@ -59,14 +59,20 @@ def add(model, body_node) -> None:
          for i, co, mb, ma in model.to_other])
 
 
-def _rows(model, t):
-    """Sample index of every time in ``t`` and whether a sample lies within 1e-9 s."""
+def _reader(model, t):
+    """``(data, j, ok)`` for the times ``t``: ``data(sensor, width)`` reads a sensor's
+    values (n, width) at the samples ``j`` nearest ``t``; ``ok`` where a sample lies
+    within 1e-9 s of ``t``."""
     get = model.mbs.GetSensorStoredData
     ts = np.asarray(get(model._body_sensor), dtype=float).reshape(-1, 10)[:, 0]
     t = np.asarray(t, dtype=float)
     j = np.clip(np.searchsorted(ts, t - 1e-9), 0, max(len(ts) - 1, 0))
     ok = (len(ts) > 0) & (np.abs(ts[j] - t) < 1e-9) if len(ts) else np.zeros(len(t), bool)
-    return ts, j, ok
+
+    def data(sid, width):
+        return np.asarray(get(sid), dtype=float).reshape(len(ts), -1)[j, 1:1 + width]
+
+    return data, j, ok
 
 
 def hub_history(model, t: np.ndarray, F_tire: np.ndarray):
@@ -74,12 +80,7 @@ def hub_history(model, t: np.ndarray, F_tire: np.ndarray):
     :func:`add` and the tyre forces ``F_tire`` (n, 4, 3) applied at those times, as
     :meth:`flexpipe.exu.linkage.LinkageModel.hub_forces` computes them from Python
     reads; rows NaN where no sensor sample lies within 1e-9 s of ``t``."""
-    get = model.mbs.GetSensorStoredData
-    ts, j, ok = _rows(model, t)
-
-    def data(sid, width):
-        return np.asarray(get(sid), dtype=float).reshape(len(ts), -1)[j, 1:1 + width]
-
+    data, _j, ok = _reader(model, t)
     parts, links = model._hub_sensors
     out = np.array(F_tire, dtype=float)
     g = np.asarray(model.g, dtype=float)
@@ -92,24 +93,15 @@ def hub_history(model, t: np.ndarray, F_tire: np.ndarray):
     out[~ok] = np.nan
     return out
 
+
 def history(model, t: np.ndarray):
     """Per-mount forces (body axes, N) at the times ``t`` from the sensors of
     :func:`add`: ``{mount: (n, 3)}``, rows NaN where no sensor sample
     lies within 1e-9 s of ``t`` (None without sensors)."""
     if not getattr(model, "_sensors", None):
         return None
-    mbs = model.mbs
-    get = mbs.GetSensorStoredData
-    rb = np.asarray(get(model._body_sensor), dtype=float).reshape(-1, 10)
-    ts = rb[:, 0]
-    t = np.asarray(t, dtype=float)
-    j = np.clip(np.searchsorted(ts, t - 1e-9), 0, max(len(ts) - 1, 0))
-    ok = (len(ts) > 0) & (np.abs(ts[j] - t) < 1e-9) if len(ts) else np.zeros(len(t), bool)
-    Rb = rb[j, 1:].reshape(-1, 3, 3)
-
-    def data(sid, width):
-        return np.asarray(get(sid), dtype=float).reshape(len(ts), -1)[j, 1:1 + width]
-
+    data, _j, ok = _reader(model, t)
+    Rb = data(model._body_sensor, 9).reshape(-1, 3, 3)
     out = {}
     for (mount, _co, kind, _m, A), sens in zip(model.body_links, model._sensors, strict=True):
         if kind == "distance":
