@@ -30,7 +30,7 @@ def add_arguments(parser) -> None:
     parser.add_argument("--body", default="rigid,flexible",
                         help="comma-separated body models: rigid, flexible, full "
                              "(default: rigid,flexible)")
-    parser.add_argument("--h", type=float, default=None, help="time step, s (default 2e-3)")
+    parser.add_argument("--h", type=float, default=None, help="time step, s (default 1e-3)")
     parser.add_argument("--out", default=None,
                         help="output directory (default: out/<car>-<road>-<speed>kmh)")
     parser.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
@@ -90,9 +90,8 @@ def _check_step(args, body: str, out: Path) -> int:
     from flexpipe._io import write_text_atomic
     from flexpipe.vehicle.convergence import check_step
 
-    h = 2e-3 if args.h is None else args.h
     path = None if args.path in (None, "straight") else args.path
-    chk = check_step(args.car, h=h, refinements=(2, 4), road=args.road, path=path,
+    chk = check_step(args.car, h=args.h, refinements=(2, 4), road=args.road, path=path,
                      speed=args.speed / 3.6, t_end=args.t_end, body=body,
                      cache=not args.no_cache, progress=True, prewarp=not args.no_prewarp)
     print(chk.table())

@@ -9,7 +9,7 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     body = "rigid"                  # rigid | flexible | full
     speed_kmh = 60.0
     t_end_s = 10.0
-    h_s = 0.002                     # time step
+    h_s = 0.001                     # time step (default: simulate's, 1 ms)
     output_step_s = 0.002
     settle_s = 0.0                  # metrics leave out samples before this time
     design = "grid"                 # grid | list | lhs
@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from flexpipe.errors import InputError
+from flexpipe.vehicle.simulation import DEFAULT_STEP
 
 SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road")
 DESIGNS = ("grid", "list", "lhs")
@@ -311,7 +312,7 @@ def load_sweep(spec, *, base_dir=None) -> SweepSpec:
         raise InputError(f"design {design!r}; valid: {', '.join(DESIGNS)}", file=where,
                          key="sweep.design")
     base = {"speed_kmh": sw.get("speed_kmh", 60.0), "t_end_s": sw.get("t_end_s", 10.0),
-            "h_s": sw.get("h_s", 2e-3), "output_step_s": sw.get("output_step_s", 2e-3),
+            "h_s": sw.get("h_s", DEFAULT_STEP), "output_step_s": sw.get("output_step_s", 2e-3),
             "settle_s": sw.get("settle_s", 0.0), "body": sw.get("body", "rigid"),
             "path": sw.get("path", "straight")}
     params = _parameters(doc.get("parameters", {}), design, where)

@@ -62,15 +62,16 @@ class StepCheck:
         return float(np.nanmax(self.rel_dynamic[i]))
 
 
-def check_step(car, *, h: float = 2e-3, refinements=(2, 4), channels=DEFAULT_CHANNELS,
+def check_step(car, *, h: float | None = None, refinements=(2, 4), channels=DEFAULT_CHANNELS,
                t_from: float = 0.5, progress: bool = False, **simulate_kw) -> StepCheck:
     """Run ``simulate(car, h=h / r, ...)`` for ``r`` in ``(1, *refinements)`` and compare.
 
     Parameters
     ----------
     car : Car or path
-    h : float
-        Coarsest step, s.
+    h : float, optional
+        Coarsest step, s (default: :data:`~flexpipe.vehicle.simulation.DEFAULT_STEP`,
+        the default of ``simulate``).
     refinements : sequence of int
         Divisors of ``h``, increasing; the largest gives the reference run.
     channels : sequence of str
@@ -81,8 +82,9 @@ def check_step(car, *, h: float = 2e-3, refinements=(2, 4), channels=DEFAULT_CHA
         Passed to :func:`~flexpipe.vehicle.simulation.simulate` (road, path, speed,
         t_end, body, ...); ``output_step`` defaults to ``h`` so every run samples alike.
     """
-    from flexpipe.vehicle.simulation import simulate
+    from flexpipe.vehicle.simulation import DEFAULT_STEP, simulate
 
+    h = DEFAULT_STEP if h is None else h
     refinements = tuple(int(r) for r in refinements)
     if not refinements or any(r < 2 for r in refinements) or list(refinements) != sorted(
             set(refinements)):

@@ -43,6 +43,11 @@ from flexpipe.vehicle.spec import Car, load_car
 #: generalized-alpha spectral radius of the runs (see :mod:`flexpipe.exu.car`); the
 #: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`)
 SPECTRAL_RADIUS = 0.5
+#: default time step, s: the largest step at which the linkage sample's hub forces are
+#: within 5 % of h/8 in x, y and z, rigid and flexible, on ISO C 70/100 km/h and the
+#: slalom (``bench/bench_convergence.py``; 2 ms leaves the flexible body's x at 8 %, its
+#: attachment modes ringing near the 2 ms step's Nyquist frequency, see the README)
+DEFAULT_STEP = 1e-3
 
 BODIES = ("flexible", "rigid", "full")
 #: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
@@ -186,7 +191,7 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
 
 
 def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
-             h: float = 2e-3, output_step: float = 2e-3, driver=None, f_max=None,
+             h: float = DEFAULT_STEP, output_step: float = 2e-3, driver=None, f_max=None,
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
              cache: bool = True, log=None, prepared=None, settle: bool = True,
              prewarp: bool = True) -> Result:
