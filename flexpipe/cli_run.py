@@ -41,6 +41,11 @@ def add_arguments(parser) -> None:
     parser.add_argument("--no-prewarp", action="store_true",
                         help="integrate the flexible body's modes as they are instead of "
                              "pre-warped to the step (see README, step convergence)")
+    parser.add_argument("--inertia-coupling", default="auto",
+                        choices=("auto", "constant", "full"),
+                        help="flexible body inertia: constant (Adams/Flex's constant coupling,"
+                             " for mean-axis modes), full (Exudyn's complete floating-frame "
+                             "terms) or auto (default: constant when the modes allow it)")
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "
                              "(MATLAB); default csv")
@@ -78,7 +83,8 @@ def run(args) -> int:
                        plots=("hub_force_fl", "trajectory"), bodies=bodies,
                        cache=not args.no_cache, h=args.h, name="run", format=args.format,
                        log=(lambda *a: None) if args.quiet else print,
-                       progress=not args.quiet, prewarp=not args.no_prewarp)
+                       progress=not args.quiet, prewarp=not args.no_prewarp,
+                       inertia_coupling=args.inertia_coupling)
     return 0 if summary["status"] == 0 else 1
 
 
@@ -93,7 +99,8 @@ def _check_step(args, body: str, out: Path) -> int:
     path = None if args.path in (None, "straight") else args.path
     chk = check_step(args.car, h=args.h, refinements=(2, 4), road=args.road, path=path,
                      speed=args.speed / 3.6, t_end=args.t_end, body=body,
-                     cache=not args.no_cache, progress=True, prewarp=not args.no_prewarp)
+                     cache=not args.no_cache, progress=True, prewarp=not args.no_prewarp,
+                     inertia_coupling=args.inertia_coupling)
     print(chk.table())
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")

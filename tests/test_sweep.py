@@ -170,7 +170,10 @@ body = ["rigid"]
     import dask.dataframe as dd
 
     rows = len(dd.read_parquet(tmp_path / "out" / "channels").compute())
-    assert rows == 4 * round(0.4 / 2e-3)  # every run's samples, t = h .. t_end
+    from flexpipe.vehicle.simulation import DEFAULT_STEP
+
+    # every run's samples, t = h .. t_end, output every step by default
+    assert rows == 4 * round(0.4 / DEFAULT_STEP)
 
 
 def test_runs_sharing_a_body_share_one_reduction_key():

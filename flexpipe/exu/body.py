@@ -38,6 +38,13 @@ import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.errors import InputError
+from flexpipe.exu.inertia import (
+    COUPLINGS,
+    add_constant_coupling,
+    check_mean_axes,
+    dense,
+    inertia6,
+)
 from flexpipe.flexbody.body import FlexBody
 
 #: rotation parameterization of the reference-frame node (works with implicit solvers)
@@ -68,7 +75,8 @@ class BodyHandle:
     node_marker : MarkerIndex
         ``MarkerNodeRigid`` on the reference-frame node.
     body_marker : MarkerIndex
-        ``MarkerBodyMass`` of the body (gravity and other mass-proportional loads).
+        ``MarkerBodyMass`` of the body (gravity and other mass-proportional loads); with
+        constant inertia coupling, of the ``ObjectRigidBody`` carrying its inertia.
     gravity_load : LoadIndex or None
     interface_points : mapping of str to ndarray
         Hardpoints in body coordinates.
@@ -192,7 +200,8 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
                       velocity=(0.0, 0.0, 0.0), angular_velocity=(0.0, 0.0, 0.0),
                       gravity=(0.0, 0.0, -9.81), damping=True, n_modes: int | None = None,
                       color=(0.2, 0.6, 0.9, 1.0), name: str = "flexbody",
-                      arm: float | None = None, prewarp=None) -> BodyHandle:
+                      arm: float | None = None, prewarp=None,
+                      inertia_coupling: str = "full") -> BodyHandle:
     """Add ``body`` as an Exudyn ``ObjectFFRFreducedOrder`` with interface markers.
 
     Parameters
@@ -221,6 +230,17 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
         Fit each elastic mode's modal mass and damping to the generalized-alpha step ``h``
         with that spectral radius so the step rings it at its own frequency and damping
         (:mod:`flexpipe.exu.prewarp`; stiffness, hence statics, unchanged).
+    inertia_coupling : {"full", "constant"}
+        Inertia of the floating frame, named as Adams/Flex names its options.  ``"full"``:
+        Exudyn's complete FFRF mass matrix and quadratic velocity terms (every inertia
+        invariant, deformation-dependent).  ``"constant"``: the rigid body's mass, centre
+        of mass and inertia plus the constant modal mass, stiffness and damping, with no
+        deformation-dependent coupling (invariants 3, 4, 5, 8 and 9 off); the markers
+        still follow ``p + A (x + Phi q)``.  Exact to first order in the deformation when
+        the elastic modes are orthogonal to the rigid-body motion (mean axes; checked,
+        :func:`flexpipe.flexbody.invariants.mean_axis_cosine`); what it leaves out are the
+        centrifugal and Coriolis loads of the frame's rotation on the modes and the
+        deformation's change of the body's inertia.
 
     Returns
     -------
@@ -246,15 +266,15 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
     else:
         zeta = float(damping)
         Dr = np.diag(2 * zeta * body.omega[sel])
+    if inertia_coupling not in COUPLINGS:
+        raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: {', '.join(COUPLINGS)}",
+                         key="inertia_coupling")
+    if inertia_coupling == "constant":
+        check_mean_axes(body, me)
     if prewarp is not None and me:
         Mr, Dr = _prewarped(Mr, Kr, Dr, *prewarp)
     inv = body.invariants
     k3 = slice(0, 3 * me)
-
-    def mc(A):
-        c = exu.MatrixContainer()
-        c.SetWithDenseMatrix(np.ascontiguousarray(A), useDenseMatrix=True)
-        return c
 
     n_frame = _frame_node(mbs, position, rotation, velocity, angular_velocity, name)
     n_modal = mbs.AddNode(eii.NodeGenericODE2(
@@ -263,14 +283,14 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
         initialCoordinates_t=[0.0] * me))
     obj = mbs.AddObject(eii.ObjectFFRFreducedOrder(
         name=name, nodeNumbers=[n_frame, n_modal],
-        massMatrixReduced=mc(Mr), stiffnessMatrixReduced=mc(Kr),
-        dampingMatrixReduced=mc(Dr) if np.any(Dr) else [],
+        massMatrixReduced=dense(Mr), stiffnessMatrixReduced=dense(Kr),
+        dampingMatrixReduced=dense(Dr) if np.any(Dr) else [],
         modeBasis=basis, referencePositions=xref,
         mass=body.mass, inertia=body.inertia_origin, centerOfMass=body.center_of_mass,
         mPsiTildePsi=inv.mPsiTildePsi[k3, :me], mPsiTildePsiTilde=inv.mPsiTildePsiTilde[k3, k3],
         mPhitTPsi=inv.mPhitTPsi[:, :me], mPhitTPsiTilde=inv.mPhitTPsiTilde[:, k3],
         mXRefTildePsi=inv.mXRefTildePsi[:, :me], mXRefTildePsiTilde=inv.mXRefTildePsiTilde[:, k3],
-        computeFFRFterms=True,
+        computeFFRFterms=inertia_coupling == "full",
         visualization=eii.VObjectFFRFreducedOrder(
             triangleMesh=np.asarray(body.triangles, dtype=np.int64), color=list(color),
             showNodes=False)))
@@ -290,7 +310,10 @@ def add_flexible_body(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation
             meshNodeNumbers=[start], weightingFactors=[1.0]))
         start += _POINTS_6DOF if itf.dofs == 6 else 1
     m_node = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_frame))
-    m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
+    inertia_obj = obj
+    if inertia_coupling == "constant":
+        inertia_obj = add_constant_coupling(mbs, body, n_frame, n_modal, Mr, Kr, Dr)
+    m_body = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=inertia_obj))
     load = None
     if np.any(g):
         load = mbs.AddLoad(eii.LoadMassProportional(markerNumber=m_body, loadVector=list(g)))
@@ -325,7 +348,7 @@ def add_rigid_twin(mbs, body: FlexBody, *, position=(0.0, 0.0, 0.0), rotation=No
                                            color=list(color))]
     obj = mbs.AddObject(eii.ObjectRigidBody(
         name=name, nodeNumber=n_frame, mass=body.mass,
-        inertia=[J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]],
+        inertia=inertia6(J),
         centerOfMass=list(body.center_of_mass),
         visualization=eii.VObjectRigidBody(graphicsData=graphics)))
     markers = {itf.name: mbs.AddMarker(eii.MarkerBodyRigid(

@@ -103,6 +103,7 @@ class CarBuild:
     n_modes: int | None = None  # use only the lowest n elastic modes (None: all)
     modal_q0: np.ndarray | None = None  # initial elastic coordinates (static deflection)
     modal_prewarp: tuple | None = None  # (h, spectral radius): modes fitted to the step
+    inertia_coupling: str = "full"  # "full" or "constant" (flexpipe.exu.inertia)
     mass: float = 0.0
     center_of_mass: np.ndarray = None
     inertia_origin: np.ndarray = None
@@ -160,7 +161,8 @@ class CarSystem:
         if spec.chassis == "flexible":
             h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=vb,
                                   angular_velocity=wb, gravity=g, n_modes=spec.n_modes,
-                                  name="body", prewarp=spec.modal_prewarp)
+                                  name="body", prewarp=spec.modal_prewarp,
+                                  inertia_coupling=spec.inertia_coupling)
             self.body_node, self.body_obj = h.node, h.object
             mount = [h.markers[n] for n in names]
             self.modal_node = h.modal_node

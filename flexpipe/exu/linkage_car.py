@@ -46,7 +46,8 @@ class LinkageCarSystem(CarSystem):
             h = add_flexible_body(mbs, spec.flexbody, position=p0, rotation=R0, velocity=v0,
                                   angular_velocity=[0.0, 0.0, 0.0], gravity=g,
                                   n_modes=spec.n_modes, name="body",
-                                  prewarp=spec.modal_prewarp)
+                                  prewarp=spec.modal_prewarp,
+                                  inertia_coupling=spec.inertia_coupling)
             self.body_node, self.body_obj, self.modal_node = h.node, h.object, h.modal_node
             if spec.modal_q0 is not None:
                 mbs.SetNodeParameter(h.modal_node, "initialCoordinates",

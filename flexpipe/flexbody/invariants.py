@@ -156,3 +156,41 @@ def ffrf_invariants(nodes: np.ndarray, Mt, Psi: np.ndarray) -> FFRFInvariants:
         mXRefTildePsi=Xt.T @ MPsi,
         mXRefTildePsiTilde=Xt.T @ MPt,
     )
+
+
+#: largest cosine (mass metric) between an elastic mode and a rigid-body motion for which
+#: a body counts as having mean-axis modes (constant inertia coupling, flexpipe.exu.inertia)
+MAX_MEAN_AXIS_COSINE = 1e-2
+
+
+def mean_axis_cosine(body, n_modes: int | None = None) -> tuple[float, int]:
+    """Largest cosine, in the mass metric, between an elastic mode and a rigid-body motion.
+
+    From the body's inertia invariants: per mode ``j`` with modal mass ``m_j``, the
+    translation cosine ``|sum m Phi_j| / sqrt(mass m_j)`` and the rotation (about the
+    centre of mass) cosine ``sqrt(v_j^T J_c^-1 v_j / m_j)`` with
+    ``v_j = sum m (x - c) x Phi_j``, each maximised over the direction; translations
+    and rotations about the centre of mass are mass-orthogonal, so the cosine of the
+    angle between the mode and the six-dimensional rigid-body subspace is the root sum
+    of their squares.
+
+    Returns
+    -------
+    cosine : float
+    mode : int
+        Index (0-based, among the elastic modes) of the worst mode, -1 if there is none.
+    """
+    me = body.n_elastic if n_modes is None else int(n_modes)
+    if me == 0:
+        return 0.0, -1
+    inv = body.invariants
+    sel = slice(body.n_rigid, body.n_rigid + me)
+    mj = np.diag(body.M[sel, sel])
+    t = inv.mPhitTPsi[:, :me]
+    Sc = skew(np.asarray(body.center_of_mass, dtype=float)[None])[0]
+    v = -inv.mXRefTildePsi[:, :me] - Sc @ t
+    cos_t = np.linalg.norm(t, axis=0) / np.sqrt(body.mass * mj)
+    cos_r = np.sqrt(np.einsum("ij,ij->j", v, np.linalg.solve(body.inertia, v)) / mj)
+    worst = np.hypot(cos_t, cos_r)
+    j = int(np.argmax(worst))
+    return float(worst[j]), j

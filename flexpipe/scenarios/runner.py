@@ -77,7 +77,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
              h: float | None = None, notes=None, name: str = "run", log=print,
              format: str = "csv", progress: bool = True,  # noqa: A002
-             prewarp: bool = True) -> dict:
+             prewarp: bool = True, inertia_coupling: str = "auto") -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
     The run is a transaction: everything is written into a staging folder next to
@@ -128,7 +128,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                          progress=progress, cache=cache, log=lambda m: log("      " + m),
-                         prewarp=prewarp, **kw)
+                         prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
             results[body] = r
             files.append(r.save(stage / f"{body}{SUFFIX.get(format, '.csv')}",
                                 format=format).name)
@@ -188,7 +188,8 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
     if fb:
         info = fb[0].info
         summary["flexible_body"] = {k: info.get(k) for k in (
-            "n_elastic_modes", "band_hz", "highest_mode_hz", "reduction_s", "reduction_cached")}
+            "n_elastic_modes", "band_hz", "highest_mode_hz", "reduction_s", "reduction_cached",
+            "modal_prewarp", "inertia_coupling")}
     summary["static_wheel_load_N"] = [round(v, 2) for v in
                                       next(iter(results.values())).info["static_wheel_load_N"]]
     if path is not None:

@@ -10,7 +10,7 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     speed_kmh = 60.0
     t_end_s = 10.0
     h_s = 0.001                     # time step (default: simulate's, 1 ms)
-    output_step_s = 0.002
+    output_step_s = 0.002           # default: h_s (every step)
     settle_s = 0.0                  # metrics leave out samples before this time
     design = "grid"                 # grid | list | lhs
     samples = 16                    # lhs only
@@ -173,7 +173,8 @@ class SweepSpec:
         speed = _num(s["speed_kmh"], "speed_kmh", where, lo=0.0) / 3.6
         t_end = _num(s["t_end_s"], "t_end_s", where, lo=0.0, open_=True)
         h = _num(s["h_s"], "h_s", where, lo=0.0, open_=True)
-        output_step = _num(s["output_step_s"], "output_step_s", where, lo=0.0, open_=True)
+        output_step = h if s["output_step_s"] is None else _num(
+            s["output_step_s"], "output_step_s", where, lo=0.0, open_=True)
         settle = _num(s["settle_s"], "settle_s", where, lo=0.0)
         ident = {"car": str(self.car), "car_sha": car_sha, "car_overrides": car_over,
                  "road": road_desc if road is self.road else _describe_road(road),
@@ -312,7 +313,7 @@ def load_sweep(spec, *, base_dir=None) -> SweepSpec:
         raise InputError(f"design {design!r}; valid: {', '.join(DESIGNS)}", file=where,
                          key="sweep.design")
     base = {"speed_kmh": sw.get("speed_kmh", 60.0), "t_end_s": sw.get("t_end_s", 10.0),
-            "h_s": sw.get("h_s", DEFAULT_STEP), "output_step_s": sw.get("output_step_s", 2e-3),
+            "h_s": sw.get("h_s", DEFAULT_STEP), "output_step_s": sw.get("output_step_s"),
             "settle_s": sw.get("settle_s", 0.0), "body": sw.get("body", "rigid"),
             "path": sw.get("path", "straight")}
     params = _parameters(doc.get("parameters", {}), design, where)
