@@ -3,7 +3,9 @@ with its siblings in :mod:`flexpipe.exu`, that imports exudyn).
 
 :func:`add_flexible_body` builds an ``ObjectFFRFreducedOrder`` (floating frame of
 reference: a rigid-body node plus one modal coordinate per elastic mode) with a
-``MarkerSuperElementRigid`` at every interface; :func:`add_rigid_twin` builds an
+``MarkerSuperElementRigid`` at every interface, its inertia either Exudyn's complete
+floating-frame terms or, for mean-axis modes, Adams/Flex's constant coupling
+(:mod:`flexpipe.exu.inertia`); :func:`add_rigid_twin` builds an
 ``ObjectRigidBody`` with identical mass, centre of mass and inertia and a
 ``MarkerBodyRigid`` at every interface hardpoint.  Both return a :class:`BodyHandle`
 whose ``markers`` are ready for joints, springs and loads.

@@ -44,10 +44,10 @@ from flexpipe.vehicle.spec import Car, load_car
 #: generalized-alpha spectral radius of the runs (see :mod:`flexpipe.exu.car`); the
 #: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`)
 SPECTRAL_RADIUS = 0.5
-#: default time step, s: the largest step at which the linkage sample's hub forces are
-#: within 5 % of h/8 in x, y and z, rigid and flexible, on ISO C 70/100 km/h and the
-#: slalom (``bench/bench_convergence.py``; 2 ms leaves the flexible body's x at 8 %, its
-#: attachment modes ringing near the 2 ms step's Nyquist frequency, see the README)
+#: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
+#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 4.6 %,
+#: ``bench/bench_convergence.py``); 2 ms leaves the flexible body's x at 8 %, its
+#: attachment modes beyond what a 2 ms step can follow (README)
 DEFAULT_STEP = 1e-3
 
 BODIES = ("flexible", "rigid", "full")
@@ -216,12 +216,13 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     body : {"flexible", "rigid", "full"}
         Body model (see module docstring).
     h : float
-        Time step, s (1e-5 .. 5e-3; default 2e-3).  Measured against h/8 on ISO class C at
-        70/100 km/h and on the slalom (``bench/bench_convergence.py``, README, worst
-        corner): rigid cars' hub forces within 0.2-1.3 % (z) and 0.1-6.7 % (x, y) of
-        their fluctuating part; the flexible linkage car (modes pre-warped) 0.5-1.2 % (z)
-        and 1.0-8.3 % (x, y); the flexible prismatic car 0.3-0.9 % (z) but 16-34 % (x, y),
-        its single hardpoint's lever artefact.  Check any run with
+        Time step, s (1e-5 .. 5e-3; default :data:`DEFAULT_STEP`, 1e-3).  Measured
+        against h/8 on ISO class C at 70/100 km/h and on the slalom, 4 s, output every
+        step (``bench/bench_convergence.py``, README, worst corner and axis, percent of
+        the fluctuating part): the linkage car rigid 0.1-0.3 % (z), 0.2-2.4 % (x, y),
+        flexible 0.1-0.3 % (z), 0.3-4.6 % (x, y); the prismatic car rigid within 1.6 %,
+        flexible 0.1-0.2 % (z) and 2.3-5.1 % (x, y).  At 2 ms the linkage car is within
+        6.7 % (rigid) and 8.3 % (flexible).  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
