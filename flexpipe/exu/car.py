@@ -22,11 +22,11 @@ Model (per corner ``fl, fr, rl, rr``)
   too (their part about the spin axis on the spin coordinate, the rest on the carrier);
   the drive and brake torques are loads held over the step (the driver samples them
   every 10 ms).
-* Time integration: Exudyn's generalized-alpha with spectral radius 0.5 (``run``): less
-  numerical damping (0.7) left 2h-periodic noise in the accelerations and constraint
-  forces of the index-3 formulation that the hub forces are made of (measured with the
-  rigid linkage car, ISO C 70 km/h, front-left hub force at h = 2 ms against h/8, RMS in %
-  of the fluctuation, x / y: 4.2 / 6.5 at 0.7, 3.7 / 4.5 at 0.5, 4.3 / 5.3 at 0.3).
+* Time integration: Exudyn's generalized-alpha with the spectral radius
+  :data:`flexpipe.vehicle.simulation.SPECTRAL_RADIUS` (0.7; ``run``).  At the former
+  2 ms default 0.5 was better (rigid linkage car, ISO C 70 km/h, front-left hub force
+  against h/8, RMS in % of the fluctuation, x / y: 4.2 / 6.5 at 0.7, 3.7 / 4.5 at 0.5,
+  4.3 / 5.3 at 0.3); at the 1 ms default 0.7 is (figures at ``SPECTRAL_RADIUS``).
   The flexible body's modal masses and damping are pre-warped to the step and this
   spectral radius (``CarBuild.modal_prewarp``, :mod:`flexpipe.exu.prewarp`): flexible
   linkage car, ISO C 70 km/h, worst corner x / y 26.6 / 12.6 % plain, 8.3 / 6.7 %

@@ -42,8 +42,12 @@ from flexpipe.vehicle.settle import settled_start
 from flexpipe.vehicle.spec import Car, load_car
 
 #: generalized-alpha spectral radius of the runs (see :mod:`flexpipe.exu.car`); the
-#: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`)
-SPECTRAL_RADIUS = 0.5
+#: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`).  At the
+#: 1 ms default, flexible linkage car, ISO C 70 km/h, worst corner x / y / z against h/8:
+#: 4.42 / 1.90 / 0.35 % at 0.4, 4.43 / 1.79 / 0.29 at 0.5, 3.97 / 1.63 / 0.26 at 0.6,
+#: 3.74 / 1.54 / 0.23 at 0.7, 3.66 / 1.52 / 0.21 at 0.8; rigid, 100 km/h: 2.4 / 0.9 /
+#: 0.3 at 0.5, 2.32 / 0.94 / 0.22 at 0.7 (2026-12-01)
+SPECTRAL_RADIUS = 0.7
 #: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
 #: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 4.6 %,
 #: ``bench/bench_convergence.py``); 2 ms leaves the flexible body's x at 8 %, its
