@@ -49,7 +49,7 @@ from flexpipe.vehicle.spec import Car, load_car
 #: 0.3 at 0.5, 2.32 / 0.94 / 0.22 at 0.7 (2026-12-01)
 SPECTRAL_RADIUS = 0.7
 #: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
-#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 4.6 %,
+#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 3.8 %,
 #: ``bench/bench_convergence.py``); 2 ms leaves the flexible body's x at 8 %, its
 #: attachment modes beyond what a 2 ms step can follow (README)
 DEFAULT_STEP = 1e-3
@@ -223,17 +223,18 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Time step, s (1e-5 .. 5e-3; default :data:`DEFAULT_STEP`, 1e-3).  Measured
         against h/8 on ISO class C at 70/100 km/h and on the slalom, 4 s, output every
         step (``bench/bench_convergence.py``, README, worst corner and axis, percent of
-        the fluctuating part): the linkage car rigid 0.1-0.3 % (z), 0.2-2.4 % (x, y),
-        flexible 0.1-0.3 % (z), 0.3-4.6 % (x, y); the prismatic car rigid within 1.6 %,
-        flexible 0.1-0.2 % (z) and 2.3-5.1 % (x, y).  At 2 ms the linkage car is within
-        6.7 % (rigid) and 8.3 % (flexible).  Check any run with
+        the fluctuating part): the linkage car rigid 0.1-0.2 % (z), 0.1-2.3 % (x, y),
+        flexible 0.1-0.2 % (z), 0.3-3.8 % (x, y); the prismatic car rigid within 1.6 %,
+        flexible 0.0-0.2 % (z) and 1.2-4.1 % (x, y).  At 2 ms the linkage car is within
+        6.5 % (rigid) and 8.3 % (flexible).  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
         Coarser output keeps every n-th step without filtering: content above the
         output's Nyquist frequency aliases (the flexible linkage car at 1 ms has hub-force
         content up to its 570 Hz body modes; sampled at 2 ms its x step error reads 3.5 or
-        5.2 % depending on which steps are kept, 4.4 % over all steps).
+        5.2 % depending on which steps are kept, 4.4 % over all steps, at spectral radius
+        0.5).
     driver : (PurePursuit, SpeedPI) or str or Path, optional
         Controllers, or a driver TOML file (``[steering]``, ``[speed]``); default
         :func:`default_driver`.
