@@ -38,8 +38,9 @@ from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
     reduce_car_body,
 )
 from flexpipe.vehicle.result import Result
+from flexpipe.vehicle.run_inputs import as_car, as_path, as_road, checked_number
 from flexpipe.vehicle.settle import settled_start
-from flexpipe.vehicle.spec import Car, load_car
+from flexpipe.vehicle.spec import Car
 
 #: generalized-alpha spectral radius of the runs (see :mod:`flexpipe.exu.car`); the
 #: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`).  At the
@@ -59,54 +60,6 @@ BODIES = ("flexible", "rigid", "full")
 FULL_CUTOFF_HZ = 250.0
 #: distance along the path of the body origin at t = 0, beyond the wheelbase, m
 START_MARGIN_M = 3.0
-
-
-def _number(value, name, *, lo=None, hi=None, lo_closed=False):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}", key=name) from None
-    below = lo is not None and (v < lo if lo_closed else v <= lo)
-    if not math.isfinite(v) or below or (hi is not None and v > hi):
-        left = "[" if lo_closed else "("
-        rng = f"in {left}{lo:g}, {hi:g}]" if hi is not None else f"> {lo:g}"
-        raise InputError(f"{name} must be finite and {rng}, got {value!r}", key=name)
-    return v
-
-
-def _road(road, needed: float):
-    from flexpipe.roads import Road, flat, load_road
-
-    if road is None:
-        return flat(needed + 50.0, dx=1.0, track_width=1.5)
-    if isinstance(road, Road):
-        return road
-    if isinstance(road, (str, Path, dict)):
-        return load_road(road)
-    raise InputError(f"road must be a flexpipe Road, a road file (.toml/.crg/.csv) or None, "
-                     f"got {type(road).__name__}", key="road")
-
-
-def _car(car) -> Car:
-    if isinstance(car, Car):
-        return car
-    if isinstance(car, (str, Path)):
-        return load_car(car)
-    raise InputError(f"car must be a Car or a car file, got {type(car).__name__}", key="car")
-
-
-def _path(path, needed: float):
-    from flexpipe.driver import Path as DPath
-    from flexpipe.driver import read_path, straight
-
-    if path is None or (isinstance(path, str) and path == "straight"):
-        return straight(needed + 50.0, ds=1.0)
-    if isinstance(path, DPath):
-        return path
-    if isinstance(path, (str, Path)):
-        return read_path(path)
-    raise InputError(f"path must be a flexpipe.driver.Path, a path file (.csv/.toml), "
-                     f"'straight' or None, got {type(path).__name__}", key="path")
 
 
 def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
@@ -175,9 +128,9 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
     elsewhere (a sweep's per-body task) instead of reading the cache.
     """
     log = log or (lambda *a: None)
-    car = _car(car)  # --- sweep (issue 12): same car/road arguments as simulate()
+    car = as_car(car)  # --- sweep (issue 12): same car/road arguments as simulate()
     if road is not None:
-        road = _road(road, 0.0)
+        road = as_road(road, 0.0)
     bodies = bodies or {}
     rb = bodies.get("rigid") or bodymodel.rigid_properties(car, cache=cache)
     tires = _tires(car)
@@ -285,18 +238,19 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     InputError
         Bad arguments, bad car file, road or path too short.
     """
-    car = _car(car)
+    car = as_car(car)
     if body not in BODIES:
         raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
     if not isinstance(prewarp, (bool, np.bool_)):
         raise InputError(f"prewarp must be True or False, got {prewarp!r}", key="prewarp")
-    speed = _number(speed, "speed", lo=0.0, hi=80.0, lo_closed=True)
-    t_end = _number(t_end, "t_end", lo=0.0, hi=3600.0)
-    h = _number(h, "h", lo=0.0, hi=5e-3)
+    speed = checked_number(speed, "speed", lo=0.0, hi=80.0, lo_closed=True)
+    t_end = checked_number(t_end, "t_end", lo=0.0, hi=3600.0)
+    h = checked_number(h, "h", lo=0.0, hi=5e-3)
     if h < 1e-5:
         raise InputError(f"h must be >= 1e-5 s, got {h}", key="h")
-    output_step = h if output_step is None else _number(output_step, "output_step", lo=0.0,
-                                                         hi=1.0)
+    if output_step is None:
+        output_step = h
+    output_step = checked_number(output_step, "output_step", lo=0.0, hi=1.0)
     if h > t_end:  # flexpipe#14 (robust): checked here, not by Exudyn
         raise InputError(f"h = {h:g} s is longer than t_end = {t_end:g} s; choose h <= t_end",
                          key="h")
@@ -304,14 +258,14 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: auto, constant, full",
                          key="inertia_coupling")
     if max_mode_hz is not None:  # flexpipe#14 (robust)
-        max_mode_hz = _number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
+        max_mode_hz = checked_number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
     every = max(1, int(round(output_step / h)))
     if body in ("full", "flexible") and car.body.mesh is None and car.body.body_file is None:
         raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
                          "properties ([body.rigid]); use body='rigid'", file=car.file,
                          key="body.mesh")
     if f_max is not None:
-        f_max = _number(f_max, "f_max", lo=0.0, hi=5000.0)
+        f_max = checked_number(f_max, "f_max", lo=0.0, hi=5000.0)
     rates = np.asarray(initial_rates, dtype=float).reshape(-1)
     if rates.shape != (3,) or not np.all(np.isfinite(rates)):
         raise InputError(f"initial_rates must be 3 finite numbers, got {initial_rates!r}",
@@ -319,9 +273,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     start = abs(min(c.wheel_center[0] for c in car.corners)) + START_MARGIN_M
     travel = speed * t_end
     needed = start + travel + 10.0
-    road_obj = _road(road, needed)
+    road_obj = as_road(road, needed)
     path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
-        else _path(path, needed)  # path="road": follow the road's reference line
+        else as_path(path, needed)  # path="road": follow the road's reference line
     what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
     road_obj.require_length(needed, what=what, start=road_obj.x[0])
     path_obj.require_length(travel + 10.0, what=what, start=start)
