@@ -84,3 +84,42 @@ def test_compiled_path_names_a_bad_spin_axis():
         fast.correct(kin, 2e-3)
     with pytest.raises(InputError, match="spin_axis must be non-zero"):
         fast.predict(kin, 2e-3, np.zeros(4))
+
+
+def _rot(rng, n):
+    """Random rotation matrices (n, 3, 3) near the identity."""
+    from scipy.spatial.transform import Rotation
+
+    return Rotation.from_rotvec(0.3 * rng.normal(size=(n, 3))).as_matrix()
+
+
+def test_compiled_applied_force_equals_the_numpy_reference():
+    """The force the integrator applied at the end of a step (the linearization carried to
+    the new state), compiled against ``CarController._applied_tire_force_numpy``."""
+    from types import SimpleNamespace
+
+    from flexpipe.vehicle._tire_coupling_fast import applied_force
+    from flexpipe.vehicle.dynamics import CarController
+    from flexpipe.vehicle.tire_coupling import TireStep
+
+    rng = np.random.default_rng(7)
+    n = 4
+
+    def state():
+        R = _rot(rng, n)
+        return SimpleNamespace(wheel_w=rng.normal(size=(n, 3)), wheel_v=rng.normal(size=(n, 3)),
+                               wheel_p=rng.normal(size=(n, 3)), wheel_R=R)
+
+    st0, st = state(), state()
+    ts = TireStep(F0=rng.normal(size=(n, 3)), Dv=rng.normal(size=(n, 3, 3)),
+                  dw=rng.normal(size=(n, 3)), A=rng.normal(size=(n, 3)),
+                  r=rng.normal(size=(n, 3)), moment=np.zeros((n, 3)),
+                  spin_axis=st0.wheel_R[:, :, 1], S=rng.normal(size=(n, 3, 3)), moment_lin=())
+    om0, om = rng.normal(size=n), rng.normal(size=n)
+    ctl = SimpleNamespace(_tire_lin=(ts, st0, om0))
+    ref = CarController._applied_tire_force_numpy(ctl, st, st.wheel_R[:, :, 1], om)
+    got = applied_force(ts.F0, ts.Dv, ts.dw, ts.A, ts.S, ts.r, ts.spin_axis, st0.wheel_w,
+                        st0.wheel_v, om0, st0.wheel_p[:, 2], st0.wheel_R, st.wheel_R[:, :, 1],
+                        st.wheel_w, st.wheel_v, om, st.wheel_p[:, 2], st.wheel_R)
+    np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12)
+    assert np.abs(ref - ts.F0).max() > 0.1  # every term moved the force

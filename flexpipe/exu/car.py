@@ -51,6 +51,7 @@ import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.exu import timeloop
+from flexpipe.exu._node_state import NodeReader
 from flexpipe.exu._tire_element import element, element_numpy
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
 from flexpipe.tires._fast import enabled as jit_enabled
@@ -258,6 +259,8 @@ class CarSystem:
         mbs.Assemble()
         self.wheel_ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
                                    for n in self.wheel_node], dtype=float)
+        self._reader = NodeReader(mbs, list(self.wheel_node) + [self.body_node],
+                                  self.spin_node)
         # Newton's relative tolerance: at 1e-3 the lateral hub forces of the rigid linkage
         # car converged at first order in h (ISO C 100 km/h, worst corner y against
         # 0.125 ms: 1.9 / 0.9 % at 1 / 0.5 ms), at 1e-4 at second order (0.9 / 0.2 %;
@@ -270,27 +273,24 @@ class CarSystem:
                 ("local", list(map(float, spec.point_local[name])))
 
     # ------------------------------------------------------------------ state and loads
+    def _nodes(self):
+        """Carriers' position, velocity, rotation, angular velocity, spin rate, node
+        coordinates and their rates (global, arrays over the wheels), then the body
+        frame's position, rotation, velocity and angular velocity: one bulk read
+        (:class:`flexpipe.exu._node_state.NodeReader`)."""
+        (p, v, R, w, c, ct), spin = self._reader.read()
+        return (p[:4], v[:4], R[:4], w[:4], spin, c[:4], ct[:4]), (p[4], R[4], v[4], w[4])
+
     def _wheel_state(self):
         """Carriers' position, velocity, rotation, angular velocity, spin rate, node
         coordinates and their rates (global), as arrays over the wheels."""
-        g = self.mbs.GetNodeOutput
-        wp = np.array([g(n, OV.Position) for n in self.wheel_node])
-        wv = np.array([g(n, OV.Velocity) for n in self.wheel_node])
-        wR = np.array([g(n, OV.RotationMatrix) for n in self.wheel_node]).reshape(4, 3, 3)
-        ww = np.array([g(n, OV.AngularVelocity) for n in self.wheel_node])
-        spin = np.array([g(n, OV.Coordinates_t) for n in self.spin_node], dtype=float).ravel()
-        wq = np.array([g(n, OV.Coordinates) for n in self.wheel_node], dtype=float)
-        wqt = np.array([g(n, OV.Coordinates_t) for n in self.wheel_node], dtype=float)
-        return wp, wv, wR, ww, spin, wq, wqt
+        return self._nodes()[0]
 
     def state(self, t: float) -> CarState:
         """Read the current state (suspension travel from the marker frames, which is
         much cheaper than the joint outputs of a flexible-body marker)."""
-        mbs = self.mbs
-        g = mbs.GetNodeOutput
-        gm = mbs.GetMarkerOutput
-        bn = self.body_node
-        wp, wv, wR, ww, spin, wq, wqt = self._wheel_state()
+        gm = self.mbs.GetMarkerOutput
+        (wp, wv, wR, ww, spin, wq, wqt), (body_p, body_R, body_v, body_w) = self._nodes()
         mp = np.array([gm(m, OV.Position) for m in self.mount])
         mv = np.array([gm(m, OV.Velocity) for m in self.mount])
         mR = np.array([gm(m, OV.RotationMatrix) for m in self.mount]).reshape(4, 3, 3)
@@ -300,9 +300,7 @@ class CarSystem:
         jounce = np.einsum("ni,ni->n", mR[:, :, 2], ps - mp) - self.travel0
         rate = np.einsum("ni,ni->n", mR[:, :, 2], vs - mv)
         return CarState(
-            t=t, body_p=np.asarray(g(bn, OV.Position)),
-            body_R=np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3),
-            body_v=np.asarray(g(bn, OV.Velocity)), body_w=np.asarray(g(bn, OV.AngularVelocity)),
+            t=t, body_p=body_p, body_R=body_R, body_v=body_v, body_w=body_w,
             wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
             jounce=jounce, jounce_rate=rate, joint_force=None, mount_R=mR,
             wheel_q=wq, wheel_qt=wqt)
@@ -401,11 +399,15 @@ class CarSystem:
         tyre's own moment linearized alike (Exudyn's convention: ``D q_t + K q = f``)."""
         ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
-        DMv, dMw, AM, SM = ts.moment_lin
-        args = [np.ascontiguousarray(a, dtype=float) for a in (
-            ep, ts.r, ts.spin_axis, qt, st.wheel_q, np.concatenate([ts.F0, ts.moment], axis=1),
-            np.concatenate([ts.Dv, DMv], axis=1), np.concatenate([ts.dw, dMw], axis=1),
-            np.concatenate([ts.A, AM], axis=1), np.concatenate([ts.S, SM], axis=1))]
+        if ts.lin6 is not None:
+            lin = ts.lin6
+        else:
+            DMv, dMw, AM, SM = ts.moment_lin
+            lin = (np.concatenate([ts.F0, ts.moment], axis=1),
+                   np.concatenate([ts.Dv, DMv], axis=1), np.concatenate([ts.dw, dMw], axis=1),
+                   np.concatenate([ts.A, AM], axis=1), np.concatenate([ts.S, SM], axis=1))
+        args = [np.ascontiguousarray(a, dtype=float)
+                for a in (ep, ts.r, ts.spin_axis, qt, st.wheel_q, *lin)]
         kernel = element if jit_enabled() else element_numpy
         D, K, f = kernel(*args)
         return D, K, f

@@ -19,7 +19,6 @@ the bracket costs Exudyn 1.8-1.9x less per Newton iteration than one on the rigi
 
 from __future__ import annotations
 
-import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
 from exudyn.rigidBodyUtilities import GetRigidBodyNode
@@ -29,9 +28,6 @@ from flexpipe.exu.body import NODE_TYPE, add_flexible_body
 from flexpipe.exu.brackets import frame_bracket, mount_bracket
 from flexpipe.exu.car import CarState, CarSystem
 from flexpipe.exu.linkage import LinkageModel
-from flexpipe.tires.contact import _cross
-
-OV = exu.OutputVariableType
 
 
 class LinkageCarSystem(CarSystem):
@@ -114,20 +110,19 @@ class LinkageCarSystem(CarSystem):
 
     def state(self, t: float) -> CarState:
         """Current state; ``jounce`` is the wheel-centre travel along the body z axis."""
-        g = self.mbs.GetNodeOutput
-        bn = self.body_node
-        body_p = np.asarray(g(bn, OV.Position))
-        body_R = np.asarray(g(bn, OV.RotationMatrix)).reshape(3, 3)
-        body_v = np.asarray(g(bn, OV.Velocity))
-        body_w = np.asarray(g(bn, OV.AngularVelocity))
-        wp, wv, wR, ww, spin, wq, wqt = self._wheel_state()
-        local = (wp - body_p) @ body_R
-        jounce = local[:, 2] - self.design_wheel[:, 2]
-        vrel = (wv - body_v - _cross(np.broadcast_to(body_w, wp.shape), wp - body_p)) @ body_R
+        (wp, wv, wR, ww, spin, wq, wqt), (body_p, body_R, body_v, body_w) = self._nodes()
+        d = wp - body_p
+        ez = body_R[:, 2]
+        jounce = d @ ez - self.design_wheel[:, 2]
+        # rate along the body z axis: (v - v_body - w x d) . ez = (v - v_body) . ez - d . (ez x w)
+        w = body_w
+        ez_w = np.array([ez[1] * w[2] - ez[2] * w[1], ez[2] * w[0] - ez[0] * w[2],
+                         ez[0] * w[1] - ez[1] * w[0]])
+        rate = (wv - body_v) @ ez - d @ ez_w
         return CarState(t=t, body_p=body_p, body_R=body_R, body_v=body_v, body_w=body_w,
                         wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
-                        jounce=jounce, jounce_rate=vrel[:, 2], joint_force=None,
-                        mount_R=np.repeat(body_R[None], 4, axis=0), wheel_q=wq, wheel_qt=wqt)
+                        jounce=jounce, jounce_rate=rate, joint_force=None,
+                        mount_R=np.broadcast_to(body_R, (4, 3, 3)), wheel_q=wq, wheel_qt=wqt)
 
     def apply(self, loads, mount_R, st) -> None:
         """Tyre elements, spin torques, rack travel (the springs, dampers and stops need

@@ -128,3 +128,37 @@ def predict_group(qa, C, s, v, w, om, n_road, road_ahead, mirror, kappa, tan_a, 
             r[i, k] = out[i, 6 + k] - C[i, k]
             M[i, k] = Y[i, 3 + k]
     return -1
+
+
+@_jit
+def applied_force(F0, Dv, dw, A, S, r, s0, w0, v0, om0, z0, R0, s, w, v, om, z, R):
+    """Compiled ``CarController._applied_tire_force``: the linearized tyre force (n, 3)
+    at the new state (``s``, ``w``, ``v``, ``om``, ``z``, ``R``: spin axis, angular
+    velocity, velocity, spin rate, height and rotation of each carrier) from the
+    linearization made at the old one (``s0`` ... ``R0``)."""
+    n = F0.shape[0]
+    out = np.empty((n, 3))
+    for i in range(n):
+        a = w[i, 0] * s[i, 0] + w[i, 1] * s[i, 1] + w[i, 2] * s[i, 2]
+        a0 = w0[i, 0] * s0[i, 0] + w0[i, 1] * s0[i, 1] + w0[i, 2] * s0[i, 2]
+        c0, c1, c2 = w[i, 0] - a * s[i, 0], w[i, 1] - a * s[i, 1], w[i, 2] - a * s[i, 2]
+        d0, d1, d2 = w0[i, 0] - a0 * s0[i, 0], w0[i, 1] - a0 * s0[i, 1], \
+            w0[i, 2] - a0 * s0[i, 2]
+        x0, x1, x2 = _cross3(c0, c1, c2, r[i, 0], r[i, 1], r[i, 2])
+        y0, y1, y2 = _cross3(d0, d1, d2, r[i, 0], r[i, 1], r[i, 2])
+        dvP = (v[i, 0] + x0 - v0[i, 0] - y0, v[i, 1] + x1 - v0[i, 1] - y1,
+               v[i, 2] + x2 - v0[i, 2] - y2)
+        # rotation of the carrier over the step (small angles): dR = R R0^T
+        dR = np.empty((3, 3))
+        for j in range(3):
+            for k in range(3):
+                dR[j, k] = R[i, j, 0] * R0[i, k, 0] + R[i, j, 1] * R0[i, k, 1] \
+                    + R[i, j, 2] * R0[i, k, 2]
+        th = (0.5 * (dR[2, 1] - dR[1, 2]), 0.5 * (dR[0, 2] - dR[2, 0]),
+              0.5 * (dR[1, 0] - dR[0, 1]))
+        dom, dz = om[i] - om0[i], z[i] - z0[i]
+        for j in range(3):
+            out[i, j] = (F0[i, j] + Dv[i, j, 0] * dvP[0] + Dv[i, j, 1] * dvP[1]
+                         + Dv[i, j, 2] * dvP[2] + dw[i, j] * dom + A[i, j] * dz
+                         + S[i, j, 0] * th[0] + S[i, j, 1] * th[1] + S[i, j, 2] * th[2])
+    return out

@@ -27,8 +27,14 @@ import math
 
 import numpy as np
 
+from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.tires.contact import _cross
+from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.spec import CORNERS
+
+#: offsets (in units of the finite-difference step) of the road-normal stencil
+_DX = np.array([0.0, 1.0, -1.0, 0.0, 0.0])
+_DY = np.array([0.0, 0.0, 0.0, 1.0, -1.0])
 
 #: sign that turns the GenericJoint's ForceLocal into the force on the body (checked against
 #: the wheel carriers' Newton law, which gives the hub force after the first step)
@@ -157,6 +163,7 @@ class CarController:
         self.message = ""
         names = ["x", "y", "z", "x_rear", "y_rear", "roll", "pitch", "yaw", "speed", "ay",
                  "steer", "steering_wheel", "drive_torque", "lateral_error"]
+        self._c0 = len(names)  # first corner column (_record fills the row by position)
         for cn in CORNERS:
             names += [f"hub_{cn}_x", f"hub_{cn}_y", f"hub_{cn}_z", f"tire_{cn}_Fx",
                       f"tire_{cn}_Fy", f"tire_{cn}_Fz", f"travel_{cn}", f"spin_{cn}"]
@@ -175,19 +182,21 @@ class CarController:
                 names += [f"mount_{m}_x", f"mount_{m}_y", f"mount_{m}_z"]
         n_rows = int(round(t_end / h)) // self.output_every + 2
         self.rec = Recorder(names, n_rows)
+        self._row = np.full(len(names), np.nan)  # one output row, filled by _record
         self._prev_v = None
 
     # ------------------------------------------------------------------ pieces
     def road_contact(self, P: np.ndarray):
         """Road height (n,) and upward unit normal (n, 3) under points P (n, 3)."""
         e = 0.05
-        x = np.concatenate([P[:, 0], P[:, 0] + e, P[:, 0] - e, P[:, 0], P[:, 0]])
-        y = np.concatenate([P[:, 1], P[:, 1], P[:, 1], P[:, 1] + e, P[:, 1] - e])
+        x = (P[:, 0] + _DX[:, None] * e).ravel()  # the points and +-e in x, then in y
+        y = (P[:, 1] + _DY[:, None] * e).ravel()
         z = np.asarray(self.road.height_xy(x, y), dtype=float).reshape(5, -1)
-        gx = (z[1] - z[2]) / (2 * e)
-        gy = (z[3] - z[4]) / (2 * e)
-        n = np.column_stack([-gx, -gy, np.ones_like(gx)])
-        return z[0], n / np.linalg.norm(n, axis=1, keepdims=True)
+        n = np.empty((P.shape[0], 3))
+        n[:, 0] = (z[2] - z[1]) / (2 * e)
+        n[:, 1] = (z[4] - z[3]) / (2 * e)
+        n[:, 2] = 1.0
+        return z[0], n / np.sqrt(n[:, 0] ** 2 + n[:, 1] ** 2 + 1.0)[:, None]
 
     def wheel_angles(self, delta: float) -> np.ndarray:
         """Road-wheel angles (4,) of an Ackermann steering for the bicycle angle ``delta``."""
@@ -357,6 +366,17 @@ class CarController:
         if self._tire_lin is None:
             return None
         ts, st0, om0 = self._tire_lin
+        if _jit_enabled():
+            return applied_force(ts.F0, ts.Dv, ts.dw, ts.A, ts.S, ts.r, ts.spin_axis,
+                                 st0.wheel_w, st0.wheel_v, om0, st0.wheel_p[:, 2],
+                                 st0.wheel_R, s_axis, st.wheel_w, st.wheel_v, omega,
+                                 st.wheel_p[:, 2], st.wheel_R)
+        return self._applied_tire_force_numpy(st, s_axis, omega)
+
+    def _applied_tire_force_numpy(self, st, s_axis, omega):
+        """Reference of the compiled :func:`~flexpipe.vehicle._tire_coupling_fast.
+        applied_force`."""
+        ts, st0, om0 = self._tire_lin
         wc = st.wheel_w - np.einsum("ij,ij->i", st.wheel_w, s_axis)[:, None] * s_axis
         wc0 = st0.wheel_w - np.einsum("ij,ij->i", st0.wheel_w, ts.spin_axis)[:, None] \
             * ts.spin_axis
@@ -416,22 +436,32 @@ class CarController:
         ry = st.body_p[1] - self.rear_offset * R[1, 0]
         path = self.steering.path
         lat = path.project(float(rx), float(ry))[1] if path is not None else 0.0
-        row = [st.body_p[0], st.body_p[1], st.body_p[2], rx, ry, roll, pitch, yaw, v, ay,
-               self.delta, self.delta * self.ratio, self.torque, lat]
-        for i in range(4):
-            row += [hub[i, 0], hub[i, 1], hub[i, 2], Fw[i, 0], Fw[i, 1], Fw[i, 2],
-                    st.jounce[i], st.spin_rate[i]]
+        # the row in the channel order of __init__: the scalars, 8 per corner, 3 per point
+        # and per mount
+        row = self._row
+        c0 = self._c0
+        row[0:3] = st.body_p
+        row[3:c0] = (rx, ry, roll, pitch, yaw, v, ay, self.delta, self.delta * self.ratio,
+                     self.torque, lat)
+        corner = row[c0:c0 + 32].reshape(4, 8)
+        corner[:, 0:3] = hub
+        corner[:, 3:6] = Fw
+        corner[:, 6] = st.jounce
+        corner[:, 7] = st.spin_rate
+        k = c0 + 32
         if self.points:
             acc = self.point_acc()
             for p in self.points:
-                row += list(R.T @ acc[p])
+                row[k:k + 3] = R.T @ acc[p]
+                k += 3
         if self.mounts:
             if self.rec.rows == 0 or not self.mount_sensors:
                 mf = self.linkage.mount_forces()
                 for m in self.mounts:
-                    row += list(R.T @ mf[m])
+                    row[k:k + 3] = R.T @ mf[m]
+                    k += 3
             else:  # filled after the run from Exudyn's sensors (fill_mounts)
-                row += [np.nan] * (3 * len(self.mounts))
-        self.rec.add(st.t, np.array(row, dtype=float))
+                row[k:] = np.nan
+        self.rec.add(st.t, row)
         if self.body_motion is not None and len(self.motion) < self.rec.rows:
             self.motion.append(self.body_motion())

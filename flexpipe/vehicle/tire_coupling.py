@@ -30,7 +30,7 @@ and once with it held.
 
 Low speed: the slip velocities are regularised at ``VXLOW`` by the tyre model; at
 standstill the relaxation state is a spring (``du/dt = w``) that is now implicit, so a
-parked car no longer winds up (see ``tests/test_tire_coupling.py``).
+parked car no longer winds up (``tests/test_rollout.py``).
 """
 
 from __future__ import annotations
@@ -62,6 +62,9 @@ class TireStep:
     S: np.ndarray  # (n, 3, 3) dF/dtheta, small global rotation of the carrier
     #: the own moment's derivatives (dM/dv_P, dM/domega, dM/dz, dM/dtheta), like the force's
     moment_lin: tuple
+    #: force and own moment together (Y0 (n, 6), dY/dv_P (n, 6, 3), dY/domega (n, 6),
+    #: dY/dz (n, 6), dY/dtheta (n, 6, 3)): the tyre element's input, as one block each
+    lin6: tuple | None = None
 
 
 def _force_and_moment(out, C, rows, m):
@@ -87,7 +90,11 @@ class ImplicitTires:
         for i, t in enumerate(tires):
             groups.setdefault(id(t), (t, []))[1].append(i)
         self.groups = [(t, np.array(ix)) for t, ix in groups.values()]
+        #: one group holding every wheel in order: its arrays need no gathering
+        self._whole = (len(self.groups) == 1
+                       and list(self.groups[0][1]) == list(range(len(tires))))
         self.mirror = np.asarray(mirror, dtype=bool)
+        self._mirror = {id(t): np.ascontiguousarray(self.mirror[ix]) for t, ix in self.groups}
         n = len(tires)
         self.state = {id(t): SlipState.zeros(len(ix)) for t, ix in self.groups}
         #: groups evaluated by the compiled corrector and predictor (PAC2002 tyres)
@@ -95,6 +102,12 @@ class ImplicitTires:
                          if _fast.enabled() and hasattr(t, "_packed")}
         self.n = n
         self._prev = None  # inputs of the last step, for the corrector
+
+    def _gather(self, ix):
+        """``a -> a[ix]`` as a contiguous float array (no copy for the whole car)."""
+        if self._whole:
+            return lambda a: np.ascontiguousarray(a, dtype=float)
+        return lambda a: np.ascontiguousarray(a[ix], dtype=float)
 
     @staticmethod
     def _stack(x, k):
@@ -135,16 +148,20 @@ class ImplicitTires:
 
         st = self.state[id(tire)]
         kappa, tan_a = st.kappa.astype(float), st.tan_alpha.astype(float)
-        a = [np.ascontiguousarray(kin[k][ix], dtype=float) for k in _TRACKED]
-        p = a if prev is None else [np.ascontiguousarray(prev[k][ix], dtype=float)
-                                    for k in _TRACKED]
+        take = self._gather(ix)
+        a = [take(kin[k]) for k in _TRACKED]
+        p = a if prev is None else [take(prev[k]) for k in _TRACKED]
         force, Fxyz = np.empty((len(ix), 3)), np.empty((len(ix), 3))
         bad = correct_group(tire._packed(), a[0], a[1], a[2], a[3], a[4], a[5], a[6],
                             p[0], p[1], p[2], p[3], p[4], p[5], p[6], prev is not None,
-                            np.ascontiguousarray(self.mirror[ix]), kappa, tan_a,
+                            self._mirror[id(tire)], kappa, tan_a,
                             bool(tire.relaxation), float(h), force, Fxyz)
         _fast.check_rows(bad, a[1])
         self.state[id(tire)] = SlipState(kappa, tan_a)
+        if self._whole:
+            out["Fx"], out["Fy"], out["Fz"] = Fxyz.T
+            out["force"] = force
+            return
         out["Fx"][ix], out["Fy"][ix], out["Fz"][ix] = Fxyz.T
         out["force"][ix] = force
 
@@ -221,22 +238,26 @@ class ImplicitTires:
         self._prev = {k: kin[k].copy() for k in _TRACKED}
         return TireStep(F0=F0, Dv=Dv[:, :3], dw=dw[:, :3], A=A[:, :3], r=r, moment=M,
                         spin_axis=kin["s"].copy(), S=S[:, :3],
-                        moment_lin=(Dv[:, 3:], dw[:, 3:], A[:, 3:], S[:, 3:]))
+                        moment_lin=(Dv[:, 3:], dw[:, 3:], A[:, 3:], S[:, 3:]),
+                        lin6=(np.concatenate([F0, M], axis=1), Dv, dw, A, S))
 
     def _predict_compiled(self, tire, ix, kin, h, road_ahead, full):
         from flexpipe.vehicle._tire_coupling_fast import predict_group
 
         m = len(ix)
         st = self.state[id(tire)]
-        g = {k: np.ascontiguousarray(kin[k][ix], dtype=float)
-             for k in ("C", "s", "v", "w", "omega", "n_road")}
+        take = self._gather(ix)
+        g = {k: take(kin[k]) for k in ("C", "s", "v", "w", "omega", "n_road")}
         part = (np.empty((m, 3)), np.empty((m, 6, 3)), np.empty((m, 6)), np.empty((m, 6)),
                 np.empty((m, 6, 3)), np.empty((m, 3)), np.empty((m, 3)))
         bad = predict_group(tire._packed(), g["C"], g["s"], g["v"], g["w"], g["omega"],
-                            g["n_road"], np.ascontiguousarray(road_ahead[ix], dtype=float),
-                            np.ascontiguousarray(self.mirror[ix]),
+                            g["n_road"], take(road_ahead),
+                            self._mirror[id(tire)],
                             st.kappa.astype(float), st.tan_alpha.astype(float),
                             bool(tire.relaxation), float(h), DV, DW, DZ, DTH, *part)
         _fast.check_rows(bad, g["s"])
         for dst, src in zip(full, part, strict=True):
-            dst[ix] = src
+            if self._whole:
+                dst[...] = src
+            else:
+                dst[ix] = src
