@@ -46,6 +46,10 @@ def add_arguments(parser) -> None:
                         help="flexible body inertia: constant (Adams/Flex's constant coupling,"
                              " for mean-axis modes), full (Exudyn's complete floating-frame "
                              "terms) or auto (default: constant when the modes allow it)")
+    parser.add_argument("--profile", action="store_true",
+                        help="time Exudyn's parts of every step (constraints, body terms, "
+                             "mass matrix, back-substitution) against the Python step; "
+                             "printed and written to summary.json (profile_ms_per_step)")
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "
                              "(MATLAB); default csv")
@@ -84,8 +88,25 @@ def run(args) -> int:
                        cache=not args.no_cache, h=args.h, name="run", format=args.format,
                        log=(lambda *a: None) if args.quiet else print,
                        progress=not args.quiet, prewarp=not args.no_prewarp,
-                       inertia_coupling=args.inertia_coupling)
+                       inertia_coupling=args.inertia_coupling, profile=args.profile)
+    if args.profile and not args.quiet:
+        _print_profile(summary)
     return 0 if summary["status"] == 0 else 1
+
+
+def _print_profile(summary: dict) -> None:
+    """The per-step profile of each body run as a small table (ms per step)."""
+    prof = summary.get("profile_ms_per_step", {})
+    if not prof:
+        return
+    bodies = list(prof)
+    print("CPU per step, ms " + "".join(f"{b:>12s}" for b in bodies))
+    for part in next(iter(prof.values())):
+        print(f"  {part:28s}" + "".join(f"{prof[b].get(part, float('nan')):12.4f}"
+                                        for b in bodies))
+    its = summary.get("newton_iterations_per_step", {})
+    print(f"  {'Newton iterations per step':28s}" + "".join(
+        f"{its.get(b, float('nan')):12.3f}" for b in bodies))
 
 
 def _check_step(args, body: str, out: Path) -> int:

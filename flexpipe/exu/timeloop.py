@@ -2,8 +2,11 @@
 
 The step (:class:`flexpipe.vehicle.dynamics.CarController`) reads the state, linearizes the
 tyres and force elements and sets the loads; Exudyn then integrates one step implicitly.
-Spectral radius 0.5 (see :mod:`flexpipe.exu.car`), modified Newton (one Jacobian unless
-Newton stalls), sparse LU (a few hundred coordinates, most of them in small bodies).
+The spectral radius is the caller's (``flexpipe.vehicle.simulation.SPECTRAL_RADIUS``),
+modified Newton (one Jacobian unless Newton stalls), sparse LU (a few hundred coordinates,
+most of them in small bodies).  After the run ``system.solver_stats`` holds the Newton
+iteration count and, with ``timers=True``, Exudyn's own computation timers
+(:func:`solver_stats`).
 Ctrl-C and SIGTERM stop the run between steps and are re-raised as
 :class:`flexpipe._signals.Interrupted` (flexpipe#14).
 """
@@ -17,13 +20,39 @@ import exudyn as exu
 from flexpipe._signals import Interrupted, deferred_interrupts
 from flexpipe.reduction._threads import openblas_single_threaded
 
+#: Exudyn's computation timers reported by :func:`solver_stats` (its names -> ours)
+TIMERS = {"reactionForces": "constraint_reaction_forces", "AERHS": "constraint_equations",
+          "ODE2RHS": "body_and_force_terms", "massMatrix": "mass_matrix",
+          "newtonIncrement": "back_substitution", "jacobianODE2": "jacobian",
+          "factorization": "factorization", "writeSolution": "sensors",
+          "python": "python_step", "integrationFormula": "integration_formula",
+          "total": "total"}
+
+
+def solver_stats(mbs, *, timers: bool) -> dict:
+    """Newton iterations, Jacobians and steps of the last dynamic solve of ``mbs`` and,
+    with ``timers``, Exudyn's computation timers (seconds, names of :data:`TIMERS`)."""
+    solver = mbs.sys.get("dynamicSolver")
+    if solver is None:
+        return {}
+    it = solver.it
+    out = {"steps": int(it.numberOfSteps), "newton_iterations": int(it.newtonStepsCount),
+           "jacobians": int(it.newtonJacobiCount)}
+    if timers:
+        out["timers_s"] = {ours: float(getattr(solver.timer, name))
+                           for name, ours in TIMERS.items()}
+    return out
+
 
 def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
-        progress=None, jacobian_every_step: bool = False, output_step: float | None = None):
+        progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
+        timers: bool = False):
     """Integrate ``system`` (a :class:`~flexpipe.exu.car.CarSystem`) to ``t_end`` with step
     ``h``; ``step(state) -> CarLoads | None`` runs before every step.
 
     Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
+
+    ``timers``: switch on Exudyn's computation timers (``system.solver_stats``).
 
     ``step`` returns ``None`` to stop (e.g. divergence).  Returns
     ``(completed, t_reached, cpu_seconds, wall_seconds, solver_message)``.
@@ -85,6 +114,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
     s.solution.file.writeInitialValues = False
     s.show.statistics = False
     s.show.computationTime = False
+    s.displayComputationTime = bool(timers)
     # sparse LU: the Newton increments (one back-substitution per iteration with the kept
     # factorization) cost a third of the dense ones on the linkage car (~480
     # coordinates; Exudyn's timer 0.77 -> 0.24 ms per step, flexible); ISO C 70 km/h,
@@ -107,6 +137,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
         message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
     finally:
         exu.config.printToConsole = printing
+        system.solver_stats = solver_stats(mbs, timers=timers)
     if sig.signum is not None:  # flexpipe#14: an interrupt, not a solver failure
         raise Interrupted(sig.signum, t=last["t"])
     if "interrupt" in last:

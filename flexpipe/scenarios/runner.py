@@ -77,7 +77,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              plots=("hub_force_fl",), bodies=("rigid", "flexible"), cache: bool = True,
              h: float | None = None, notes=None, name: str = "run", log=print,
              format: str = "csv", progress: bool = True,  # noqa: A002
-             prewarp: bool = True, inertia_coupling: str = "auto") -> dict:
+             prewarp: bool = True, inertia_coupling: str = "auto",
+             profile: bool = False) -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
     The run is a transaction: everything is written into a staging folder next to
@@ -128,7 +129,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                          progress=progress, cache=cache, log=lambda m: log("      " + m),
-                         prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
+                         prewarp=prewarp, inertia_coupling=inertia_coupling,
+                         profile=profile, **kw)
             results[body] = r
             files.append(r.save(stage / f"{body}{SUFFIX.get(format, '.csv')}",
                                 format=format).name)
@@ -167,7 +169,13 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         "wall_time_s": {b: round(r.wall_time, 3) for b, r in results.items()},
         "realtime_factor": {b: round(r.realtime_factor, 3) for b, r in results.items()},
         "time_step_s": next(iter(results.values())).info["h"],
+        "newton_iterations_per_step": {b: r.info.get("newton_iterations_per_step")
+                                       for b, r in results.items()},
     }
+    prof = {b: r.info["profile_ms_per_step"] for b, r in results.items()
+            if "profile_ms_per_step" in r.info}
+    if prof:  # flexpipe run --profile: Exudyn's timers and the Python step, ms per step
+        summary["profile_ms_per_step"] = prof
     if "rigid" in results and "flexible" in results:
         ra, rb = results["rigid"], results["flexible"]
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)

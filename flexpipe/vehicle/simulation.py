@@ -152,7 +152,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
              h: float = DEFAULT_STEP, output_step: float | None = None, driver=None, f_max=None,
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
              cache: bool = True, log=None, prepared=None, settle: bool = True,
-             prewarp: bool = True, inertia_coupling: str = "auto") -> Result:
+             prewarp: bool = True, inertia_coupling: str = "auto",
+             profile: bool = False) -> Result:
     """Simulate the car on a road following a path at constant target speed.
 
     Parameters
@@ -220,6 +221,12 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         (:func:`flexpipe.flexbody.invariants.mean_axis_cosine`), else ``"full"``.  The
         choice is in ``Result.info["inertia_coupling"]``.  Measured on the linkage
         sample, see the README ("Inertia coupling").
+    profile : bool
+        Switch on Exudyn's computation timers: ``Result.info["profile_ms_per_step"]``
+        splits the CPU time per step into the Python step and Exudyn's parts (constraint
+        reaction forces and equations, body and force terms, mass matrix,
+        back-substitution, sensors).  ``info["newton_iterations_per_step"]`` is there
+        in every run.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
@@ -408,7 +415,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     try:
         completed, t_reached, cpu, wall, solver_msg = system.run(
             ctrl, t_end=t_end, h=h, spectral_radius=SPECTRAL_RADIUS,
-            progress=bar.update if bar is not None else None, output_step=every * h)
+            progress=bar.update if bar is not None else None, output_step=every * h,
+            timers=bool(profile))
     finally:
         if bar is not None:
             bar.close()
@@ -441,6 +449,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "inertia_coupling": build.inertia_coupling if fb is not None else None,
         "suspension": "prismatic" if car.suspension is None else
         f"linkage ({car.suspension.mode} mode)",
+        **_solver_info(getattr(system, "solver_stats", {})),
     }
     if fb is not None:
         used = fb.n_elastic if n_modes is None else n_modes
@@ -453,6 +462,18 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                   message=message, body=body, cpu_time=cpu, wall_time=wall,
                   simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info,
                   motion=_motion(t_out, ctrl.motion, fb))
+
+
+def _solver_info(stats: dict) -> dict:
+    """Newton iterations per step and, when timed, Exudyn's timers in ms per step."""
+    n = stats.get("steps", 0)
+    if not n:
+        return {}
+    out = {"newton_iterations_per_step": round(stats["newton_iterations"] / n, 3)}
+    if "timers_s" in stats:
+        out["profile_ms_per_step"] = {k: round(1e3 * v / n, 4)
+                                      for k, v in stats["timers_s"].items()}
+    return out
 
 
 def _motion(t, rows, fb):
