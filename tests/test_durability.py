@@ -225,3 +225,19 @@ def test_solid_body_nodal_recovery_and_report(tmp_path):
     np.testing.assert_allclose(m.point_data["max_von_mises_nodal [Pa]"][blk.nodes],
                                vm.max(axis=1), rtol=1e-12)
     assert len(m.cell_data["max_von_mises [Pa]"][0]) == len(blk)
+
+
+def test_matrix_csv_writes_what_the_generic_writer_writes(tmp_path):
+    """The per-row formatter of the stress histories against the per-value one it replaced
+    (first column ``%.12g``, the others ``%.7g``, non-finite values empty)."""
+    from flexpipe.durability.report import _write_csv, _write_matrix_csv
+
+    rng = np.random.default_rng(2)
+    data = rng.standard_normal((50, 6)) * 10.0 ** rng.integers(-8, 9, (50, 6))
+    data[:, 0] = np.arange(50) * 1e-3
+    data[3, 2], data[7, 5], data[9, 1] = np.nan, np.inf, -np.inf
+    header = ["t [s]"] + [f"c{i} [Pa]" for i in range(5)]
+    _write_csv(tmp_path / "a.csv", header, [[f"{r[0]:.12g}"] + list(r[1:]) for r in data])
+    _write_matrix_csv(tmp_path / "b.csv", header, data)
+    a, b = (tmp_path / "a.csv").read_text(), (tmp_path / "b.csv").read_text()
+    assert a == b and ",," in a  # the non-finite values are empty in both

@@ -84,3 +84,25 @@ def test_sample_car_fatigue_material():
 
     car = load_car(Path(__file__).resolve().parents[1] / "cars" / "sedan.toml")
     assert car.body.fatigue == FatigueMaterial(1020e6, -0.138, 0.0, "SAE 1015")
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_compiled_rainflow_equals_the_library(seed):
+    """The compiled counter against :func:`rainflow.extract_cycles` (the reference), cycle
+    for cycle: random walks with plateaus, repeated values, short and constant signals."""
+    from flexpipe.durability import fatigue
+    from flexpipe.tires import _fast
+
+    if not _fast.enabled():
+        pytest.skip("numba")
+    rng = np.random.default_rng(seed)
+    n = [2, 3, 5, 50, 400, 5000][seed]
+    x = np.round(np.cumsum(rng.standard_normal(n)), 1)  # rounding makes equal neighbours
+    if seed == 4:
+        x = np.repeat(x, 3)  # plateaus
+    for sig in (x, -x, np.zeros(7), np.array([1.0, 1.0, 2.0])):
+        ref = fatigue._rainflow_library(sig)
+        got = fatigue._rainflow_compiled(np.ascontiguousarray(sig, dtype=float))
+        np.testing.assert_array_equal(got, ref)
+    if n >= 400:  # long signals have many cycles to compare
+        assert len(fatigue._rainflow_library(x)) > 50

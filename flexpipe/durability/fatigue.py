@@ -22,6 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.tires._fast import _jit
+from flexpipe.tires._fast import enabled as _jit_enabled
 
 
 @dataclass(frozen=True)
@@ -75,15 +77,82 @@ def read_fatigue_table(t):
 def rainflow_cycles(signal) -> np.ndarray:
     """Rainflow cycles ``(range, mean, count)`` rows of a signal (count 0.5 or 1).
 
-    Uses :func:`rainflow.extract_cycles` (ASTM E1049-85).
+    ASTM E1049-85 counting as :func:`rainflow.extract_cycles` does it, compiled
+    (:func:`_rainflow_compiled`: 0.075 ms instead of 6.6 ms for 5,000 reversals, measured
+    2026-12-01); the library is the reference (``tests/test_fatigue.py`` holds the two to
+    equal cycles) and the path without Numba (``FLEXPIPE_NO_JIT=1``).
     """
-    import rainflow
-
     x = np.asarray(signal, dtype=float).ravel()
     if x.size < 2:
         return np.zeros((0, 3))
+    if _jit_enabled():
+        return _rainflow_compiled(np.ascontiguousarray(x))
+    return _rainflow_library(x)
+
+
+def _rainflow_library(x) -> np.ndarray:
+    import rainflow
+
     rows = [(r, m, c) for r, m, c, _, _ in rainflow.extract_cycles(x)]
     return np.array(rows, dtype=float).reshape(-1, 3)
+
+
+@_jit
+def _rainflow_compiled(x):
+    """:func:`rainflow.extract_cycles` (rainflow 3.x) transcribed: the library's reversals
+    (plateaus skipped, first point, then every sign change of the slope, then the last
+    sample when there are three or more), then the three-point algorithm on a stack whose
+    oldest point may be dropped (half cycles) and the residue as half cycles."""
+    n = x.size
+    rev = np.empty(n)
+    m = 0
+    rev[m] = x[0]
+    m += 1
+    xc = x[1]
+    d_last = xc - x[0]
+    for i in range(2, n):
+        xn = x[i]
+        if xn == xc:
+            continue
+        d_next = xn - xc
+        if d_last * d_next < 0:
+            rev[m] = xc
+            m += 1
+        xc = xn
+        d_last = d_next
+    if n >= 3:
+        rev[m] = x[n - 1]
+        m += 1
+    out = np.empty((m, 3))
+    k = 0
+    buf = np.empty(m)
+    h = 0  # oldest point still on the stack
+    t = 0  # one past the newest
+    for j in range(m):
+        buf[t] = rev[j]
+        t += 1
+        while t - h >= 3:
+            x1, x2, x3 = buf[t - 3], buf[t - 2], buf[t - 1]
+            if abs(x3 - x2) < abs(x2 - x1):
+                break
+            if t - h == 3:  # the range holds the starting point: half a cycle
+                out[k, 0], out[k, 1], out[k, 2] = abs(buf[h] - buf[h + 1]), \
+                    0.5 * (buf[h] + buf[h + 1]), 0.5
+                k += 1
+                h += 1
+            else:  # a full cycle: drop its peak and valley
+                out[k, 0], out[k, 1], out[k, 2] = abs(x1 - x2), 0.5 * (x1 + x2), 1.0
+                k += 1
+                last = buf[t - 1]
+                t -= 3
+                buf[t] = last
+                t += 1
+    while t - h > 1:
+        out[k, 0], out[k, 1], out[k, 2] = abs(buf[h] - buf[h + 1]), \
+            0.5 * (buf[h] + buf[h + 1]), 0.5
+        k += 1
+        h += 1
+    return out[:k].copy()
 
 
 def reversals(signal) -> np.ndarray:

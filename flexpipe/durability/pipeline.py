@@ -58,8 +58,9 @@ def write_hardpoints(path, body, motion):
     header, data = hardpoint_table(body, motion)
     buf = io.StringIO()
     buf.write(",".join(header) + "\n")
-    for row in data:
-        buf.write(",".join([f"{row[0]:.12g}"] + [f"{v:.9g}" for v in row[1:]]) + "\n")
+    line = ",".join(["%.12g"] + ["%.9g"] * (data.shape[1] - 1)) + "\n"
+    for row in data.tolist():  # one format operation per row
+        buf.write(line % tuple(row))
     write_text_atomic(path, buf.getvalue())
 
 
