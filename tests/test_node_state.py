@@ -59,3 +59,11 @@ def test_bulk_read_equals_node_outputs(driven_system, kernel):
                                rtol=0, atol=1e-15)
     # the state is away from its reference: the test would see a wrong formula
     assert np.abs(w).max() > 1e-3 and np.abs(c[:, 3:]).max() > 1e-4
+
+
+def test_reader_refuses_nodes_it_cannot_read(driven_system):
+    s = driven_system
+    with pytest.raises(ValueError, match="expected RigidBodyEP"):
+        _node_state.NodeReader(s.mbs, [s.spin_node[0]])
+    with pytest.raises(ValueError, match="expected 1D"):
+        _node_state.NodeReader(s.mbs, [], [s.wheel_node[0]])

@@ -35,23 +35,26 @@ def _kin(rng, r0):
             "n_road": np.c_[0.05 * rng.normal(size=(n, 2)), np.ones(n)]}
 
 
-def _pair(relaxation):
+def _pair(relaxation, *, one_tyre=False):
+    """Fast and reference tyre sets: front and rear tyres (two groups), or one tyre on all
+    four wheels (one group holding every wheel: the whole-car path without gathering)."""
     front = tire_from_file(TIR[0], relaxation=relaxation)
     rear = tire_from_file(TIR[-1], relaxation=relaxation)
     if rear is front or len(TIR) == 1:
         rear = tire_from_file(TIR[0], relaxation=relaxation)
-    tires = [front, front, rear, rear]
+    tires = [front] * 4 if one_tyre else [front, front, rear, rear]
     mirror = np.array([False, True, False, True])
     fast, ref = ImplicitTires(tires, mirror), ImplicitTires(tires, mirror)
     ref.compiled = set()
-    assert len(fast.compiled) == 2
+    assert len(fast.compiled) == (1 if one_tyre else 2) and fast._whole == one_tyre
     return fast, ref, front.unloaded_radius
 
 
+@pytest.mark.parametrize("one_tyre", [False, True])
 @pytest.mark.parametrize("relaxation", [True, False])
-def test_compiled_steps_equal_the_numpy_reference(relaxation):
+def test_compiled_steps_equal_the_numpy_reference(relaxation, one_tyre):
     rng = np.random.default_rng(7)
-    fast, ref, r0 = _pair(relaxation)
+    fast, ref, r0 = _pair(relaxation, one_tyre=one_tyre)
     h = 2e-3
     for _ in range(5):
         kin = _kin(rng, r0)

@@ -92,6 +92,11 @@ class NodeReader:
 
     def __init__(self, mbs, rigid_nodes, scalar_nodes=()):
         self.mbs = mbs
+        for n, kind in [(n, "RigidBodyEP") for n in rigid_nodes] + \
+                [(n, "1D") for n in scalar_nodes]:
+            got = mbs.GetNode(n)["nodeType"]
+            if got != kind:  # the formulas below are those of these node types only
+                raise ValueError(f"NodeReader: node {n} is a {got} node, expected {kind}")
         self.start = np.array([mbs.GetNodeODE2Index(n) for n in rigid_nodes], dtype=np.int64)
         self.ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
                              for n in rigid_nodes], dtype=float).reshape(-1, 7)

@@ -16,7 +16,7 @@ Bodies
     quasi-static response of all higher modes is kept exactly.  This is what "unreduced"
     can mean for an FFRF multibody body at acceptable cost: it differs from the full FE
     model only by the *dynamics* of modes far above the road and ride excitation (and
-    above what a 2 ms step resolves).  Meant for short validation runs.
+    above what the default 1 ms step resolves).  Meant for short validation runs.
 """
 
 from __future__ import annotations
