@@ -257,10 +257,9 @@ class CarSystem:
         """Assemble; carrier reference coordinates, solver tolerances, output points."""
         mbs = self.mbs
         mbs.Assemble()
-        self.wheel_ref = np.array([mbs.GetNodeParameter(n, "referenceCoordinates")
-                                   for n in self.wheel_node], dtype=float)
         self._reader = NodeReader(mbs, list(self.wheel_node) + [self.body_node],
                                   self.spin_node)
+        self.wheel_ref = self._reader.ref[:4]  # carriers' reference coordinates (4, 7)
         # Newton's relative tolerance: at 1e-3 the lateral hub forces of the rigid linkage
         # car converged at first order in h (ISO C 100 km/h, worst corner y against
         # 0.125 ms: 1.9 / 0.9 % at 1 / 0.5 ms), at 1e-4 at second order (0.9 / 0.2 %;
@@ -280,11 +279,6 @@ class CarSystem:
         (:class:`flexpipe.exu._node_state.NodeReader`)."""
         (p, v, R, w, c, ct), spin = self._reader.read()
         return (p[:4], v[:4], R[:4], w[:4], spin, c[:4], ct[:4]), (p[4], R[4], v[4], w[4])
-
-    def _wheel_state(self):
-        """Carriers' position, velocity, rotation, angular velocity, spin rate, node
-        coordinates and their rates (global), as arrays over the wheels."""
-        return self._nodes()[0]
 
     def state(self, t: float) -> CarState:
         """Read the current state (suspension travel from the marker frames, which is
