@@ -95,6 +95,7 @@ class ImplicitTires:
                        and list(self.groups[0][1]) == list(range(len(tires))))
         self.mirror = np.asarray(mirror, dtype=bool)
         self._mirror = {id(t): np.ascontiguousarray(self.mirror[ix]) for t, ix in self.groups}
+        self._take = {id(t): self._gather(ix) for t, ix in self.groups}
         n = len(tires)
         self.state = {id(t): SlipState.zeros(len(ix)) for t, ix in self.groups}
         #: groups evaluated by the compiled corrector and predictor (PAC2002 tyres)
@@ -148,7 +149,7 @@ class ImplicitTires:
 
         st = self.state[id(tire)]
         kappa, tan_a = st.kappa.astype(float), st.tan_alpha.astype(float)
-        take = self._gather(ix)
+        take = self._take[id(tire)]
         a = [take(kin[k]) for k in _TRACKED]
         p = a if prev is None else [take(prev[k]) for k in _TRACKED]
         force, Fxyz = np.empty((len(ix), 3)), np.empty((len(ix), 3))
@@ -246,18 +247,18 @@ class ImplicitTires:
 
         m = len(ix)
         st = self.state[id(tire)]
-        take = self._gather(ix)
+        take = self._take[id(tire)]
         g = {k: take(kin[k]) for k in ("C", "s", "v", "w", "omega", "n_road")}
-        part = (np.empty((m, 3)), np.empty((m, 6, 3)), np.empty((m, 6)), np.empty((m, 6)),
-                np.empty((m, 6, 3)), np.empty((m, 3)), np.empty((m, 3)))
+        # the whole car's rows are the group's: the kernel writes into them directly
+        part = full if self._whole else (
+            np.empty((m, 3)), np.empty((m, 6, 3)), np.empty((m, 6)), np.empty((m, 6)),
+            np.empty((m, 6, 3)), np.empty((m, 3)), np.empty((m, 3)))
         bad = predict_group(tire._packed(), g["C"], g["s"], g["v"], g["w"], g["omega"],
                             g["n_road"], take(road_ahead),
                             self._mirror[id(tire)],
                             st.kappa.astype(float), st.tan_alpha.astype(float),
                             bool(tire.relaxation), float(h), DV, DW, DZ, DTH, *part)
         _fast.check_rows(bad, g["s"])
-        for dst, src in zip(full, part, strict=True):
-            if self._whole:
-                dst[...] = src
-            else:
+        if not self._whole:
+            for dst, src in zip(full, part, strict=True):
                 dst[ix] = src
