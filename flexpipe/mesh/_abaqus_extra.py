@@ -3,7 +3,8 @@
 ``*BEAM GENERAL SECTION``, MASS/ROTARYI elements, ``*KINEMATIC COUPLING``,
 ``*COUPLING`` with ``*KINEMATIC`` (rigid links) or ``*DISTRIBUTING`` (RBE3-type
 interpolation, uniform weights or the node-based surface's weights), SPRING1/SPRING2
-with ``*SPRING`` (global DOF)."""
+with ``*SPRING`` (global DOF), and the plies of a ``*SHELL SECTION, COMPOSITE`` with
+their laminate section (:mod:`flexpipe.fem.laminate`)."""
 
 from __future__ import annotations
 
@@ -287,3 +288,50 @@ def _connectors(deck, cells_of, blocks, X, index):
     s = np.full(n, 0.5)
     return {"K": spring.bush(XA, XB, R, k6, s), "B": spring.bush(XA, XB, R, b6, s), "k6": k6,
             "b6": b6, "frame": R, "s": s}
+
+
+def _plies(rows, p, f, ln) -> list:
+    """Plies (thickness, material, angle) of a composite *SHELL SECTION."""
+    plies = []
+    for lf, lln, t in rows:
+        tok = [x.strip() for x in t.split(",")]
+        if len(tok) < 3 or not tok[2]:
+            raise MeshError("*SHELL SECTION, COMPOSITE ply line needs 'thickness, points, "
+                            "material[, angle]'", file=lf, line=lln)
+        th = parse_real(tok[0])
+        ang = parse_real(tok[3]) if len(tok) > 3 and tok[3] else 0.0
+        if ang is None:
+            raise MeshError(f"ply orientation '{tok[3]}' is not an angle; named *ORIENTATIONs "
+                            "are not supported", file=lf, line=lln)
+        if th is None or not (np.isfinite(th) and th > 0) or not np.isfinite(ang):
+            raise MeshError(f"ply thickness '{tok[0]}'; valid: > 0", file=lf, line=lln)
+        plies.append((th, tok[2], ang, lf, lln))
+    if not plies:
+        raise MeshError("*SHELL SECTION, COMPOSITE has no ply lines", file=f, line=ln)
+    if "SYMMETRIC" in p:
+        plies = plies + plies[::-1]
+    return plies
+
+
+def _composite(deck, plies, f, ln) -> dict:
+    """Section of a composite shell by classical lamination (see flexpipe.fem.laminate)."""
+    from flexpipe.fem.laminate import ply_q
+    from flexpipe.fem.laminate import section as lam_section
+
+    out = []
+    for th, name, ang, lf, lln in plies:
+        m = deck.materials.get(name.upper())
+        if m is None or not ("lamina" in m or "E" in m):
+            raise MeshError(f"ply material '{name}' is not defined (with *ELASTIC)", file=lf,
+                            line=lln)
+        if "lamina" in m:
+            E1, E2, nu12, G12, G13, _ = m["lamina"]
+            Q, Gz = ply_q(E1, E2, nu12, G12), G13
+        else:
+            G = m["E"] / (2 * (1 + m["nu"]))
+            Q, Gz = ply_q(m["E"], m["E"], m["nu"], G), G
+        out.append((Q, th, ang, Gz, m.get("rho", 0.0)))
+    try:
+        return lam_section(out)
+    except ValueError as exc:
+        raise MeshError(f"*SHELL SECTION, COMPOSITE: {exc}", file=f, line=ln) from None

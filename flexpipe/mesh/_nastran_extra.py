@@ -25,8 +25,11 @@ applies exactly); RBE2/RBAR and RBE3 components must be rotation-invariant there
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
+from flexpipe.errors import MeshError
 from flexpipe.fem import spring
 from flexpipe.mesh._bulk import Card
 from flexpipe.mesh.mesh import Interpolation, RigidLink
@@ -254,3 +257,45 @@ def bush_frame(c: Card, XA, XB, systems, orient) -> np.ndarray:
         raise c.error("orientation vector is parallel to GA-GB (or zero)")
     ez /= np.linalg.norm(ez)
     return np.array([ex, np.cross(ez, ex), ez])
+
+
+def solution(case: dict, deck, dof_sets: dict, path) -> dict:
+    """``Mesh.solution`` from the case control (``SPC``, ``METHOD``), the ``EIGRL`` cards
+    and ``PARAM, COUPMASS`` of ``deck`` (a :mod:`flexpipe.mesh.nastran` deck)."""
+    out: dict = {}
+    if "SPC" in case:
+        sid, line = case["SPC"]
+        if f"SPC{sid}" not in dof_sets:
+            raise MeshError(f"case control SPC = {sid}, but no SPC/SPC1/SPCADD card has SID "
+                            f"{sid}; defined: {sorted(dof_sets)}", file=str(path), line=line)
+        out["spc"] = f"SPC{sid}"
+    if "METHOD" in case:
+        sid, line = case["METHOD"]
+        if sid not in deck.eigrl:
+            raise MeshError(f"case control METHOD = {sid}, but no EIGRL card has SID {sid}; "
+                            f"defined: {sorted(deck.eigrl)}", file=str(path), line=line)
+        out.update(eigrl(deck.eigrl[sid]))
+    elif len(deck.eigrl) == 1:
+        out.update(eigrl(next(iter(deck.eigrl.values()))))
+    if "COUPMASS" in deck.params:
+        c = deck.params["COUPMASS"]
+        out["lumped_mass"] = c.int(1, "COUPMASS") <= 0
+    return out
+
+
+_TEXT_CACHE: dict = {}
+
+
+def set1_name(c) -> str | None:
+    """Name given to a SET1 card by a ``$ SET name`` comment on the line before it."""
+    lines = _TEXT_CACHE.get(c.file)
+    if lines is None:
+        try:
+            lines = Path(c.file).read_text(errors="replace").splitlines()
+        except OSError:
+            lines = []
+        _TEXT_CACHE.clear()
+        _TEXT_CACHE[c.file] = lines
+    prev = lines[c.line - 2].strip() if 2 <= c.line <= len(lines) + 1 else ""
+    parts = prev.split()
+    return parts[2] if prev.startswith("$ SET ") and len(parts) == 3 else None

@@ -8,7 +8,8 @@ flexibility - and ``I12``), ``PBEAM`` (end A; ``K1, K2`` default 1.0 as in Nastr
 ``PBARL``/``PBEAML`` (standard shapes of :mod:`flexpipe.fem.sections`, end A),
 ``PROD`` / ``CONROD`` (``A, J``: axial + torsion only), ``PELAS``, ``PBUSH`` (``K``,
 ``B``; ``GE`` ignored).  A section with ``I12 != 0`` is turned to its principal axes
-(``theta``).  ``PARAM, WTMASS`` multiplies every density, NSM and mass.
+(``theta``).  ``PARAM, WTMASS`` multiplies every density, NSM and mass.  Shell material
+orientation (``THETA`` angle or ``MCID`` system): :func:`shell_orientation`.
 """
 
 from __future__ import annotations
@@ -303,3 +304,24 @@ def composite(card: Card, mats: dict, wtmass: float = 1.0) -> dict:
         raise card.error(str(exc)) from None
     out["rho"] *= wtmass
     return out
+
+
+def shell_orientation(theta, conn, X, systems, user_of):
+    """Material orientation of shells: THETA (degrees from the element x axis) or MCID
+    (x axis of that coordinate system, projected onto the element)."""
+    n = len(theta)
+    ang = np.zeros(n)
+    ref = np.full((n, 3), np.nan)
+    for j in np.flatnonzero(np.array([bool(t) for t in theta])):
+        s = theta[j]
+        if s.lstrip("+-").isdigit():
+            c = user_of(int(j))
+            ref[j] = systems.frames(int(s), X[conn[j]].mean(axis=0)[None], c)[0][:, 0]
+        else:
+            from flexpipe.mesh._bulk import parse_real
+
+            v = parse_real(s)
+            if v is None or not np.isfinite(v):
+                raise user_of(int(j)).error(f"THETA = '{s}' is not a number (or MCID id)")
+            ang[j] = np.radians(v)
+    return ang, ref

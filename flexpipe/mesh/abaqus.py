@@ -15,7 +15,8 @@ from the surface), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connect
 damping: Nastran CBUSH), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
 positioning.  Reading stops at the first ``*STEP``; keywords that do not change M or K
 are listed in one warning and in ``Mesh.info["dropped"]``.  Helpers in
-:mod:`flexpipe.mesh._abaqus_extra`.
+:mod:`flexpipe.mesh._abaqus_extra` (sections, masses, couplings, springs, connectors) and
+:mod:`flexpipe.mesh._abaqus_deck` (lines, ``*INCLUDE``, parameters, sets).
 
 Element types: ``C3D4*`` -> tetra, ``C3D10*`` -> tetra10, ``C3D8*`` -> hexahedron,
 ``C3D6*`` -> wedge, ``C3D5*`` -> pyramid, ``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad,
@@ -38,16 +39,18 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import MeshError
+from flexpipe.mesh._abaqus_deck import _Deck, _Lines, _members, _params, _rows
 from flexpipe.mesh._abaqus_extra import (
     _beam_section,
+    _composite,
     _connectors,
     _couplings,
     _couplings2,
     _masses,
+    _plies,
     _springs,
 )
 from flexpipe.mesh._abaqus_extra import values as _values
-from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh.mesh import CellBlock, Mesh
 from flexpipe.mesh.nastran import drop_orientation_nodes
 from flexpipe.mesh.validate import MeshWarning
@@ -82,129 +85,6 @@ HANDLED_KEYWORDS = ("NODE", "ELEMENT", "NSET", "ELSET", "SOLID SECTION", "SHELL 
 IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY",
                     "END INSTANCE", "BOUNDARY", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
                     "NODE OUTPUT", "ELEMENT OUTPUT", "RESTART", "SURFACE INTERACTION")
-
-
-class _Lines:
-    """Iterator over (file, line number, text) with ``*INCLUDE`` inlined."""
-
-    def __init__(self, path: Path):
-        self.items: list[tuple[str, int, str]] = []
-        self._load(Path(path), ())
-        self.pos = 0
-
-    def _load(self, path: Path, stack):
-        if path.resolve() in stack:
-            raise MeshError("*INCLUDE loop: the file includes itself", file=str(path))
-        try:
-            text = path.read_text(encoding="latin-1")
-        except OSError as exc:
-            raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
-        if "\x00" in text[:4096]:
-            raise MeshError("not an Abaqus input text file (binary content: a NUL byte)",
-                            file=str(path), line=text[:text.index("\x00")].count("\n") + 1)
-        for i, ln in enumerate(text.splitlines()):
-            s = ln.strip()
-            if not s or s.startswith("**"):
-                continue
-            if s.upper().startswith("*INCLUDE"):
-                params = _params(s)
-                name = params.get("INPUT")
-                if not name:
-                    raise MeshError("*INCLUDE needs INPUT=file", file=str(path), line=i + 1)
-                target = Path(name) if Path(name).is_absolute() else path.parent / name
-                if not target.is_file():
-                    raise MeshError(f"*INCLUDE file '{name}' not found", file=str(path),
-                                    line=i + 1)
-                self._load(target, stack + (path.resolve(),))
-                continue
-            self.items.append((str(path), i + 1, s))
-
-    def data(self):
-        """Consume and yield the data lines up to the next keyword line."""
-        while self.pos < len(self.items) and not self.items[self.pos][2].startswith("*"):
-            yield self.items[self.pos]
-            self.pos += 1
-
-
-def _params(line: str) -> dict[str, str]:
-    out = {}
-    for part in line.split(",")[1:]:
-        if not part.strip():
-            continue
-        k, _, v = part.partition("=")
-        out[k.strip().upper()] = v.strip().strip('"')
-    return out
-
-
-class _Deck:
-    def __init__(self, path: Path):
-        self.path = path
-        self.node_ids, self.coords, self.node_where = [], [], []
-        self.eids = defaultdict(list)
-        self.conn = defaultdict(list)
-        self.ewhere = defaultdict(list)
-        self.nsets: dict[str, list] = {}
-        self.elsets: dict[str, list] = {}
-        self.sections = []      # (elset, props, material, n1, file, line)
-        self.materials: dict[str, dict] = {}
-        self.masses = []        # (elset, mass, file, line)
-        self.inertias = []      # (elset, 3x3, file, line)
-        self.couplings = []     # (ref node id, [(node or set, first, last)], file, line)
-        self.instances = 0
-        self.n1_node: dict[int, int] = {}   # beam element id -> orientation node id
-        self.surfaces: dict[str, list] = {}
-        self.pending = None     # (ref node, surface, file, line) of an open *COUPLING
-        self.couplings2 = []    # (KINEMATIC|DISTRIBUTING, ref, surface, file, line, dofs)
-        self.springs = []       # (elset, rows, file, line)
-        self.connectors = []    # (elset, connection types, behavior, file, line)
-        self.behaviors: dict[str, dict] = {}
-        self.behavior = None
-        self.dropped: dict[str, int] = {}
-
-    def set_key(self, table: dict, name: str):
-        """Key of set ``name`` in ``table`` (case-insensitive; ``Instance.name`` allowed)."""
-        for cand in (name, name.split(".")[-1]):
-            for k in table:
-                if k.upper() == cand.upper():
-                    return k
-        return None
-
-
-def _members(deck, table, params, lines, what):
-    out = []
-    gen = "GENERATE" in params
-    for f, ln, text in lines.data():
-        toks = [t.strip() for t in text.split(",") if t.strip()]
-        if gen:
-            try:
-                a, b, *step = (int(t) for t in toks)
-            except ValueError:
-                raise MeshError(f"{what} GENERATE: expected 'first, last[, step]' integers, "
-                                f"got '{text}'", file=f, line=ln) from None
-            st = step[0] if step else 1
-            if st < 1 or b < a or (b - a) // st > 10_000_000:
-                raise MeshError(f"{what} GENERATE {a}, {b}, {st}: need step >= 1, last >= first "
-                                "and at most 10 million members", file=f, line=ln)
-            out.extend(range(a, b + 1, st))
-            continue
-        for tok in toks:
-            if tok.lstrip("-").isdigit():
-                out.append(int(tok))
-                continue
-            key = deck.set_key(table, tok)
-            if key is None:
-                raise MeshError(f"{what} refers to set '{tok}', which is not defined "
-                                "(before this line)", file=f, line=ln)
-            out.extend(table[key])
-    return out
-
-
-def _rows(lines, f, ln, what, n=1):
-    """The data lines of a keyword block; an error naming the keyword when too few."""
-    rows = list(lines.data())
-    if len(rows) < n:
-        raise MeshError(f"{what} needs a data line", file=f, line=ln)
-    return rows
 
 
 def _parse(path: Path) -> _Deck:
@@ -447,53 +327,6 @@ def _parse(path: Path) -> _Deck:
         raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
                         file=deck.pending[2], line=deck.pending[3])
     return deck
-
-
-def _plies(rows, p, f, ln) -> list:
-    """Plies (thickness, material, angle) of a composite *SHELL SECTION."""
-    plies = []
-    for lf, lln, t in rows:
-        tok = [x.strip() for x in t.split(",")]
-        if len(tok) < 3 or not tok[2]:
-            raise MeshError("*SHELL SECTION, COMPOSITE ply line needs 'thickness, points, "
-                            "material[, angle]'", file=lf, line=lln)
-        th = parse_real(tok[0])
-        ang = parse_real(tok[3]) if len(tok) > 3 and tok[3] else 0.0
-        if ang is None:
-            raise MeshError(f"ply orientation '{tok[3]}' is not an angle; named *ORIENTATIONs "
-                            "are not supported", file=lf, line=lln)
-        if th is None or not (np.isfinite(th) and th > 0) or not np.isfinite(ang):
-            raise MeshError(f"ply thickness '{tok[0]}'; valid: > 0", file=lf, line=lln)
-        plies.append((th, tok[2], ang, lf, lln))
-    if not plies:
-        raise MeshError("*SHELL SECTION, COMPOSITE has no ply lines", file=f, line=ln)
-    if "SYMMETRIC" in p:
-        plies = plies + plies[::-1]
-    return plies
-
-
-def _composite(deck, plies, f, ln) -> dict:
-    """Section of a composite shell by classical lamination (see flexpipe.fem.laminate)."""
-    from flexpipe.fem.laminate import ply_q
-    from flexpipe.fem.laminate import section as lam_section
-
-    out = []
-    for th, name, ang, lf, lln in plies:
-        m = deck.materials.get(name.upper())
-        if m is None or not ("lamina" in m or "E" in m):
-            raise MeshError(f"ply material '{name}' is not defined (with *ELASTIC)", file=lf,
-                            line=lln)
-        if "lamina" in m:
-            E1, E2, nu12, G12, G13, _ = m["lamina"]
-            Q, Gz = ply_q(E1, E2, nu12, G12), G13
-        else:
-            G = m["E"] / (2 * (1 + m["nu"]))
-            Q, Gz = ply_q(m["E"], m["E"], m["nu"], G), G
-        out.append((Q, th, ang, Gz, m.get("rho", 0.0)))
-    try:
-        return lam_section(out)
-    except ValueError as exc:
-        raise MeshError(f"*SHELL SECTION, COMPOSITE: {exc}", file=f, line=ln) from None
 
 
 def _dup(ids, where, what):

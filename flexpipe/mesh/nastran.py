@@ -328,8 +328,8 @@ def read_nastran(path) -> Mesh:
             if zoff is not None and np.any(zoff):
                 data["zoffset"] = zoff
             if theta is not None and any(theta):
-                data["mat_theta"], data["mat_ref"] = _orientation(theta, conn, X, systems,
-                                                                  user_of)
+                data["mat_theta"], data["mat_ref"] = nprops.shell_orientation(
+                    theta, conn, X, systems, user_of)
         bi = len(blocks)
         blocks.append(CellBlock(cell_type, conn, eid, np.abs(pid), data))
         for p in np.unique(pid):
@@ -426,7 +426,7 @@ def read_nastran(path) -> Mesh:
         grids[k], 6, "PS", allow_zero=True)]
     if ps:
         dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
-    solution = _solution(case, deck, dof_sets, path)
+    solution = extra.solution(case, deck, dof_sets, path)
     if solution.get("spc") in spc_dirs:
         solution["spc_directions"] = spc_dirs[solution["spc"]]
 
@@ -436,7 +436,7 @@ def read_nastran(path) -> Mesh:
         ids, _ = extra.grid_list(c, 1)
         if ids and all(g in gid_set for g in ids):
             node_sets[f"SET{sid}"] = index(ids, c)
-            name = _set_name(c)
+            name = extra.set1_name(c)
             if name:  # the comment line "$ SET name" right before the card names the set
                 node_sets[name] = node_sets[f"SET{sid}"]
         else:
@@ -461,67 +461,6 @@ def read_nastran(path) -> Mesh:
         warnings.warn(MeshWarning(f"{path}: cards not used for M and K (loads, output, "
                                   f"other solutions or unknown): {listing}"), stacklevel=3)
     return mesh
-
-
-def _orientation(theta, conn, X, systems, user_of):
-    """Material orientation of shells: THETA (degrees from the element x axis) or MCID
-    (x axis of that coordinate system, projected onto the element)."""
-    n = len(theta)
-    ang = np.zeros(n)
-    ref = np.full((n, 3), np.nan)
-    for j in np.flatnonzero(np.array([bool(t) for t in theta])):
-        s = theta[j]
-        if s.lstrip("+-").isdigit():
-            c = user_of(int(j))
-            ref[j] = systems.frames(int(s), X[conn[j]].mean(axis=0)[None], c)[0][:, 0]
-        else:
-            from flexpipe.mesh._bulk import parse_real
-
-            v = parse_real(s)
-            if v is None or not np.isfinite(v):
-                raise user_of(int(j)).error(f"THETA = '{s}' is not a number (or MCID id)")
-            ang[j] = np.radians(v)
-    return ang, ref
-
-
-def _solution(case: dict, deck: _Deck, dof_sets: dict, path: Path) -> dict:
-    out: dict = {}
-    if "SPC" in case:
-        sid, line = case["SPC"]
-        if f"SPC{sid}" not in dof_sets:
-            raise MeshError(f"case control SPC = {sid}, but no SPC/SPC1/SPCADD card has SID "
-                            f"{sid}; defined: {sorted(dof_sets)}", file=str(path), line=line)
-        out["spc"] = f"SPC{sid}"
-    if "METHOD" in case:
-        sid, line = case["METHOD"]
-        if sid not in deck.eigrl:
-            raise MeshError(f"case control METHOD = {sid}, but no EIGRL card has SID {sid}; "
-                            f"defined: {sorted(deck.eigrl)}", file=str(path), line=line)
-        out.update(extra.eigrl(deck.eigrl[sid]))
-    elif len(deck.eigrl) == 1:
-        out.update(extra.eigrl(next(iter(deck.eigrl.values()))))
-    if "COUPMASS" in deck.params:
-        c = deck.params["COUPMASS"]
-        out["lumped_mass"] = c.int(1, "COUPMASS") <= 0
-    return out
-
-
-_TEXT_CACHE: dict = {}
-
-
-def _set_name(c) -> str | None:
-    """Name given to a SET1 card by a ``$ SET name`` comment on the line before it."""
-    lines = _TEXT_CACHE.get(c.file)
-    if lines is None:
-        try:
-            lines = Path(c.file).read_text(errors="replace").splitlines()
-        except OSError:
-            lines = []
-        _TEXT_CACHE.clear()
-        _TEXT_CACHE[c.file] = lines
-    prev = lines[c.line - 2].strip() if 2 <= c.line <= len(lines) + 1 else ""
-    parts = prev.split()
-    return parts[2] if prev.startswith("$ SET ") and len(parts) == 3 else None
 
 
 def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:
