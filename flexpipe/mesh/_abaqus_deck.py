@@ -8,6 +8,7 @@ from collections import defaultdict
 from pathlib import Path
 
 from flexpipe.errors import MeshError
+from flexpipe.mesh._bulk import read_deck_text
 
 
 class _Lines:
@@ -19,15 +20,7 @@ class _Lines:
         self.pos = 0
 
     def _load(self, path: Path, stack):
-        if path.resolve() in stack:
-            raise MeshError("*INCLUDE loop: the file includes itself", file=str(path))
-        try:
-            text = path.read_text(encoding="latin-1")
-        except OSError as exc:
-            raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
-        if "\x00" in text[:4096]:
-            raise MeshError("not an Abaqus input text file (binary content: a NUL byte)",
-                            file=str(path), line=text[:text.index("\x00")].count("\n") + 1)
+        text = read_deck_text(path, stack, include="*INCLUDE", kind="an Abaqus input")
         for i, ln in enumerate(text.splitlines()):
             s = ln.strip()
             if not s or s.startswith("**"):

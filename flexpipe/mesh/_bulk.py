@@ -146,6 +146,21 @@ class FastLines:
         return c
 
 
+def read_deck_text(path: Path, stack, *, include: str, kind: str) -> str:
+    """Text of the deck file ``path`` (Latin-1), included from the files in ``stack``;
+    a clear error for an include loop, an unreadable file or binary content."""
+    if path.resolve() in stack:
+        raise MeshError(f"{include} loop: the file includes itself", file=str(path))
+    try:
+        text = path.read_text(encoding="latin-1")
+    except OSError as exc:
+        raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
+    if "\x00" in text[:4096]:
+        raise MeshError(f"not {kind} text file (binary content: a NUL byte)",
+                        file=str(path), line=text[:text.index("\x00")].count("\n") + 1)
+    return text
+
+
 def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
                _seq: list | None = None) -> list[Card]:
     """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order.
@@ -157,15 +172,7 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
     """
     path = Path(path)
     seq = _seq if _seq is not None else [0]
-    if path.resolve() in _stack:
-        raise MeshError("INCLUDE loop: the file includes itself", file=str(path))
-    try:
-        text = path.read_text(encoding="latin-1")
-    except OSError as exc:
-        raise MeshError(f"cannot read file: {exc.strerror or exc}", file=str(path)) from None
-    if "\x00" in text[:4096]:
-        raise MeshError("not a Nastran bulk-data text file (binary content: a NUL byte)",
-                        file=str(path), line=text[:text.index("\x00")].count("\n") + 1)
+    text = read_deck_text(path, _stack, include="INCLUDE", kind="a Nastran bulk-data")
     lines = text.splitlines()
     start = 0
     for i, ln in enumerate(lines):
