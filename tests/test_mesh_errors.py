@@ -212,3 +212,21 @@ def test_abaqus_duplicate_node_and_element_ids_name_both_lines(tmp_path):
     p = _write(tmp_path, "dupe.inp", nodes + "*ELEMENT, TYPE=C3D4\n7,1,2,3,4\n7,1,2,4,3\n")
     with pytest.raises(MeshError, match=r"dupe.inp, line 8: element 7 is defined twice"):
         read_mesh(p)
+
+
+@pytest.mark.parametrize("name, text, include", [
+    ("loop.bdf", "BEGIN BULK\nINCLUDE 'loop.bdf'\nENDDATA\n", "INCLUDE"),
+    ("loop.inp", "*HEADING\n*INCLUDE, INPUT=loop.inp\n", r"\*INCLUDE"),
+])
+def test_include_loops_name_the_file(tmp_path, name, text, include):
+    with pytest.raises(MeshError, match=rf"{name.replace('.', '[.]')}: {include} loop"):
+        read_mesh(_write(tmp_path, name, text))
+
+
+@pytest.mark.parametrize("name, kind", [("bin.bdf", "Nastran bulk-data"),
+                                         ("bin.inp", "Abaqus input")])
+def test_binary_decks_name_the_file_and_line(tmp_path, name, kind):
+    p = tmp_path / name
+    p.write_bytes(b"$ header\n\x00\x01binary")
+    with pytest.raises(MeshError, match=rf"{name.replace('.', '[.]')}, line 2: not an? {kind}"):
+        read_mesh(p)
