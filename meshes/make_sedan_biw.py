@@ -392,61 +392,18 @@ def nonstructural_masses(B):
     return sorted(out.items())
 
 
-def _read8(s: str) -> float:
-    """Value of a Nastran real field, including the implied-exponent form ``1.5+3``."""
-    body = s.lstrip("+-")
-    k = max(body.rfind("+"), body.rfind("-"))
-    if "E" not in body and k > 0:
-        s = s[: len(s) - len(body) + k] + "E" + body[k:]
-    return float(s)
-
-
-def _f8(v: float) -> str:
-    """``v`` in at most 8 characters (Nastran small field), the most precise spelling."""
-    v = float(v)
-    if v == 0:
-        return "0."
-    best, err = None, np.inf
-    cands = [f"{v:.{p}f}" for p in range(0, 8)]
-    cands += [f"{v:.{p}E}".replace("E+0", "E+").replace("E-0", "E-") for p in range(0, 6)]
-    # Nastran's implied exponent, e.g. 2.625+10
-    cands += [f"{v:.{p}E}".replace("E+0", "+").replace("E-0", "-").replace("E", "")
-              for p in range(0, 6)]
-    for s in cands:
-        if "." not in s:
-            continue
-        if s.startswith("0.") and len(s) > 8:
-            s = s[1:]
-        if s.startswith("-0.") and len(s) > 8:
-            s = "-" + s[2:]
-        if len(s) > 8:
-            continue
-        e = abs(_read8(s) - v) / abs(v)
-        if e < err:
-            best, err = s, e
-    if best is None or err > 1e-3:
-        raise ValueError(f"cannot write {v!r} in 8 characters")
-    return best
-
-
-def _card(*fields) -> str:
-    head, rest = fields[0], fields[1:]
-    out = f"{head:<8s}"
-    lines = []
-    for i, f in enumerate(rest):
-        if i and i % 8 == 0:
-            lines.append(out)
-            out = f"{'+':<8s}"
-        s = f if isinstance(f, str) else (_f8(f) if isinstance(f, float) else str(f))
-        if len(s) > 8:
-            raise ValueError(f"field {s!r} of {head} longer than 8 characters")
-        out += f"{s:>8s}"
-    lines.append(out)
-    return "\n".join(lines)
+def _importable() -> None:
+    """Make the checkout's ``flexpipe`` importable when the script runs outside the venv."""
+    root = str(Path(__file__).resolve().parents[1])
+    if root not in sys.path:
+        sys.path.insert(0, root)
 
 
 def write_bdf(B, path: Path) -> dict:
-    """Write the Nastran bulk-data file; returns a summary dict."""
+    """Write the Nastran bulk-data file (small-field cards); returns a summary dict."""
+    _importable()
+    from flexpipe.mesh.nastran_write import small_card as _card
+
     X = np.array(B.points)
     ns = nonstructural_masses(B)
     lines = [
@@ -521,7 +478,7 @@ def main(argv=None):
           f"{info['structural_mass_kg'] + info['nonstructural_mass_kg']:.1f} kg "
           f"(structure {info['structural_mass_kg']:.1f} kg)")
     if args.check:
-        sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+        _importable()
         from flexpipe.vehicle.bodymodel import describe_modes
 
         print(describe_modes(Path(args.out), car=args.car))

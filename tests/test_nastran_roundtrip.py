@@ -3,9 +3,11 @@ again, gives identical M, K, C and constraint map; the deck's SOL 103 set-up sur
 
 from __future__ import annotations
 
+import re
 import warnings
 
 import numpy as np
+import pytest
 from _meshdata import write as _write
 
 from flexpipe.fem import assemble
@@ -122,3 +124,33 @@ ENDDATA
     fa, fb = _fe(a), _fe(b)
     for X, Y in ((fa.K, fb.K), (fa.M, fb.M), (fa.T, fb.T)):
         assert abs(X - Y).max() <= 1e-12 * abs(X).max()
+
+
+def test_small_field_cards_read_back_to_eight_character_precision(tmp_path):
+    """Small-field cards (the sample BIW generator's writer) read back through the Nastran
+    reader: every real within the precision eight characters allow."""
+    from flexpipe.mesh.nastran_write import real8, small_card
+
+    rng = np.random.default_rng(3)
+    xyz = rng.uniform(-2.0, 2.0, (4, 3)) * np.array([1.0, 1e-2, 1e2])
+    cards = [small_card("MAT1", 1, 2.1e11, "", 0.3, 7850.0),
+             small_card("PSHELL", 1, 1, 0.00123456, 1, "", 1)]
+    cards += [small_card("GRID", i + 1, "", *map(float, p)) for i, p in enumerate(xyz)]
+    cards += [small_card("CQUAD4", 1, 1, 1, 2, 3, 4),
+              small_card("SET1", 7, 1, 1, 1, 1, 1, 1, 2, 4)]  # a continuation line
+    p = tmp_path / "small.bdf"
+    p.write_text("BEGIN BULK\n" + "\n".join(cards) + "\nENDDATA\n")
+    mesh = read_mesh(p)
+    # 8 characters: at least 5 significant digits for |x| in [1e-3, 1e3), 4 with a sign
+    np.testing.assert_allclose(mesh.points, xyz, rtol=5e-4, atol=0)
+    sec = next(iter(mesh.sections.values()))
+    assert sec["E"] == 2.1e11 and sec["rho"] == 7850.0
+    assert abs(sec["thickness"] - 0.00123456) <= 5e-5 * 0.00123456
+    assert np.unique(mesh.node_sets["SET7"]).tolist() == [0, 1, 3]  # node 4 on the "+" line
+    for x in np.concatenate([rng.uniform(1e-3, 1e3, 200), 10.0 ** rng.uniform(-9, 12, 200)]):
+        s = real8(x)
+        value = float(re.sub(r"(?<=\d)([+-])(?=\d+$)", r"E\1", s) if "E" not in s else s)
+        assert len(s) <= 8 and "." in s
+        assert abs(value - x) <= (5e-5 if 1e-3 <= x < 1e3 else 5e-4) * x, (x, s)
+    with pytest.raises(ValueError, match="8 characters"):
+        real8(-1.2345678e-300)

@@ -53,6 +53,56 @@ def real16(x: float) -> str:
     return min(cands, key=lambda t: abs(_value(t) - x))
 
 
+def real8(x: float) -> str:
+    """Most precise Nastran real that fits 8 characters (small field).
+
+    Tries fixed point, ``E`` exponents and Nastran's implied exponent (``2.625+10``) and
+    keeps the spelling nearest ``x``; raises ``ValueError`` when none is within 1e-3
+    relative.
+    """
+    x = float(x)
+    if x == 0:
+        return "0."
+    best, err = None, np.inf
+    cands = [f"{x:.{p}f}" for p in range(0, 8)]
+    cands += [f"{x:.{p}E}".replace("E+0", "E+").replace("E-0", "E-") for p in range(0, 6)]
+    cands += [f"{x:.{p}E}".replace("E+0", "+").replace("E-0", "-").replace("E", "")
+              for p in range(0, 6)]
+    for s in cands:
+        if "." not in s:
+            continue
+        if s.startswith("0.") and len(s) > 8:
+            s = s[1:]
+        if s.startswith("-0.") and len(s) > 8:
+            s = "-" + s[2:]
+        if len(s) > 8:
+            continue
+        e = abs(_value(s) - x) / abs(x)
+        if e < err:
+            best, err = s, e
+    if best is None or err > 1e-3:
+        raise ValueError(f"cannot write {x!r} in 8 characters")
+    return best
+
+
+def small_card(name: str, *fields) -> str:
+    """One small-field card (no trailing newline): floats through :func:`real8`, strings
+    as given (``""`` for a blank field), anything else through ``str``; eight fields per
+    line, continuation lines start with ``+``."""
+    out = f"{name:<8s}"
+    lines = []
+    for i, f in enumerate(fields):
+        if i and i % 8 == 0:
+            lines.append(out)
+            out = f"{'+':<8s}"
+        s = f if isinstance(f, str) else (real8(f) if isinstance(f, float) else str(f))
+        if len(s) > 8:
+            raise ValueError(f"field {s!r} of {name} longer than 8 characters")
+        out += f"{s:>8s}"
+    lines.append(out)
+    return "\n".join(lines)
+
+
 def _value(t: str) -> float:
     return parse_real(t)
 
