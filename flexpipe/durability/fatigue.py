@@ -174,7 +174,7 @@ def reversals(signal) -> np.ndarray:
 
 def miner_damage(signal, material: FatigueMaterial) -> float:
     """Miner damage ``sum n_i / N_i`` of a stress signal (Pa) over rainflow cycles."""
-    cyc = rainflow_cycles(reversals(signal))
+    cyc = rainflow_cycles(signal)  # the counter finds the turning points itself
     if not len(cyc):
         return 0.0
     return float(np.sum(cyc[:, 2] / material.cycles_to_failure(0.5 * cyc[:, 0])))
