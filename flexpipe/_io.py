@@ -53,6 +53,32 @@ def write_text_atomic(path, text: str) -> None:
         tmp.write_text(text)
 
 
+def write_matrix_csv(path, header, data, *, first: str = "%.12g", rest: str = "%.7g",
+                     empty_nonfinite: bool = True) -> None:
+    """A float matrix as CSV, atomically: the header row (as :mod:`csv` quotes it), then
+    one row per line, the first column formatted with ``first`` (e.g. time), the others
+    with ``rest``; non-finite values after the first column are left empty unless
+    ``empty_nonfinite`` is False.  One format operation per row."""
+    import csv
+    import io
+
+    import numpy as np
+
+    data = np.asarray(data, dtype=float)
+    buf = io.StringIO()
+    csv.writer(buf, lineterminator="\n").writerow(header)
+    line = ",".join([first] + [rest] * (data.shape[1] - 1)) + "\n"
+    finite = np.isfinite(data[:, 1:]).all(axis=1) if empty_nonfinite else \
+        np.ones(len(data), dtype=bool)
+    for ok, r in zip(finite.tolist(), data.tolist(), strict=True):
+        if ok:
+            buf.write(line % tuple(r))
+        else:
+            buf.write(",".join([first % r[0]] + [rest % v if np.isfinite(v) else ""
+                                                 for v in r[1:]]) + "\n")
+    write_text_atomic(path, buf.getvalue())
+
+
 def read_numeric_rows(path, *, kind: str, columns: str):
     """Read a small numeric table (comma or whitespace separated) with line numbers.
 

@@ -230,7 +230,8 @@ def test_solid_body_nodal_recovery_and_report(tmp_path):
 def test_matrix_csv_writes_what_the_generic_writer_writes(tmp_path):
     """The per-row formatter of the stress histories against the per-value one it replaced
     (first column ``%.12g``, the others ``%.7g``, non-finite values empty)."""
-    from flexpipe.durability.report import _write_csv, _write_matrix_csv
+    from flexpipe._io import write_matrix_csv
+    from flexpipe.durability.report import _write_csv
 
     rng = np.random.default_rng(2)
     data = rng.standard_normal((50, 6)) * 10.0 ** rng.integers(-8, 9, (50, 6))
@@ -238,6 +239,6 @@ def test_matrix_csv_writes_what_the_generic_writer_writes(tmp_path):
     data[3, 2], data[7, 5], data[9, 1] = np.nan, np.inf, -np.inf
     header = ["t [s]"] + [f"c{i} [Pa]" for i in range(5)]
     _write_csv(tmp_path / "a.csv", header, [[f"{r[0]:.12g}"] + list(r[1:]) for r in data])
-    _write_matrix_csv(tmp_path / "b.csv", header, data)
+    write_matrix_csv(tmp_path / "b.csv", header, data)
     a, b = (tmp_path / "a.csv").read_text(), (tmp_path / "b.csv").read_text()
     assert a == b and ",," in a  # the non-finite values are empty in both

@@ -3,12 +3,11 @@ and the work behind ``flexpipe stress`` and ``flexpipe animate``."""
 
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import write_text_atomic
+from flexpipe._io import write_matrix_csv
 from flexpipe.durability.rundir import MOTION_FILE, RunData, load_run, road_strip
 
 #: time between animation frames written by a scenario run, s
@@ -56,12 +55,7 @@ def hardpoint_table(body, motion):
 def write_hardpoints(path, body, motion):
     """``hardpoints.csv`` (see :data:`DESCRIPTIONS`)."""
     header, data = hardpoint_table(body, motion)
-    buf = io.StringIO()
-    buf.write(",".join(header) + "\n")
-    line = ",".join(["%.12g"] + ["%.9g"] * (data.shape[1] - 1)) + "\n"
-    for row in data.tolist():  # one format operation per row
-        buf.write(line % tuple(row))
-    write_text_atomic(path, buf.getvalue())
+    write_matrix_csv(path, header, data, rest="%.9g")
 
 
 def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=None,

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import atomic_path, write_text_atomic
+from flexpipe._io import atomic_path, write_matrix_csv, write_text_atomic
 
 #: channels considered as loads for the correlation column
 LOAD_PREFIXES = ("hub_", "tire_")
@@ -93,23 +93,6 @@ def _write_csv(path, header, rows):
     w.writerow(header)
     for r in rows:
         w.writerow([_fmt(v) for v in r])
-    write_text_atomic(path, buf.getvalue())
-
-
-def _write_matrix_csv(path, header, data, *, first: str = "%.12g", rest: str = "%.7g"):
-    """A float matrix as :func:`_write_csv` writes it (first column ``first``, the others
-    ``rest``, non-finite values after the first column empty), one format operation per
-    row instead of one function call per value."""
-    data = np.asarray(data, dtype=float)
-    buf = io.StringIO()
-    csv.writer(buf, lineterminator="\n").writerow(header)
-    line = ",".join([first] + [rest] * (data.shape[1] - 1)) + "\n"
-    finite = np.isfinite(data).all(axis=1)
-    for ok, r in zip(finite.tolist(), data.tolist(), strict=True):
-        if ok:
-            buf.write(line % tuple(r))
-        else:
-            buf.write(",".join([first % r[0]] + [_fmt(v) for v in r[1:]]) + "\n")
     write_text_atomic(path, buf.getvalue())
 
 
@@ -197,7 +180,7 @@ def write_stress_report(out, sr, body, channels, *, top: int = 20, title: str = 
     for eid, (vm, sp) in hist.items():
         h_header += [f"von_mises_{eid} [Pa]", f"principal_{eid} [Pa]"]
         cols += [vm, sp]
-    _write_matrix_csv(out / "stress_histories.csv", h_header, np.column_stack(cols))
+    write_matrix_csv(out / "stress_histories.csv", h_header, np.column_stack(cols))
     write_vtu(out / "stress_max.vtu", body, sr)
     write_png(out / "stress_max.png", body, sr, title=title)
     files = {

@@ -3,14 +3,12 @@ CSV/HDF5/MAT export) and :func:`compare` (rigid-vs-flexible differences)."""
 
 from __future__ import annotations
 
-import csv
-import io
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import atomic_path
+from flexpipe._io import atomic_path, write_matrix_csv
 from flexpipe.errors import InputError
 
 
@@ -145,15 +143,10 @@ class Result:
         from flexpipe.vehicle.export import channel_unit
 
         names = self._names(channels)
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(["t [s]"] + [f"{n} [{channel_unit(n)}]" for n in names])
-        data = np.column_stack([self.t] + [self.channels[n] for n in names])
-        for row in data:
-            w.writerow([f"{row[0]:.12g}"] + [f"{v:.7g}" for v in row[1:]])
+        write_matrix_csv(path, ["t [s]"] + [f"{n} [{channel_unit(n)}]" for n in names],
+                         np.column_stack([self.t] + [self.channels[n] for n in names]),
+                         empty_nonfinite=False)
         path = Path(path)
-        with atomic_path(path) as tmp:
-            tmp.write_text(buf.getvalue())
         return path
 
     def _names(self, channels):
