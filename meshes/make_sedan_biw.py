@@ -402,7 +402,10 @@ def _importable() -> None:
 def write_bdf(B, path: Path) -> dict:
     """Write the Nastran bulk-data file (small-field cards); returns a summary dict."""
     _importable()
-    from flexpipe.mesh.nastran_write import small_card as _card
+    from flexpipe.mesh.nastran_write import card
+
+    def _card(name, *fields):
+        return card(name, fields, small=True).rstrip("\n")
 
     X = np.array(B.points)
     ns = nonstructural_masses(B)

@@ -129,7 +129,10 @@ ENDDATA
 def test_small_field_cards_read_back_to_eight_character_precision(tmp_path):
     """Small-field cards (the sample BIW generator's writer) read back through the Nastran
     reader: every real within the precision eight characters allow."""
-    from flexpipe.mesh.nastran_write import real8, small_card
+    from flexpipe.mesh.nastran_write import card, real8
+
+    def small_card(name, *fields):
+        return card(name, fields, small=True)
 
     rng = np.random.default_rng(3)
     xyz = rng.uniform(-2.0, 2.0, (4, 3)) * np.array([1.0, 1e-2, 1e2])
@@ -139,7 +142,7 @@ def test_small_field_cards_read_back_to_eight_character_precision(tmp_path):
     cards += [small_card("CQUAD4", 1, 1, 1, 2, 3, 4),
               small_card("SET1", 7, 1, 1, 1, 1, 1, 1, 2, 4)]  # a continuation line
     p = tmp_path / "small.bdf"
-    p.write_text("BEGIN BULK\n" + "\n".join(cards) + "\nENDDATA\n")
+    p.write_text("BEGIN BULK\n" + "".join(cards) + "ENDDATA\n")
     mesh = read_mesh(p)
     # 8 characters: at least 5 significant digits for |x| in [1e-3, 1e3), 4 with a sign
     np.testing.assert_allclose(mesh.points, xyz, rtol=5e-4, atol=0)

@@ -85,24 +85,6 @@ def real8(x: float) -> str:
     return best
 
 
-def small_card(name: str, *fields) -> str:
-    """One small-field card (no trailing newline): floats through :func:`real8`, strings
-    as given (``""`` for a blank field), anything else through ``str``; eight fields per
-    line, continuation lines start with ``+``."""
-    out = f"{name:<8s}"
-    lines = []
-    for i, f in enumerate(fields):
-        if i and i % 8 == 0:
-            lines.append(out)
-            out = f"{'+':<8s}"
-        s = f if isinstance(f, str) else (real8(f) if isinstance(f, float) else str(f))
-        if len(s) > 8:
-            raise ValueError(f"field {s!r} of {name} longer than 8 characters")
-        out += f"{s:>8s}"
-    lines.append(out)
-    return "\n".join(lines)
-
-
 def _value(t: str) -> float:
     return parse_real(t)
 
@@ -114,14 +96,22 @@ def _field(v, width):
         return str(int(v))
     if isinstance(v, str):
         return v
-    return real16(v)
+    return real16(v) if width == 16 else real8(v)
 
 
-def card(name: str, values) -> str:
-    """Format one card: small field when every value fits 8 characters, else large field."""
-    strs = [_field(v, 16) for v in values]
-    small = all(len(s) <= 8 for s in strs) and not any(
-        isinstance(v, float) for v in values)
+def card(name: str, values, *, small: bool = False) -> str:
+    """Format one card: small field when every value fits 8 characters, else large field.
+
+    ``small=True`` forces small field, reals through :func:`real8` (at least four
+    significant digits; ``ValueError`` for a field that does not fit).
+    """
+    strs = [_field(v, 8 if small else 16) for v in values]
+    if small:
+        if any(len(s) > 8 for s in strs):
+            raise ValueError(f"a field of {name} is longer than 8 characters: {strs}")
+    else:
+        small = all(len(s) <= 8 for s in strs) and not any(
+            isinstance(v, float) for v in values)
     per, width = (8, 8) if small else (4, 16)
     head = name if small else name + "*"
     lines = []
