@@ -397,3 +397,16 @@ def test_second_order_solids_become_linear_with_a_warning(tmp_path):
     b = read_mesh(_write(tmp_path, "h8.bdf", _deck(*corners, "CHEXA,1,1,1,2,3,4,5,6,+",
                                                    "+,7,8", "PSOLID,1,1", MAT)))
     assert abs(assemble(a).K - assemble(b).K).max() == 0
+
+
+def test_set_name_comment_is_reread_when_the_same_deck_is_edited(tmp_path):
+    """The ``$ SET name`` comment before a SET1 names the node set; reading the same path
+    again after an edit gives the new name (no stale text of the earlier read)."""
+    quad = ["GRID,1,,0.,0.,0.", "GRID,2,,1.,0.,0.", "GRID,3,,1.,1.,0.", "GRID,4,,0.,1.,0.",
+            "CQUAD4,1,1,1,2,3,4", "PSHELL,1,1,0.01,1", MAT]
+    for name in ("front", "rear"):
+        mesh = read_mesh(_write(tmp_path, "set.bdf", _deck(*quad, f"$ SET {name}",
+                                                           "SET1,3,2,3")))
+        assert {"SET3", name} <= set(mesh.node_sets)
+        assert {"front", "rear"} - {name} - set(mesh.node_sets)   # the other name is gone
+        assert mesh.node_ids[mesh.node_sets[name]].tolist() == [2, 3]

@@ -25,13 +25,18 @@ _LARGE = tuple(slice(8 + 16 * k, 24 + 16 * k) for k in range(4))
 
 @dataclass
 class Card:
-    """One bulk-data entry: ``name`` and its data fields (field 2 onward, strings)."""
+    """One bulk-data entry: ``name`` and its data fields (field 2 onward, strings).
+
+    ``preceding`` is the physical line just before the card's first line (kept for SET1
+    cards only, whose ``$ SET name`` comment names the set; '' otherwise).
+    """
 
     name: str
     fields: list[str] = field(default_factory=list)
     file: str = ""
     line: int = 0
     seq: int = 0
+    preceding: str = ""
 
     def error(self, message: str) -> MeshError:
         """A :class:`MeshError` located at this card."""
@@ -161,14 +166,16 @@ def read_deck_text(path: Path, stack, *, include: str, kind: str) -> str:
     return text
 
 
-def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
-               _seq: list | None = None) -> list[Card]:
+def read_cards(path: Path, *, fast: FastLines | None = None, control: list | None = None,
+               _stack: tuple = (), _seq: list | None = None) -> list[Card]:
     """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order.
 
     With ``fast``, plain small-field GRID/CQUAD4/CTRIA3 lines without continuation go
     to ``fast`` as text instead (see :class:`FastLines`).  Every card and fast line gets
     a sequence number (``Card.seq``): file order, the cards of an included file
-    following those of the file that includes it.
+    following those of the file that includes it.  With ``control`` (a list), the
+    executive/case-control lines of ``path`` itself - those before ``BEGIN BULK``, none
+    without that line - are appended to it (for :func:`case_control`).
     """
     path = Path(path)
     seq = _seq if _seq is not None else [0]
@@ -179,6 +186,8 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
         if ln.lstrip().upper().startswith("BEGIN BULK"):
             start = i + 1
             break
+    if control is not None:
+        control.extend(lines[:max(start - 1, 0)])
     base = seq[0]
     seq[0] = base + len(lines) + 1
     fpath = str(path)
@@ -231,6 +240,8 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
             current.fields.extend(data)
             continue
         current = Card(first.rstrip("*").upper(), data, fpath, i + 1, base + i)
+        if i and current.name == "SET1":      # its "$ SET name" comment, if any
+            current.preceding = lines[i - 1]
         last = i
         cards.append(current)
     if fast_at:
@@ -253,24 +264,17 @@ def read_cards(path: Path, *, fast: FastLines | None = None, _stack: tuple = (),
 _CASE = re.compile(r"^\s*(SPC|METHOD|SOL)\s*=?\s*(\d+)\s*$", re.IGNORECASE)
 
 
-def case_control(path: Path) -> dict:
+def case_control(lines: list[str]) -> dict:
     """``SOL``, ``SPC`` and ``METHOD`` set ids of the executive/case control section.
 
-    The first occurrence wins (global case control, else the first subcase); each value
-    is ``(set id, line number)``.  Empty when the file has no ``BEGIN BULK`` line.
+    ``lines`` are the lines of the main file before ``BEGIN BULK`` (``read_cards(...,
+    control=lines)``; empty when the file has no ``BEGIN BULK`` line).  The first
+    occurrence wins (global case control, else the first subcase); each value is ``(set
+    id, line number)``.
     """
     out: dict = {}
-    try:
-        text = Path(path).read_text(encoding="latin-1")
-    except OSError:
-        return out
-    lines = text.splitlines()
-    if not any(ln.lstrip().upper().startswith("BEGIN BULK") for ln in lines):
-        return out
     for i, ln in enumerate(lines):
         s = ln.split("$", 1)[0]
-        if s.lstrip().upper().startswith("BEGIN BULK"):
-            break
         m = _CASE.match(s.replace("=", " = ", 1) if "=" in s else s)
         if m is None and s.strip().upper().startswith("SOL "):
             m = re.match(r"^\s*(SOL)\s+(\d+)", s, re.IGNORECASE)

@@ -25,8 +25,6 @@ applies exactly); RBE2/RBAR and RBE3 components must be rotation-invariant there
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from flexpipe.errors import MeshError
@@ -283,19 +281,12 @@ def solution(case: dict, deck, dof_sets: dict, path) -> dict:
     return out
 
 
-_TEXT_CACHE: dict = {}
+def set1_name(c: Card) -> str | None:
+    """Name given to a SET1 card by a ``$ SET name`` comment on the line before it.
 
-
-def set1_name(c) -> str | None:
-    """Name given to a SET1 card by a ``$ SET name`` comment on the line before it."""
-    lines = _TEXT_CACHE.get(c.file)
-    if lines is None:
-        try:
-            lines = Path(c.file).read_text(errors="replace").splitlines()
-        except OSError:
-            lines = []
-        _TEXT_CACHE.clear()
-        _TEXT_CACHE[c.file] = lines
-    prev = lines[c.line - 2].strip() if 2 <= c.line <= len(lines) + 1 else ""
+    That line was kept by :func:`~flexpipe.mesh._bulk.read_cards` (``Card.preceding``,
+    in the card's own file, INCLUDE files too); the name is read as UTF-8.
+    """
+    prev = c.preceding.encode("latin-1").decode("utf-8", errors="replace").strip()
     parts = prev.split()
     return parts[2] if prev.startswith("$ SET ") and len(parts) == 3 else None

@@ -171,9 +171,8 @@ def _check_unique(ids: np.ndarray, cards: list[Card], what: str) -> None:
 def read_nastran(path) -> Mesh:
     """Read a Nastran bulk-data deck into a :class:`Mesh` (units of the file)."""
     path = Path(path)
-    deck = _Deck()
-    fast = FastLines()
-    cards = read_cards(path, fast=fast)
+    deck, fast, control = _Deck(), FastLines(), []
+    cards = read_cards(path, fast=fast, control=control)   # + case-control lines
     fgrid = _fast.grids(fast.lines["GRID"], [w[2] for w in fast.where["GRID"]])
     fshell = {}
     for name, ct, k in (("CQUAD4", "quad", 4), ("CTRIA3", "triangle", 3)):
@@ -191,7 +190,7 @@ def read_nastran(path) -> Mesh:
     n_fast_el = {ct: 0 if a is None else len(a["eid"]) for ct, a in fshell.items()}
     if not deck.grids and not len(fgrid["gid"]):
         raise MeshError("no GRID cards found: not a Nastran bulk-data deck?", file=str(path))
-    case = case_control(path)
+    case = case_control(control)
     wtmass = 1.0
     if "WTMASS" in deck.params:
         wtmass = deck.params["WTMASS"].real(1, "WTMASS")
