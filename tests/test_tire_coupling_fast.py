@@ -3,8 +3,9 @@ the NumPy reference (:class:`flexpipe.vehicle.tire_coupling.ImplicitTires` with 
 compiled groups switched off), which drives the NumPy tyre model.
 
 Both must agree to rounding over a sequence of steps on random wheel states, with and
-without relaxation, for two tyres on one car (front and rear groups), mirrored wheels, a
-lifted wheel and a wheel at standstill.
+without relaxation, for one tyre on all wheels, two tyres on one car (front and rear
+groups: consecutive wheels, read and written as slices; crossed groups: gathered and
+scattered by index), mirrored wheels, a lifted wheel and a wheel at standstill.
 """
 
 from pathlib import Path
@@ -35,26 +36,37 @@ def _kin(rng, r0):
             "n_road": np.c_[0.05 * rng.normal(size=(n, 2)), np.ones(n)]}
 
 
-def _pair(relaxation, *, one_tyre=False):
-    """Fast and reference tyre sets: front and rear tyres (two groups), or one tyre on all
-    four wheels (one group holding every wheel: the whole-car path without gathering)."""
+#: tyre ("f" front, "r" rear) per wheel and the wheel groups expected (a slice for
+#: consecutive wheels, else the index list)
+LAYOUTS = {
+    "one_tyre": ("ffff", [slice(0, 4)]),  # one group holding every wheel
+    "front_rear": ("ffrr", [slice(0, 2), slice(2, 4)]),
+    "crossed": ("frfr", [[0, 2], [1, 3]]),
+    "mixed": ("frrf", [[0, 3], slice(1, 3)]),
+}
+
+
+def _pair(relaxation, *, layout="front_rear"):
+    """Fast and reference tyre sets for a layout of :data:`LAYOUTS`."""
     front = tire_from_file(TIR[0], relaxation=relaxation)
     rear = tire_from_file(TIR[-1], relaxation=relaxation)
     if rear is front or len(TIR) == 1:
         rear = tire_from_file(TIR[0], relaxation=relaxation)
-    tires = [front] * 4 if one_tyre else [front, front, rear, rear]
+    which, groups = LAYOUTS[layout]
+    tires = [front if c == "f" else rear for c in which]
     mirror = np.array([False, True, False, True])
     fast, ref = ImplicitTires(tires, mirror), ImplicitTires(tires, mirror)
     ref.compiled = set()
-    assert len(fast.compiled) == (1 if one_tyre else 2) and fast._whole == one_tyre
+    assert len(fast.compiled) == len(groups)
+    assert [ix if isinstance(ix, slice) else ix.tolist() for _, ix in fast.groups] == groups
     return fast, ref, front.unloaded_radius
 
 
-@pytest.mark.parametrize("one_tyre", [False, True])
+@pytest.mark.parametrize("layout", list(LAYOUTS))
 @pytest.mark.parametrize("relaxation", [True, False])
-def test_compiled_steps_equal_the_numpy_reference(relaxation, one_tyre):
+def test_compiled_steps_equal_the_numpy_reference(relaxation, layout):
     rng = np.random.default_rng(7)
-    fast, ref, r0 = _pair(relaxation, one_tyre=one_tyre)
+    fast, ref, r0 = _pair(relaxation, layout=layout)
     h = 2e-3
     for _ in range(5):
         kin = _kin(rng, r0)
@@ -68,8 +80,12 @@ def test_compiled_steps_equal_the_numpy_reference(relaxation, one_tyre):
             scale = max(np.abs(getattr(q, k)).max(), 1.0)
             np.testing.assert_allclose(getattr(p, k), getattr(q, k), rtol=0,
                                        atol=1e-7 * scale, err_msg=k)
-        for x, y in zip(p.moment_lin, q.moment_lin, strict=True):
-            np.testing.assert_allclose(x, y, rtol=0, atol=1e-7 * max(np.abs(y).max(), 1.0))
+        # the tyre element's input: the force rows (as the fields above) and the own
+        # moment's rows, each to its own scale
+        for x, y in zip(p.lin6, q.lin6, strict=True):
+            for rows in (slice(0, 3), slice(3, 6)):
+                np.testing.assert_allclose(x[:, rows], y[:, rows], rtol=0,
+                                           atol=1e-7 * max(np.abs(y[:, rows]).max(), 1.0))
         for key in fast.state:
             np.testing.assert_allclose(fast.state[key].kappa, ref.state[key].kappa,
                                        rtol=1e-10, atol=1e-12)
@@ -117,7 +133,8 @@ def test_compiled_applied_force_equals_the_numpy_reference():
     ts = TireStep(F0=rng.normal(size=(n, 3)), Dv=rng.normal(size=(n, 3, 3)),
                   dw=rng.normal(size=(n, 3)), A=rng.normal(size=(n, 3)),
                   r=rng.normal(size=(n, 3)), moment=np.zeros((n, 3)),
-                  spin_axis=st0.wheel_R[:, :, 1], S=rng.normal(size=(n, 3, 3)), moment_lin=())
+                  spin_axis=st0.wheel_R[:, :, 1], S=rng.normal(size=(n, 3, 3)),
+                  lin6=())  # the tyre element's input: not read by the applied force
     om0, om = rng.normal(size=n), rng.normal(size=n)
     ctl = SimpleNamespace(_tire_lin=(ts, st0, om0))
     ref = CarController._applied_tire_force_numpy(ctl, st, st.wheel_R[:, :, 1], om)

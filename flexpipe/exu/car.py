@@ -393,15 +393,8 @@ class CarSystem:
         tyre's own moment linearized alike (Exudyn's convention: ``D q_t + K q = f``)."""
         ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
-        if ts.lin6 is not None:
-            lin = ts.lin6
-        else:
-            DMv, dMw, AM, SM = ts.moment_lin
-            lin = (np.concatenate([ts.F0, ts.moment], axis=1),
-                   np.concatenate([ts.Dv, DMv], axis=1), np.concatenate([ts.dw, dMw], axis=1),
-                   np.concatenate([ts.A, AM], axis=1), np.concatenate([ts.S, SM], axis=1))
         args = [np.ascontiguousarray(a, dtype=float)
-                for a in (ep, ts.r, ts.spin_axis, qt, st.wheel_q, *lin)]
+                for a in (ep, ts.r, ts.spin_axis, qt, st.wheel_q, *ts.lin6)]
         kernel = element if jit_enabled() else element_numpy
         D, K, f = kernel(*args)
         return D, K, f

@@ -60,11 +60,10 @@ class TireStep:
     moment: np.ndarray  # (n, 3) tyre moments (Mx, My, Mz; not the moment of F), global
     spin_axis: np.ndarray  # (n, 3)
     S: np.ndarray  # (n, 3, 3) dF/dtheta, small global rotation of the carrier
-    #: the own moment's derivatives (dM/dv_P, dM/domega, dM/dz, dM/dtheta), like the force's
-    moment_lin: tuple
     #: force and own moment together (Y0 (n, 6), dY/dv_P (n, 6, 3), dY/domega (n, 6),
-    #: dY/dz (n, 6), dY/dtheta (n, 6, 3)): the tyre element's input, as one block each
-    lin6: tuple | None = None
+    #: dY/dz (n, 6), dY/dtheta (n, 6, 3)): the tyre element's input, as one block each;
+    #: rows 3: are the own moment's (``moment`` and its derivatives), rows :3 the force's
+    lin6: tuple
 
 
 def _force_and_moment(out, C, rows, m):
@@ -72,6 +71,15 @@ def _force_and_moment(out, C, rows, m):
     moment of the force about the wheel centre ``C``)."""
     own = out.moment - _cross(out.contact_point - C, out.force)
     return np.concatenate([out.force, own], axis=1).reshape(rows, m, 6)
+
+
+def _rows(ix):
+    """Wheel indices ``ix`` (ascending) of a group: a slice when consecutive (the group's
+    rows are views of the car's arrays, read and written in place), else an index array
+    (read as a copy, written back by index)."""
+    if ix == list(range(ix[0], ix[-1] + 1)):
+        return slice(ix[0], ix[-1] + 1)
+    return np.array(ix)
 
 
 class ImplicitTires:
@@ -89,26 +97,23 @@ class ImplicitTires:
         groups = {}
         for i, t in enumerate(tires):
             groups.setdefault(id(t), (t, []))[1].append(i)
-        self.groups = [(t, np.array(ix)) for t, ix in groups.values()]
-        #: one group holding every wheel in order: its arrays need no gathering
-        self._whole = (len(self.groups) == 1
-                       and list(self.groups[0][1]) == list(range(len(tires))))
+        #: (tyre, its wheels: a slice when consecutive, else an index array; see _rows)
+        self.groups = [(t, _rows(ix)) for t, ix in groups.values()]
         self.mirror = np.asarray(mirror, dtype=bool)
-        self._mirror = {id(t): np.ascontiguousarray(self.mirror[ix]) for t, ix in self.groups}
-        self._take = {id(t): self._gather(ix) for t, ix in self.groups}
+        self._mirror = {id(t): self.mirror[ix].copy() for t, ix in self.groups}
         n = len(tires)
-        self.state = {id(t): SlipState.zeros(len(ix)) for t, ix in self.groups}
+        self.state = {id(t): SlipState.zeros(len(ix)) for t, ix in groups.values()}
         #: groups evaluated by the compiled corrector and predictor (PAC2002 tyres)
         self.compiled = {id(t) for t, _ in self.groups
                          if _fast.enabled() and hasattr(t, "_packed")}
         self.n = n
         self._prev = None  # inputs of the last step, for the corrector
 
-    def _gather(self, ix):
-        """``a -> a[ix]`` as a contiguous float array (no copy for the whole car)."""
-        if self._whole:
-            return lambda a: np.ascontiguousarray(a, dtype=float)
-        return lambda a: np.ascontiguousarray(a[ix], dtype=float)
+    @staticmethod
+    def _take(a, ix):
+        """``a[ix]`` as a contiguous float array (a view for a slice ``ix`` of a contiguous
+        float array, else a copy: read only)."""
+        return np.ascontiguousarray(a[ix], dtype=float)
 
     @staticmethod
     def _stack(x, k):
@@ -149,20 +154,16 @@ class ImplicitTires:
 
         st = self.state[id(tire)]
         kappa, tan_a = st.kappa.astype(float), st.tan_alpha.astype(float)
-        take = self._take[id(tire)]
-        a = [take(kin[k]) for k in _TRACKED]
-        p = a if prev is None else [take(prev[k]) for k in _TRACKED]
-        force, Fxyz = np.empty((len(ix), 3)), np.empty((len(ix), 3))
+        a = [self._take(kin[k], ix) for k in _TRACKED]
+        p = a if prev is None else [self._take(prev[k], ix) for k in _TRACKED]
+        m = len(a[0])
+        force, Fxyz = np.empty((m, 3)), np.empty((m, 3))
         bad = correct_group(tire._packed(), a[0], a[1], a[2], a[3], a[4], a[5], a[6],
                             p[0], p[1], p[2], p[3], p[4], p[5], p[6], prev is not None,
                             self._mirror[id(tire)], kappa, tan_a,
                             bool(tire.relaxation), float(h), force, Fxyz)
         _fast.check_rows(bad, a[1])
         self.state[id(tire)] = SlipState(kappa, tan_a)
-        if self._whole:
-            out["Fx"], out["Fy"], out["Fz"] = Fxyz.T
-            out["force"] = force
-            return
         out["Fx"][ix], out["Fy"][ix], out["Fz"][ix] = Fxyz.T
         out["force"][ix] = force
 
@@ -181,8 +182,8 @@ class ImplicitTires:
                 self._predict_compiled(tire, ix, kin, h, road_ahead,
                                        (F0, Dv, dw, A, S, r, M))
                 continue
-            m = len(ix)
             C, s, v = kin["C"][ix], kin["s"][ix], kin["v"][ix]
+            m = len(C)
             w, om = kin["w"][ix], kin["omega"][ix]
             rows = 9
             CC = self._stack(C, rows)
@@ -239,26 +240,24 @@ class ImplicitTires:
         self._prev = {k: kin[k].copy() for k in _TRACKED}
         return TireStep(F0=F0, Dv=Dv[:, :3], dw=dw[:, :3], A=A[:, :3], r=r, moment=M,
                         spin_axis=kin["s"].copy(), S=S[:, :3],
-                        moment_lin=(Dv[:, 3:], dw[:, 3:], A[:, 3:], S[:, 3:]),
                         lin6=(np.concatenate([F0, M], axis=1), Dv, dw, A, S))
 
     def _predict_compiled(self, tire, ix, kin, h, road_ahead, full):
         from flexpipe.vehicle._tire_coupling_fast import predict_group
 
-        m = len(ix)
         st = self.state[id(tire)]
-        take = self._take[id(tire)]
-        g = {k: take(kin[k]) for k in ("C", "s", "v", "w", "omega", "n_road")}
-        # the whole car's rows are the group's: the kernel writes into them directly
-        part = full if self._whole else (
-            np.empty((m, 3)), np.empty((m, 6, 3)), np.empty((m, 6)), np.empty((m, 6)),
-            np.empty((m, 6, 3)), np.empty((m, 3)), np.empty((m, 3)))
+        g = {k: self._take(kin[k], ix) for k in ("C", "s", "v", "w", "omega", "n_road")}
+        m = len(g["C"])
+        # consecutive wheels: the kernel writes the car's rows in place (views); otherwise
+        # into the group's own rows, copied to the car's afterwards
+        views = isinstance(ix, slice)
+        part = tuple(a[ix] if views else np.empty((m,) + a.shape[1:]) for a in full)
         bad = predict_group(tire._packed(), g["C"], g["s"], g["v"], g["w"], g["omega"],
-                            g["n_road"], take(road_ahead),
+                            g["n_road"], self._take(road_ahead, ix),
                             self._mirror[id(tire)],
                             st.kappa.astype(float), st.tan_alpha.astype(float),
                             bool(tire.relaxation), float(h), DV, DW, DZ, DTH, *part)
         _fast.check_rows(bad, g["s"])
-        if not self._whole:
+        if not views:
             for dst, src in zip(full, part, strict=True):
                 dst[ix] = src
