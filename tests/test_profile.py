@@ -39,7 +39,7 @@ def test_profile_parts_add_up_to_exudyns_total(profiled):
         summary["profile_ms_per_step"]
 
 
-def test_profile_python_step_agrees_with_flexpipes_own_timing(profiled):
+def test_profile_python_step_agrees_with_flexpipes_own_timing():
     from flexpipe.scenarios.runner import _straight_road
     from flexpipe.vehicle import simulate
 

@@ -400,7 +400,7 @@ class CarSystem:
         return D, K, f
 
     # ------------------------------------------------------------------ time loop
-    def run(self, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
+    def run(self, step, *, t_end: float, h: float, spectral_radius: float,
             progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
             timers: bool = False):
         """Integrate to ``t_end`` with step ``h`` (:func:`flexpipe.exu.timeloop.run`)."""

@@ -4,7 +4,7 @@ The step (:class:`flexpipe.vehicle.dynamics.CarController`) reads the state, lin
 tyres and force elements and sets the loads; Exudyn then integrates one step implicitly.
 The spectral radius is the caller's (``flexpipe.vehicle.simulation.SPECTRAL_RADIUS``),
 modified Newton (one Jacobian unless Newton stalls), sparse LU (a few hundred coordinates,
-most of them in small bodies).  After the run ``system.solver_stats`` holds the Newton
+most of them in small bodies).  :func:`run` returns a :class:`RunOutcome` with the Newton
 iteration count and, with ``timers=True``, Exudyn's own computation timers
 (:func:`solver_stats`).
 Ctrl-C and SIGTERM stop the run between steps and are re-raised as
@@ -14,6 +14,7 @@ Ctrl-C and SIGTERM stop the run between steps and are re-raised as
 from __future__ import annotations
 
 import time
+from typing import NamedTuple
 
 import exudyn as exu
 
@@ -27,6 +28,18 @@ TIMERS = {"reactionForces": "constraint_reaction_forces", "AERHS": "constraint_e
           "factorization": "factorization", "writeSolution": "sensors",
           "python": "python_step", "integrationFormula": "integration_formula",
           "total": "total"}
+
+
+class RunOutcome(NamedTuple):
+    """What :func:`run` reports (a tuple: ``completed, t_reached, cpu, ... = run(...)``)."""
+
+    completed: bool
+    t_reached: float
+    cpu_s: float
+    wall_s: float
+    message: str
+    python_step_cpu_s: float
+    stats: dict
 
 
 def solver_stats(mbs, *, timers: bool) -> dict:
@@ -44,29 +57,26 @@ def solver_stats(mbs, *, timers: bool) -> dict:
     return out
 
 
-def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
+def run(system, step, *, t_end: float, h: float, spectral_radius: float,
         progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
-        timers: bool = False):
+        timers: bool = False) -> RunOutcome:
     """Integrate ``system`` (a :class:`~flexpipe.exu.car.CarSystem`) to ``t_end`` with step
     ``h``; ``step(state) -> CarLoads | None`` runs before every step.
 
     Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
 
-    ``timers``: switch on Exudyn's computation timers (``system.solver_stats``).
+    ``timers``: switch on Exudyn's computation timers (``RunOutcome.stats``).
 
-    ``step`` returns ``None`` to stop (e.g. divergence).  Returns
-    ``(completed, t_reached, cpu_seconds, wall_seconds, solver_message)``.
+    ``step`` returns ``None`` to stop (e.g. divergence).
     """
     mbs = system.mbs
     n_steps = int(round(t_end / h))
     st = system.state(0.0)
     loads = step(st)
     if loads is None:
-        return False, 0.0, 0.0, 0.0, "stopped at the initial state"
+        return RunOutcome(False, 0.0, 0.0, 0.0, "stopped at the initial state", 0.0, {})
     system.apply(loads, st.mount_R, st)
-    last = {"t": 0.0, "n": 0}
-
-    system.prestep_cpu = 0.0  # CPU seconds spent in the Python step (profile)
+    last = {"t": 0.0, "n": 0, "cpu": 0.0}  # "cpu": seconds in the Python step (profile)
 
     def prestep(mbs_, t):
         t0 = t - h  # the state is at the start of the step
@@ -85,7 +95,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
         if loads is None:
             return False
         system.apply(loads, st.mount_R, st)
-        system.prestep_cpu += time.thread_time() - c0
+        last["cpu"] += time.thread_time() - c0
         return True
 
     def guarded(mbs_, t):  # flexpipe#14: Ctrl-C/SIGTERM stop the run, re-raised below
@@ -123,6 +133,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
     s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     cpu0, wall0 = time.thread_time(), time.perf_counter()
     message = ""
+    stats: dict = {}
     printing = exu.config.printToConsole
     exu.config.printToConsole = False  # Exudyn's own notices; failures are reported by us
     try:
@@ -137,7 +148,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
         message = str(exc).strip().splitlines()[-1] if str(exc).strip() else repr(exc)
     finally:
         exu.config.printToConsole = printing
-        system.solver_stats = solver_stats(mbs, timers=timers)
+        stats = solver_stats(mbs, timers=timers)
     if sig.signum is not None:  # flexpipe#14: an interrupt, not a solver failure
         raise Interrupted(sig.signum, t=last["t"])
     if "interrupt" in last:
@@ -146,4 +157,4 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float = 0.5,
     cpu = time.thread_time() - cpu0
     wall = time.perf_counter() - wall0
     completed = ok and last["t"] >= t_end - 1.5 * h
-    return completed, last["t"], cpu, wall, message
+    return RunOutcome(completed, last["t"], cpu, wall, message, last["cpu"], stats)

@@ -118,6 +118,7 @@ class CarController:
         self.h = float(h)
         self.output_every = int(output_every)
         self.linkage = linkage  # LinkageModel of a linkage car (None: prismatic corners)
+        self._compiled = _jit_enabled()  # chosen once per run, as the state reader does
         self.driver_dt = float(driver_dt)
         self._next_driver_t = 0.0
         self.points = list(points)
@@ -366,7 +367,7 @@ class CarController:
         if self._tire_lin is None:
             return None
         ts, st0, om0 = self._tire_lin
-        if _jit_enabled():
+        if self._compiled:
             return applied_force(ts.F0, ts.Dv, ts.dw, ts.A, ts.S, ts.r, ts.spin_axis,
                                  st0.wheel_w, st0.wheel_v, om0, st0.wheel_p[:, 2],
                                  st0.wheel_R, s_axis, st.wheel_w, st.wheel_v, omega,
