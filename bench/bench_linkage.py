@@ -32,10 +32,13 @@ def run() -> dict:
     runs = [("linkage", ROOT / "cars" / "sedan_linkage.toml", DEFAULT_STEP, ""),
             ("prismatic", ROOT / "cars" / "sedan.toml", DEFAULT_STEP, ""),
             ("linkage", ROOT / "cars" / "sedan_linkage.toml", 2e-3, "_at_2ms")]
+    preps = {}  # (car file, body) -> (car, prepared run): set up once, used by every run
     for tag, path, h, suffix in runs:
-        car = load_car(path)
         for body in ("rigid", "flexible"):
-            prep = prepare(car, body=body, speed=SPEED, road=road)
+            if (path, body) not in preps:
+                car = load_car(path)
+                preps[path, body] = car, prepare(car, body=body, speed=SPEED, road=road)
+            car, prep = preps[path, body]
             r = simulate(car, road=road, speed=SPEED, t_end=T_RUN, body=body, prepared=prep,
                          h=h)
             key = f"{tag}_{body}{suffix}"
@@ -57,9 +60,10 @@ def run() -> dict:
     out["target_ratio_at_most_2"] = out["linkage_cpu_ratio_flexible_to_rigid"] <= 2.0
     # the profile: Exudyn's own timers and the Python step, ms per step, linkage car at the
     # default step (T_PROFILE s; the timers cost a little themselves, so not in the table)
-    car = load_car(ROOT / "cars" / "sedan_linkage.toml")
     for body in ("rigid", "flexible"):
-        r = simulate(car, road=road, speed=SPEED, t_end=T_PROFILE, body=body, profile=True)
+        car, prep = preps[ROOT / "cars" / "sedan_linkage.toml", body]
+        r = simulate(car, road=road, speed=SPEED, t_end=T_PROFILE, body=body, prepared=prep,
+                     profile=True)
         for part, ms in r.info["profile_ms_per_step"].items():
             out[f"profile_linkage_{body}_{part}_ms"] = ms
     for k, v in out.items():
