@@ -29,8 +29,15 @@ sweep: setup
 paper: setup
 	$(PY) -m flexpipe.halfcar.paper --out out/paper
 
+# the tests that build Exudyn models, again on Exudyn's range-checked module (flexpipe loads
+# its fast module, which has no index checks: an indexing error would not be reported there)
+CHECKED_TESTS = tests/test_brackets.py tests/test_exudyn_body.py tests/test_force_laws.py \
+	tests/test_inertia_coupling.py tests/test_mounts.py tests/test_node_state.py \
+	tests/test_prewarp.py tests/test_linkage_car.py
+
 test: setup
 	$(PY) -m pytest -q
+	FLEXPIPE_EXUDYN=checked $(PY) -m pytest -q $(CHECKED_TESTS)
 
 bench: setup
 	$(PY) -m bench

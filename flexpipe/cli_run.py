@@ -49,7 +49,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--profile", action="store_true",
                         help="time Exudyn's parts of every step (constraints, body terms, "
                              "mass matrix, back-substitution) against the Python step; "
-                             "printed and written to summary.json (profile_ms_per_step)")
+                             "printed and written to summary.json (profile_ms_per_step). "
+                             "Uses Exudyn's range-checked module, which has these timers "
+                             "(FLEXPIPE_EXUDYN=checked; slower than the default fast one)")
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "
                              "(MATLAB); default csv")
@@ -63,6 +65,10 @@ def run(args) -> int:
     The output folder is replaced as a whole when the run ends, also when it fails or is
     interrupted (then its ``summary.json`` says so: see
     :func:`~flexpipe.scenarios.runner.run_pair`)."""
+    import os
+
+    if args.profile:  # only the range-checked module times the parts (flexpipe.exu.MODULE_ENV)
+        os.environ.setdefault("FLEXPIPE_EXUDYN", "checked")
     from flexpipe.errors import InputError
     from flexpipe.scenarios.runner import run_pair
 
@@ -100,7 +106,8 @@ def _print_profile(summary: dict) -> None:
     if not prof:
         return
     bodies = list(prof)
-    print("CPU per step, ms " + "".join(f"{b:>12s}" for b in bodies))
+    print(f"CPU per step, ms (Exudyn module {summary.get('exudyn_module')})")
+    print(" " * 17 + "".join(f"{b:>12s}" for b in bodies))
     for part in next(iter(prof.values())):
         print(f"  {part:28s}" + "".join(f"{prof[b].get(part, float('nan')):12.4f}"
                                         for b in bodies))

@@ -8,6 +8,8 @@ from pathlib import Path
 import matplotlib
 import pytest
 
+import flexpipe.exu  # noqa: F401  (chooses Exudyn's compiled module before any test imports it)
+
 matplotlib.use("Agg")
 os.environ.setdefault("MPLBACKEND", "Agg")
 

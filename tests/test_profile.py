@@ -1,11 +1,14 @@
 """Profile of a run (``simulate(profile=True)``, ``flexpipe run --profile``).
 
-Exudyn's computation timers split the CPU time of a step; the parts must add up to no
-more than Exudyn's total, the Python step as Exudyn times it must match the Python step as
-flexpipe times it, and the Newton iterations per step must be a count the solver can make.
+Exudyn's computation timers (its range-checked module, ``FLEXPIPE_EXUDYN=checked``) split
+the CPU time of a step; the parts must add up to no more than Exudyn's total, the Python
+step as Exudyn times it must match the Python step as flexpipe times it, and the Newton
+iterations per step must be a count the solver can make.  With the fast module (the
+default) only Exudyn's total is timed: the profile is flexpipe's Python step and the rest.
 """
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -16,19 +19,36 @@ ROOT = Path(__file__).resolve().parents[1]
 CAR = ROOT / "cars" / "sedan_linkage.toml"
 
 
+CHECKED = dict(os.environ, FLEXPIPE_EXUDYN="checked")
+
+PROFILED_RUN = """
+import json, sys
+from flexpipe.scenarios.runner import _straight_road, run_pair
+from flexpipe.vehicle import simulate
+car, out = sys.argv[1], sys.argv[2]
+summary = run_pair(car, road=None, path=None, speed=15.0, t_end=0.3, out=out, title="profile",
+                   bodies=("rigid",), log=lambda *a: None, progress=False, profile=True,
+                   plots=())
+r = simulate(car, road=_straight_road(), speed=15.0, t_end=0.3, body="rigid", profile=True)
+print(json.dumps({"summary": summary, "info": r.info}, default=str))
+"""
+
+
 @pytest.fixture(scope="module")
 def profiled(tmp_path_factory):
-    from flexpipe.scenarios.runner import run_pair
-
+    """A profiled scenario run and a profiled simulation, in a process of their own on
+    Exudyn's range-checked module (the one with the part timers)."""
     out = tmp_path_factory.mktemp("prof") / "run"
-    summary = run_pair(CAR, road=None, path=None, speed=15.0, t_end=0.3, out=out,
-                       title="profile", bodies=("rigid",), log=lambda *a: None,
-                       progress=False, profile=True, plots=())
-    return summary, out
+    p = subprocess.run([sys.executable, "-c", PROFILED_RUN, str(CAR), str(out)],
+                       capture_output=True, text=True, cwd=ROOT, env=CHECKED, timeout=600)
+    assert p.returncode == 0, p.stderr[-2000:]
+    got = json.loads(p.stdout.strip().splitlines()[-1])
+    assert got["info"]["exudyn_module"] == "exudynCPP"
+    return got["summary"], out, got["info"]
 
 
 def test_profile_parts_add_up_to_exudyns_total(profiled):
-    summary, out = profiled
+    summary, out, _ = profiled
     prof = summary["profile_ms_per_step"]["rigid"]
     parts = {k: v for k, v in prof.items() if k != "total"}
     assert min(parts.values()) >= 0.0
@@ -39,21 +59,34 @@ def test_profile_parts_add_up_to_exudyns_total(profiled):
         summary["profile_ms_per_step"]
 
 
-def test_profile_python_step_agrees_with_flexpipes_own_timing():
-    from flexpipe.scenarios.runner import _straight_road
+def test_profile_python_step_agrees_with_flexpipes_own_timing(profiled):
+    info = profiled[2]
+    n = round(0.3 / info["h"])
+    ours = 1e3 * info["cpu_python_step_s"] / n
+    theirs = info["profile_ms_per_step"]["python_step"]
+    assert 0.5 * ours < theirs < 2.0 * ours
+    assert 1.0 <= info["newton_iterations_per_step"] <= 25.0  # Exudyn's limit is 25
+
+
+def test_fast_module_profile_is_the_python_step_and_the_rest():
+    from flexpipe.exu import compiled_module
     from flexpipe.vehicle import simulate
 
-    r = simulate(CAR, road=_straight_road(), speed=15.0, t_end=0.3, body="rigid",
-                 profile=True)
-    n = round(0.3 / r.info["h"])
-    ours = 1e3 * r.info["cpu_python_step_s"] / n
-    theirs = r.info["profile_ms_per_step"]["python_step"]
-    assert 0.5 * ours < theirs < 2.0 * ours
-    assert 1.0 <= r.info["newton_iterations_per_step"] <= 25.0  # Exudyn's limit is 25
+    if compiled_module() != "exudynCPPfast":
+        pytest.skip("Exudyn's fast module is not loaded (no AVX2, or FLEXPIPE_EXUDYN=checked)")
+    r = simulate(CAR, speed=15.0, t_end=0.2, body="rigid", profile=True)
+    prof = r.info["profile_ms_per_step"]
+    assert set(prof) == {"python_step", "exudyn", "total"}
+    n = round(0.2 / r.info["h"])
+    assert prof["python_step"] == pytest.approx(1e3 * r.info["cpu_python_step_s"] / n, abs=1e-4)
+    assert prof["exudyn"] > 0 and prof["python_step"] + prof["exudyn"] == \
+        pytest.approx(prof["total"], abs=2e-4)
+    # Exudyn's total timer covers its solve: close to the CPU time of the run
+    assert 0.5 < prof["total"] * n * 1e-3 / r.cpu_time < 2.0
 
 
 def test_unprofiled_run_reports_iterations_only(profiled):
-    summary, _ = profiled
+    summary, _, _ = profiled
     assert 1.0 <= summary["newton_iterations_per_step"]["rigid"] <= 25.0
     from flexpipe.vehicle import simulate
 
@@ -67,5 +100,6 @@ def test_cli_profile_prints_the_table(tmp_path):
          "--body", "rigid", "--profile", "--out", str(tmp_path / "o")],
         capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert proc.returncode == 0, proc.stderr[-2000:]
-    assert "CPU per step, ms" in proc.stdout and "constraint_reaction_forces" in proc.stdout
+    assert "CPU per step, ms (Exudyn module exudynCPP)" in proc.stdout
+    assert "constraint_reaction_forces" in proc.stdout
     assert "Newton iterations per step" in proc.stdout

@@ -57,6 +57,27 @@ def solver_stats(mbs, *, timers: bool) -> dict:
     return out
 
 
+def solver_info(stats: dict, python_s: float) -> dict:
+    """Newton iterations per step and, when timed, Exudyn's timers in ms per step (the
+    ``Result.info`` entries of a run from :attr:`RunOutcome.stats` and the Python step's
+    CPU seconds).
+
+    Exudyn's fast module (:mod:`flexpipe.exu`) keeps only its total timer: the profile is
+    then ``python_step`` (flexpipe's own timing), ``exudyn`` (the rest) and ``total``.
+    """
+    n = stats.get("steps", 0)
+    if not n:
+        return {}
+    out = {"newton_iterations_per_step": round(stats["newton_iterations"] / n, 3)}
+    if "timers_s" in stats:
+        timers = stats["timers_s"]
+        if not any(v for k, v in timers.items() if k != "total"):  # the fast module
+            timers = {"python_step": python_s, "exudyn": timers["total"] - python_s,
+                      "total": timers["total"]}
+        out["profile_ms_per_step"] = {k: round(1e3 * v / n, 4) for k, v in timers.items()}
+    return out
+
+
 def run(system, step, *, t_end: float, h: float, spectral_radius: float,
         progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
         timers: bool = False) -> RunOutcome:
@@ -123,8 +144,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     s.solution.sensors.writePeriod = float(output_step or h)
     s.solution.file.writeInitialValues = False
     s.show.statistics = False
-    s.show.computationTime = False
-    s.displayComputationTime = bool(timers)
+    s.show.computationTime = bool(timers)  # Exudyn's timers (its printout is switched off)
     # sparse LU: the Newton increments (one back-substitution per iteration with the kept
     # factorization) cost a third of the dense ones on the linkage car (~480
     # coordinates; Exudyn's timer 0.77 -> 0.24 ms per step, flexible); ISO C 70 km/h,

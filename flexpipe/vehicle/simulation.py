@@ -225,8 +225,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Switch on Exudyn's computation timers: ``Result.info["profile_ms_per_step"]``
         splits the CPU time per step into the Python step and Exudyn's parts (constraint
         reaction forces and equations, body and force terms, mass matrix,
-        back-substitution, sensors).  ``info["newton_iterations_per_step"]`` is there
-        in every run.
+        back-substitution, sensors) on Exudyn's range-checked module; its default fast
+        module times only the total, split into the Python step and ``exudyn`` (see
+        :mod:`flexpipe.exu`, ``FLEXPIPE_EXUDYN``).  ``info["newton_iterations_per_step"]``
+        is there in every run.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
@@ -338,7 +340,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    for t, wz in zip(tires, W[:, 2], strict=True)])
     spin0 = speed / re
 
+    from flexpipe.exu import compiled_module
     from flexpipe.exu.car import CarBuild, CarSystem
+    from flexpipe.exu.timeloop import solver_info
     from flexpipe.vehicle.dynamics import CarController
 
     fb = prep["flexbody"]
@@ -447,9 +451,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "cpu_settle_s": float(start[2]) if start is not None else 0.0,
         "modal_prewarp": build.modal_prewarp is not None,
         "inertia_coupling": build.inertia_coupling if fb is not None else None,
+        "exudyn_module": compiled_module(),
         "suspension": "prismatic" if car.suspension is None else
         f"linkage ({car.suspension.mode} mode)",
-        **_solver_info(stats),
+        **solver_info(stats, python_cpu),
     }
     if fb is not None:
         used = fb.n_elastic if n_modes is None else n_modes
@@ -462,18 +467,6 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                   message=message, body=body, cpu_time=cpu, wall_time=wall,
                   simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info,
                   motion=_motion(t_out, ctrl.motion, fb))
-
-
-def _solver_info(stats: dict) -> dict:
-    """Newton iterations per step and, when timed, Exudyn's timers in ms per step."""
-    n = stats.get("steps", 0)
-    if not n:
-        return {}
-    out = {"newton_iterations_per_step": round(stats["newton_iterations"] / n, 3)}
-    if "timers_s" in stats:
-        out["profile_ms_per_step"] = {k: round(1e3 * v / n, 4)
-                                      for k, v in stats["timers_s"].items()}
-    return out
 
 
 def _motion(t, rows, fb):
