@@ -56,3 +56,16 @@ def test_a_bad_module_choice_is_named():
                        text=True, env=env, cwd=ROOT, timeout=300)
     assert p.returncode != 0
     assert "FLEXPIPE_EXUDYN='quick'; valid: fast, checked" in p.stderr
+
+
+def test_a_choice_that_comes_too_late_is_reported():
+    env = dict(os.environ, FLEXPIPE_EXUDYN="checked")
+    code = ("import sys; sys.exudynFast = True; import exudyn; import warnings; "
+            "warnings.simplefilter('always'); import flexpipe.exu as e; print(e.compiled_module())")
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                       cwd=ROOT, timeout=300)
+    assert p.returncode == 0, p.stderr[-2000:]
+    if p.stdout.strip().splitlines()[-1] != "exudynCPPfast":
+        pytest.skip("this CPU has no AVX2: Exudyn loads its range-checked module either way")
+    assert "FLEXPIPE_EXUDYN=checked is not applied" in p.stderr
+    assert "set FLEXPIPE_EXUDYN before the first import of exudyn" in p.stderr

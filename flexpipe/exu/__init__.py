@@ -28,14 +28,22 @@ MODULES = {"fast": "exudynCPPfast", "checked": "exudynCPP"}
 
 
 def _choose_module() -> None:
-    if "exudyn" in sys.modules or hasattr(sys, "exudynFast"):
-        return  # chosen already, by an earlier import or by the user's own sys.exudynFast
-    choice = os.environ.get(MODULE_ENV, "fast").strip().lower() or "fast"
+    asked = os.environ.get(MODULE_ENV, "").strip().lower()
+    choice = asked or "fast"
     if choice not in MODULES:
         from flexpipe.errors import InputError
 
-        raise InputError(f"{MODULE_ENV}={choice!r}; valid: {', '.join(MODULES)}",
+        raise InputError(f"{MODULE_ENV}={asked!r}; valid: {', '.join(MODULES)}",
                          key=MODULE_ENV)
+    if "exudyn" in sys.modules or hasattr(sys, "exudynFast"):
+        # chosen already, by an earlier import or by the user's own sys.exudynFast
+        if asked and "exudyn" in sys.modules and compiled_module() != MODULES[choice]:
+            import warnings
+
+            warnings.warn(f"{MODULE_ENV}={asked} is not applied: exudyn was imported before "
+                          f"flexpipe and runs its {compiled_module()} module; set "
+                          f"{MODULE_ENV} before the first import of exudyn", stacklevel=2)
+        return
     sys.exudynFast = choice == "fast"
     with contextlib.redirect_stdout(io.StringIO()):  # Exudyn announces its module on stdout
         import exudyn  # noqa: F401
