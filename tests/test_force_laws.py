@@ -113,13 +113,13 @@ def _bushing_run(bushing, *, law, load=(0.0, 0.0, 0.0), static=False):
         angularVelocity=[0.0, 0.0, 0.0] if static else [0.5, -0.4, 0.3]))
     body = mbs.AddObject(eii.ObjectRigidBody(mass=2.0, nodeNumber=node,
                                              inertia=[0.02, 0.03, 0.04, 0.0, 0.0, 0.0]))
-    m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localPosition=[0, 0, 0]))
-    m1 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=body, localPosition=[0, 0, 0]))
+    at = exu.HT(rotation=np.asarray(bushing.frame), translation=[0.0, 0.0, 0.0])
+    m0 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=ground, localHT=at))
+    m1 = mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=body, localHT=at))
     kw = {"springForceTorqueUserFunction": bushing_law(mbs, bushing)} if law else {}
     mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
         markerNumbers=[m0, m1], stiffness=np.diag(bushing.stiffness),
-        damping=np.diag(bushing.damping), rotationMarker0=bushing.frame,
-        rotationMarker1=bushing.frame, **kw))
+        damping=np.diag(bushing.damping), **kw))
     mb = mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=body, localPosition=[0, 0, 0]))
     mbs.AddLoad(eii.LoadForceVector(markerNumber=mb, loadVector=list(load)))
     mbs.Assemble()

@@ -38,6 +38,7 @@ CORNERS = ("fl", "fr", "rl", "rr")
 MIN_PART_MASS = 0.2
 #: stiffness of a steering column given as rigid (N/m at the rack)
 RIGID_RACK = 1e8
+_I3 = np.eye(3)  # a joint frame that is its marker's frame
 
 
 def _frame(z_axis, x_hint=(1.0, 0.0, 0.0)) -> np.ndarray:
@@ -112,15 +113,33 @@ class LinkageModel:
         mbs.AddLoad(eii.LoadMassProportional(markerNumber=m, loadVector=list(self.g)))
         return node, obj
 
-    def _marker(self, owner, point, rigid):
-        """Marker at ``point`` (body coordinates) on ``owner`` = (obj, ref) or 'body'."""
+    def _marker(self, owner, point, rigid, frame=None):
+        """Marker at ``point`` (body coordinates) on ``owner`` = (obj, ref) or 'body'; a
+        rigid one turned by ``frame`` (a joint's or bushing's frame) when given."""
         if owner == BODY:
-            return self._body_marker(point, rigid)
+            m = self._body_marker(point, rigid)
+            return m if frame is None else self._framed(m, frame)
         obj, ref = owner
         local = list(np.asarray(point, float) - ref)
+        if frame is not None:
+            return self.mbs.AddMarker(eii.MarkerBodyRigid(
+                bodyNumber=obj, localHT=exu.HT(rotation=np.asarray(frame), translation=local)))
         if rigid:
             return self.mbs.AddMarker(eii.MarkerBodyRigid(bodyNumber=obj, localPosition=local))
         return self.mbs.AddMarker(eii.MarkerBodyPosition(bodyNumber=obj, localPosition=local))
+
+    def _framed(self, m, A):
+        """Rigid marker at marker ``m``'s point whose frame is ``m``'s turned by ``A``: a
+        joint's or bushing's frame given to its markers, as Exudyn asks since 1.12.244
+        (instead of the connector's ``rotationMarker0/1``)."""
+        d = self.mbs.GetMarker(m)
+        if d["markerType"] != "BodyRigid":
+            raise TypeError(f"marker {m} is a {d['markerType']} marker; a body's rigid marker "
+                            "is needed for a joint frame")
+        HT = np.asarray(d["localHT"], dtype=float)
+        return self.mbs.AddMarker(eii.MarkerBodyRigid(
+            bodyNumber=d["bodyNumber"], localHT=exu.HT(rotation=HT[:3, :3] @ np.asarray(A),
+                                                       translation=HT[:3, 3])))
 
     def _body_marker(self, point, rigid, mount=None):
         return self.mount_marker(mount, rigid)
@@ -188,10 +207,10 @@ class LinkageModel:
         if j.bushing is not None and not self.kinematic:
             body_first = b == BODY
             part = a if body_first else b
-            m0 = self.mount_marker(j.mount, True)
-            m1 = self._marker(part, j.point, True)
             bu = j.bushing
             A = bu.frame
+            m0 = self._framed(self.mount_marker(j.mount, True), A)
+            m1 = self._marker(part, j.point, True, frame=A)
             kw = {}
             if bu.tables:  # nonlinear directions: the bushing's law inside Exudyn
                 law = bushing_law(mbs, bu)
@@ -199,9 +218,9 @@ class LinkageModel:
                 kw["springForceTorqueUserFunction"] = law
             co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
                 markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
-                damping=np.diag(bu.damping), rotationMarker0=A, rotationMarker1=A,
+                damping=np.diag(bu.damping),
                 visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
-            self.body_links.append((j.mount, co, "local", (m0, m1), A))
+            self.body_links.append((j.mount, co, "local", (m0, m1), _I3))
             return
         if j.kind == "spherical":
             m0 = (self.mount_marker(j.mount, False) if a == BODY
@@ -215,8 +234,6 @@ class LinkageModel:
                 self.body_links.append((j.mount, co, "vector" if sign > 0 else "vector-",
                                         (m0, m1), None))
             return
-        m0 = self.mount_marker(j.mount, True) if a == BODY else self._marker(a, j.point, True)
-        m1 = self.mount_marker(j.mount, True) if b == BODY else self._marker(b, j.point, True)
         if j.kind == "inline":  # the point of b stays on the line along axis fixed in a
             A, axes = _frame(j.axis), [1, 1, 0, 0, 0, 0]
         elif j.kind == "revolute":
@@ -226,12 +243,13 @@ class LinkageModel:
             ex = np.cross(ey, ez)
             ex /= np.linalg.norm(ex)
             A, axes = np.column_stack([ex, ey, np.cross(ex, ey)]), [1, 1, 1, 1, 0, 0]
+        m0, m1 = (self._framed(self.mount_marker(j.mount, True), A) if o == BODY
+                  else self._marker(o, j.point, True, frame=A) for o in (a, b))
         co = mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1], constrainedAxes=axes,
-                                            rotationMarker0=A, rotationMarker1=A,
                                             visualization=eii.VGenericJoint(show=False)))
         if BODY in (a, b):
             self.body_links.append((j.mount, co, "local" if a == BODY else "local-",
-                                    (m0, m1), A))
+                                    (m0, m1), _I3))
 
     # ------------------------------------------------------------------ rack, bars
     def _rack_owner(self):
@@ -285,13 +303,12 @@ class LinkageModel:
             node, obj = self._body(ARB_ARM_MASS, np.eye(3) * 1e-3, cm, cm)
             owner = (obj, cm)
             A = _frame((0.0, 1.0, 0.0))
-            m0 = self.mount_marker(name, True)
-            m1 = self._marker(owner, bush, True)
+            m0 = self._framed(self.mount_marker(name, True), A)
+            m1 = self._marker(owner, bush, True, frame=A)
             co = mbs.AddObject(eii.GenericJoint(markerNumbers=[m0, m1],
                                                 constrainedAxes=[1, 1, 1, 1, 1, 0],
-                                                rotationMarker0=A, rotationMarker1=A,
                                                 visualization=eii.VGenericJoint(show=False)))
-            self.body_links.append((name, co, "local", (m0, m1), A))
+            self.body_links.append((name, co, "local", (m0, m1), _I3))
             i = CORNERS.index(corner.corner)
             part = self.owners[corner.corner][arb.part]
             ma = self._marker(part, low, False)
@@ -302,11 +319,11 @@ class LinkageModel:
             self.to_other.append((i, link, mb, ma))
             arms.append((owner, bush))
         A = _frame((0.0, 1.0, 0.0))
-        mL = self._marker(arms[0][0], arms[0][1], True)
-        mR = self._marker(arms[1][0], arms[1][1], True)
+        mL = self._marker(arms[0][0], arms[0][1], True, frame=A)
+        mR = self._marker(arms[1][0], arms[1][1], True, frame=A)
         mbs.AddObject(eii.ObjectConnectorTorsionalSpringDamper(
             markerNumbers=[mL, mR], stiffness=float(arb.torsion_rate),
-            damping=float(1e-3 * arb.torsion_rate), rotationMarker0=A, rotationMarker1=A,
+            damping=float(1e-3 * arb.torsion_rate),
             visualization=eii.VObjectConnectorTorsionalSpringDamper(show=False)))
 
     # ------------------------------------------------------------------ per step
