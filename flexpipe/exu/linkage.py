@@ -114,11 +114,11 @@ class LinkageModel:
         return node, obj
 
     def _marker(self, owner, point, rigid, frame=None):
-        """Marker at ``point`` (body coordinates) on ``owner`` = (obj, ref) or 'body'; a
-        rigid one turned by ``frame`` (a joint's or bushing's frame) when given."""
+        """Marker at ``point`` (body coordinates) on ``owner`` = (obj, ref) or 'body'; on a
+        part, a rigid one turned by ``frame`` (a joint's or bushing's frame) when given
+        (body-side markers get theirs from :meth:`_framed`)."""
         if owner == BODY:
-            m = self._body_marker(point, rigid)
-            return m if frame is None else self._framed(m, frame)
+            return self._body_marker(point, rigid)
         obj, ref = owner
         local = list(np.asarray(point, float) - ref)
         if frame is not None:
