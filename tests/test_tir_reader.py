@@ -235,3 +235,69 @@ def test_stiffness_and_load_curve_disagreeing_says_which_is_used(tmp_path):
     pen, fz = np.array([r.split() for r in rows.strip().splitlines()], dtype=float).T
     k, k3 = np.linalg.lstsq(np.column_stack([pen, pen ** 3]), fz, rcond=None)[0]
     assert tire.vertical.k == pytest.approx(k) and tire.vertical.k3 == pytest.approx(k3)
+
+
+# ---------------------------------------------------------------- signs fixed by physics
+def _with(tmp_path, key, value, name="bad.tir"):
+    """The sample with ``key = value`` (first occurrence) and the line number of the key."""
+    text = SAMPLE.read_text()
+    line_no = line_of(text, key)
+    new, n = re.subn(rf"^({key}\s*=\s*)\S+", rf"\g<1>{value}", text, count=1, flags=re.M)
+    assert n == 1, key
+    return _write(tmp_path, new, name), line_no
+
+
+@pytest.mark.parametrize("key, value, valid", [
+    ("PKX1", "0.0", "> 0"), ("PKX1", "-21.0", "> 0"),            # Fx = 0 / reversed
+    ("PKY1", "18.0", "PKY1 < 0"),                                  # Fy reversed
+    ("PKY2", "-2.0", "PKY2 > 0"),                                  # Fy reversed, via PKY2
+    ("PCX1", "-1.6", "> 0"), ("PCY1", "-1.35", "> 0"),
+    ("PDX1", "-1.15", "> 0"), ("PDY1", "-1.05", "> 0"),
+    ("QSY1", "-0.01", ">= 0"), ("QDZ1", "-0.12", ">= 0"),
+    ("PTX1", "-1.0", ">= 0"), ("PTY1", "-2.0", "PTY1 > 0"),
+    ("LKX", "0", "> 0")])
+def test_coefficient_sign_fixed_by_physics_names_file_line_key_and_range(tmp_path, key,
+                                                                         value, valid):
+    """Finding: PKX1 = 0 gave Fx = 0 at any slip and PKY1 = +18 a reversed side force,
+    both accepted; the other coefficients here have a sign just as certain."""
+    path, line_no = _with(tmp_path, key, value)
+    with pytest.raises(InputError) as exc:
+        read_tir(path)
+    msg = str(exc.value)
+    assert str(path) in msg and f"line {line_no}" in msg and f"key '{key}'" in msg
+    assert valid in msg
+
+
+def test_wrong_cornering_stiffness_sign_message_gives_the_convention(tmp_path):
+    path, _ = _with(tmp_path, "PKY1", "18.0")
+    with pytest.raises(InputError, match=r"Ky = \+.* N/rad.*ISO/Adams W-axes.*negative Fy"):
+        tire_from_file(path)
+
+
+def test_missing_slip_stiffness_is_an_error(tmp_path):
+    text = re.sub(r"^PKX1\s*=.*\n", "", SAMPLE.read_text(), count=1, flags=re.M)
+    path = _write(tmp_path, text)
+    with pytest.raises(InputError) as exc:
+        read_tir(path)
+    assert str(path) in str(exc.value) and "PKX1" in str(exc.value)
+
+
+@pytest.mark.parametrize("value", ["'RIGTH'", "'MIDDLE'", "'L'", "1"])
+def test_unknown_tyre_side_names_file_line_value_and_valid_sides(tmp_path, value):
+    path, line_no = _with(tmp_path, "TYRESIDE", value)
+    with pytest.raises(InputError) as exc:
+        tire_from_file(path)
+    msg = str(exc.value)
+    assert str(path) in msg and f"line {line_no}" in msg and "TYRESIDE" in msg
+    assert value.strip("'") in msg
+    assert all(side in msg for side in ("LEFT", "RIGHT", "SYMMETRIC"))
+
+
+@pytest.mark.parametrize("value, mirrored", [("'left'", [False, True]),
+                                             ("'Right'", [True, False]),
+                                             ("'SYMMETRIC'", [False, False]),
+                                             ("LEFT", [False, True])])
+def test_valid_tyre_sides_any_case(tmp_path, value, mirrored):
+    path, _ = _with(tmp_path, "TYRESIDE", value, name="ok.tir")
+    tire = tire_from_file(path)
+    assert [bool(m) for m in tire.mirror_for(["left", "right"])] == mirrored

@@ -45,6 +45,7 @@ import warnings
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.roads._plausible import check_heights
 from flexpipe.roads.crg_data import (
     fill_border_nans,
     parse_binary_values,
@@ -221,6 +222,13 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     Road
         With ``x = u`` samples, the lateral grid ``y = v`` and heights ``z``; ``heading``
         when the file has a ``reference line phi`` channel or a non-zero start heading.
+
+    Raises
+    ------
+    InputError
+        Naming the file (and line where known): a malformed header or data block, or
+        heights that change more than a drivable road can (likely millimetres; see
+        :mod:`flexpipe.roads._plausible`).
     """
     path = pathlib.Path(path)
     try:
@@ -310,8 +318,13 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     heading = None
     if not plan.straight or plan.phi_start != 0.0:
         heading = np.concatenate([[plan.phi[0]], plan.phi])
-    return Road.from_grid(u, v, z, track_width=track_width, heading=heading, plan=plan,
+    road = Road.from_grid(u, v, z, track_width=track_width, heading=heading, plan=plan,
                           name=path.stem if name is None else name, source=str(path))
+    check_heights(u, z, file=path, labels=[f"long section at v = {vj:g} m" for vj in v],
+                  lines=None if row_line is None else [int(k) for k in row_line],
+                  cause="heights look like millimetres (or a slope or banking like per "
+                        "cent); OpenCRG heights are in metres, slopes and banking in m/m")
+    return road
 
 
 def _reference_line(p, kinds, vals, u, path, get):

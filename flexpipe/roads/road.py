@@ -32,6 +32,7 @@ import numpy as np
 from flexpipe._arrays import readonly_floats
 from flexpipe._io import atomic_path, read_numeric_rows
 from flexpipe.errors import InputError
+from flexpipe.roads._plausible import check_heights
 from flexpipe.roads.refline import ReferenceLine
 
 _SCALARS = (float, int, np.float64, np.float32, np.int64)
@@ -396,7 +397,9 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     ------
     InputError
         Naming the file and line: a non-numeric or non-finite value, a wrong number of
-        columns, a distance that does not increase strictly, fewer than two samples.
+        columns, a distance that does not increase strictly, fewer than two samples,
+        heights that change more than a drivable road can (likely millimetres; see
+        :mod:`flexpipe.roads._plausible`).
     """
     path = pathlib.Path(path)
     rows, line_no = [], []
@@ -422,5 +425,8 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
                          file=path, line=line_no[-1] if line_no else 1)
     data = np.array(rows)
     right = data[:, 2] if ncol == 3 else data[:, 1]
-    return Road(x=data[:, 0], left=data[:, 1], right=right, track_width=track_width,
+    road = Road(x=data[:, 0], left=data[:, 1], right=right, track_width=track_width,
                 name=path.stem if name is None else name, source=str(path))
+    check_heights(data[:, 0], data[:, 1:], file=path, lines=line_no,
+                  labels=("left track", "right track") if ncol == 3 else ("tracks",))
+    return road

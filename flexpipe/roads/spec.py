@@ -22,8 +22,11 @@ from __future__ import annotations
 
 import pathlib
 
+import numpy as np
+
 from flexpipe.errors import InputError
 from flexpipe.roads import generators
+from flexpipe.roads._plausible import check_heights
 from flexpipe.roads._tables import TableReader, read_toml
 from flexpipe.roads.crg import read_crg
 from flexpipe.roads.road import Road, read_csv
@@ -92,6 +95,12 @@ def road_from_spec(table: dict, *, file=None, name: str = "road") -> Road:
             raise
         raise InputError(str(exc), file=file, key=name) from None
     t.finish()
+    height_key = {"harmonic": "amplitude_m", "irregularity": "s0_m"}.get(kind)
+    if height_key is not None:   # csv/crg files are checked by their readers
+        check_heights(road.x, np.column_stack([road.left, road.right]), file=file,
+                      labels=("left track", "right track"), key=f"{name}.{height_key}",
+                      cause=f"{height_key} = {t.table[height_key]!r} looks like millimetres; "
+                            "the key's unit is metres")
     return road
 
 

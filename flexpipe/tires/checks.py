@@ -19,8 +19,15 @@ the line, the key and the valid range:
   KPUMAX``; the same for ``ALPMIN/ALPMAX`` (within +-pi/2) and ``CAMMIN/CAMMAX``), since the
   model clips its inputs to them;
 * PAC2002 factors that divide or set a peak (``LFZO``, ``LCZ`` > 0; for the force
-  directions the USE_MODE computes: ``LMUX, LCX, LMUY, LCY, LKY`` > 0 and ``PCX1, PDX1,
-  PCY1, PDY1, PKY1, PKY2`` non-zero);
+  directions the USE_MODE computes: ``LMUX, LCX, LKX, LMUY, LCY, LKY`` > 0 and ``PKY1,
+  PKY2`` non-zero);
+* PAC2002 coefficients whose sign the physics fixes (ISO/Adams W-axes, see
+  :mod:`flexpipe.tires.pac2002`), for the directions the USE_MODE computes: shape factors
+  and peak friction ``PCX1, PDX1, PCY1, PDY1`` > 0, longitudinal slip stiffness ``PKX1`` > 0,
+  cornering stiffness at the nominal load < 0 (``PKY1 < 0`` with ``PKY2 > 0``), rolling
+  resistance ``QSY1`` >= 0, pneumatic trail ``QDZ1`` >= 0 and relaxation lengths at the
+  nominal load >= 0 (``PTX1`` >= 0, ``PTY1`` and ``PTY2`` of one sign);
+* ``[MODEL] TYRESIDE`` is ``LEFT``, ``RIGHT`` or ``SYMMETRIC`` (any case);
 * a ``[DEFLECTION_LOAD_CURVE] {pen fz}`` table needs increasing deflections >= 0 and
   non-decreasing loads >= 0.
 """
@@ -58,10 +65,36 @@ _RANGES = (  # section, low key, high key, default low, default high, absolute l
     ("SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", -1.5707, 1.5707, math.pi / 2 + 1e-3),
     ("INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", -0.5, 0.5, math.pi / 2),
 )
-_MF_LONG = (("SCALING_COEFFICIENTS", ("LMUX", "LCX"), True),
-            ("LONGITUDINAL_COEFFICIENTS", ("PCX1", "PDX1"), False))
+_MF_LONG = (("SCALING_COEFFICIENTS", ("LMUX", "LCX", "LKX"), True),)
 _MF_LAT = (("SCALING_COEFFICIENTS", ("LMUY", "LCY", "LKY"), True),
-           ("LATERAL_COEFFICIENTS", ("PCY1", "PDY1", "PKY1", "PKY2"), False))
+           ("LATERAL_COEFFICIENTS", ("PKY1", "PKY2"), False))
+#: Valid ``[MODEL] TYRESIDE`` values: the side the tyre was measured on (a wheel on the
+#: other side gets the mirrored characteristic) or SYMMETRIC (never mirrored).
+TYRE_SIDES = ("LEFT", "RIGHT", "SYMMETRIC")
+# Coefficients that must be given and be > 0 for the directions the USE_MODE computes, with
+# why: in the ISO/Adams W-axes of PAC2002 (x forward, y left, z up) a driving slip kappa > 0
+# gives Fx > 0, so the slip stiffness Kx = Fz0' PKX1 LKX at the nominal load is positive;
+# C (shape) and D = mu Fz (peak) are positive by the Magic Formula's definition (every
+# published fit: C about 1.2-1.8, mu 0.5-1.7).  A zero C or D gives NaN forces, a zero PKX1
+# Fx = 0 at any slip.
+_MF_POSITIVE = {
+    "LONG": (
+        ("LONGITUDINAL_COEFFICIENTS", "PCX1", "the Fx shape factor Cx, positive by definition "
+         "and about 1.4-1.8 in fitted tyres; it must be non-zero: a zero gives NaN forces"),
+        ("LONGITUDINAL_COEFFICIENTS", "PDX1", "the peak friction coefficient mu_x at the "
+         "nominal load, about 0.6-1.5 on a dry road; it must be non-zero: a zero gives NaN "
+         "forces"),
+        ("LONGITUDINAL_COEFFICIENTS", "PKX1", "Kx/Fz, the longitudinal slip stiffness at the "
+         "nominal load, about 10-30; in the ISO/Adams W-axes a driving slip kappa > 0 gives "
+         "Fx > 0, and a zero gives Fx = 0 at any slip"),
+    ),
+    "LAT": (
+        ("LATERAL_COEFFICIENTS", "PCY1", "the Fy shape factor Cy, positive by definition and "
+         "about 1.2-1.6 in fitted tyres; it must be non-zero: a zero gives NaN forces"),
+        ("LATERAL_COEFFICIENTS", "PDY1", "the peak friction coefficient mu_y at the nominal "
+         "load, about 0.6-1.5 on a dry road; it must be non-zero: a zero gives NaN forces"),
+    ),
+}
 
 
 def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
@@ -110,9 +143,19 @@ def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
         if not lo_v < hi_v:
             fail(sec, lo_key if lo is not None else hi_key, lo_v if lo is not None else hi_v,
                  f"{lo_key} < {hi_key} (got {lo_v:g} and {hi_v:g})")
+    _check_tyre_side(path, sections, lines)
     if fmt == "PAC2002":
         mode = abs(int(use_mode)) % 10
-        groups = (_MF_LONG if mode in (1, 3, 4) else ()) + (_MF_LAT if mode in (2, 3, 4) else ())
+        long_, lat = mode in (1, 3, 4), mode in (2, 3, 4)
+        for sec, key, why in (_MF_POSITIVE["LONG"] if long_ else ()) + (
+                _MF_POSITIVE["LAT"] if lat else ()):
+            v = value(sec, key)
+            if v is None:
+                raise InputError(f"[{sec}] has no {key}; USE_MODE {use_mode} needs it: {why}",
+                                 file=path, line=lines.get((sec, "")), key=key)
+            if not v > 0.0:
+                fail(sec, key, v, f"> 0 ({why})")
+        groups = (_MF_LONG if long_ else ()) + (_MF_LAT if lat else ())
         for sec, keys, positive in groups:
             for key in keys:
                 v = value(sec, key)
@@ -123,9 +166,79 @@ def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
                 if v is not None and (not v > 0.0 if positive else v == 0.0):
                     fail(sec, key, v, "> 0" if positive else "non-zero (a zero gives NaN "
                                                                "forces)")
+        _check_mf_signs(path, sections, lines, value, fail, long_=long_, lat=lat)
     table = tables.get("DEFLECTION_LOAD_CURVE")
     if table is not None:
         _check_load_curve(path, table)
+
+
+def _check_tyre_side(path, sections, lines) -> None:
+    """``[MODEL] TYRESIDE`` must be one of :data:`TYRE_SIDES` (a typo such as 'RIGTH' would
+    otherwise make an asymmetric tyre silently symmetric)."""
+    side = sections.get("MODEL", {}).get("TYRESIDE")
+    if side is None or (isinstance(side, str) and side.strip().upper() in TYRE_SIDES):
+        return
+    shown = f"'{side}'" if isinstance(side, str) else f"{side:g}"
+    raise InputError(f"[MODEL] TYRESIDE = {shown} is not valid; valid: "
+                     f"{', '.join(repr(s) for s in TYRE_SIDES)} (case-insensitive): the side "
+                     "of the vehicle the tyre was measured on, or SYMMETRIC", file=path,
+                     line=lines.get(("MODEL", "TYRESIDE")), key="TYRESIDE")
+
+
+def _check_mf_signs(path, sections, lines, value, fail, *, long_: bool, lat: bool) -> None:
+    """Signs of PAC2002 coefficients fixed by the physics in the ISO/Adams W-axes.
+
+    Evaluated at the scaled nominal load Fz0' = FNOMIN LFZO (dfz = 0, no camber), where the
+    formulas of :mod:`flexpipe.tires.pac2002` reduce to a product of the coefficients.
+    """
+    if lat:
+        # Ky = PKY1 Fz0' sin(2 atan(Fz/(PKY2 Fz0'))) LKY has the sign of PKY1 PKY2 at every
+        # load (LKY > 0 is checked).  In the W-axes a positive slip angle (contact patch
+        # moving to +y) gives a negative Fy, so Ky < 0: every PAC2002 fit has PKY1 < 0
+        # (about -10 to -25) and PKY2 > 0 (the load ratio at which |Ky| peaks, about 1-4).
+        # A wrong sign reverses every side force.
+        pky1 = value("LATERAL_COEFFICIENTS", "PKY1")
+        pky2 = value("LATERAL_COEFFICIENTS", "PKY2")
+        if pky1 and pky2 and pky1 * pky2 > 0.0:
+            fz0 = (value("VERTICAL", "FNOMIN") or 0.0) * (
+                value("SCALING_COEFFICIENTS", "LFZO") or 1.0)
+            ky = pky1 * fz0 * math.sin(2.0 * math.atan(1.0 / pky2)) * (
+                value("SCALING_COEFFICIENTS", "LKY") or 1.0)
+            key, v = ("PKY1", pky1) if pky2 > 0.0 else ("PKY2", pky2)
+            fail("LATERAL_COEFFICIENTS", key, v,
+                 "PKY1 < 0 with PKY2 > 0 (got PKY1 = "
+                 f"{pky1:g}, PKY2 = {pky2:g}: cornering stiffness Ky = {ky:+.4g} N/rad at the "
+                 "nominal load; in the ISO/Adams W-axes of PAC2002 a positive slip angle gives "
+                 "a negative Fy, so Ky must be < 0; was the sign flipped or the file fitted in "
+                 "another axis system?)")
+        # pneumatic trail t = Dt cos(...) with Dt = Fz QDZ1 R0/Fz0' LTR at the nominal load:
+        # the trail lies behind the contact centre, so the aligning moment turns the wheel
+        # back towards zero slip angle (fits: QDZ1 about 0.05-0.2); < 0 reverses Mz
+        v = value("ALIGNING_COEFFICIENTS", "QDZ1")
+        if v is not None and v < 0.0:
+            fail("ALIGNING_COEFFICIENTS", "QDZ1", v, ">= 0 (peak pneumatic trail / R0 at the "
+                 "nominal load, about 0.05-0.2; a negative trail reverses the aligning moment)")
+        # sigma_alpha = PTY1 sin(2 atan(Fz/(PTY2 Fz0'))) R0 LFZO LSGAL: a length, >= 0
+        pty1 = value("LATERAL_COEFFICIENTS", "PTY1")
+        pty2 = value("LATERAL_COEFFICIENTS", "PTY2")
+        if pty1 and pty2 and pty1 * pty2 < 0.0:
+            key, v = ("PTY1", pty1) if pty1 < 0.0 else ("PTY2", pty2)
+            fail("LATERAL_COEFFICIENTS", key, v, "PTY1 > 0 and PTY2 > 0 (the lateral "
+                 "relaxation length PTY1 sin(2 atan(Fz/(PTY2 Fz0))) R0 is a length, about "
+                 "1-3 R0; one of them negative makes it negative)")
+    if long_:
+        # rolling resistance My = -R0 Fz (QSY1 + ...) tanh(Vx/VXLOW) opposes the rolling
+        # (fits: QSY1 about 0.005-0.02); a negative QSY1 would push the wheel forward
+        v = value("ROLLING_COEFFICIENTS", "QSY1")
+        if v is not None and v < 0.0:
+            fail("ROLLING_COEFFICIENTS", "QSY1", v, ">= 0 (rolling resistance coefficient, "
+                 "about 0.005-0.02; a negative value drives the wheel instead of braking it)")
+        # sigma_kappa = Fz0' PTX1 R0/FNOMIN LSGKP at the nominal load: a length, >= 0
+        # (0 = no relaxation data)
+        v = value("LONGITUDINAL_COEFFICIENTS", "PTX1")
+        if v is not None and v < 0.0:
+            fail("LONGITUDINAL_COEFFICIENTS", "PTX1", v, ">= 0 (longitudinal relaxation "
+                 "length / R0 at the nominal load, about 0.5-3; 0 means no relaxation data)")
 
 
 def _check_load_curve(path, table) -> None:

@@ -96,6 +96,7 @@ def cases():
         ("dx_m", "1e-9", "error")], [("s0_m", "s_0_m")])
     yield from _toml_cases("road", "harmonic", harmonic, [
         ("amplitude_m", "inf", "error"), ("wavelength_m", "-5.0", "error"),
+        ("amplitude_m", "10.0", "error"),               # 10 mm written as 10 (metres)
         ("length_m", "-100.0", "error")], [("amplitude_m", "amplitude")])
     extra = iso.replace("[road]", "[road]\ncoherence = 2.0")
     yield "road_iso_coherence_2", "road_coh.toml", extra.encode(), "error"
@@ -133,6 +134,9 @@ def cases():
                        ("semicolons", "1.0;0.0;0.0"), ("unit_suffix", "1.0m,0.0,0.0"),
                        ("decreasing", "-5.0,0.0,0.0"), ("empty_field", "1.0,,0.0")):
         yield f"road_csv_{label}", "road_bad.csv", csv_row(2, row), "error"
+    mm = [",".join([r.split(",")[0]] + [f"{float(v) * 1e3:g}" for v in r.split(",")[1:]])
+          if r[:1].isdigit() else r for r in rows]
+    yield "road_csv_millimetres", "road_mm.csv", ("\n".join(mm) + "\n").encode(), "error"
     yield "road_csv_duplicate_distance", "road_dup.csv", csv_row(2, rows[data_at + 1]), "error"
     yield "road_csv_truncated_line", "road_cut.csv", (csv.rstrip("\n") + "\n40.0,0.0")\
         .encode(), "error"

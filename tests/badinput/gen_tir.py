@@ -100,9 +100,18 @@ def cases():
                        ("VERTICAL_DAMPING", "-250"), ("FZMAX", "-10000"), ("FZMAX", "0"),
                        ("FZMIN", "20000"), ("KPUMIN", "2.0"), ("KPUMIN", "0.5"),
                        ("KPUMAX", "-0.5"), ("ALPMAX", "-0.1"), ("ALPMAX", "3.0"),
-                       ("CAMMIN", "1.0")):
-        yield f"range_{key}_{value}", f"range_{key}.tir", _set(base, key, value).encode(), \
-            "error"
+                       ("CAMMIN", "1.0"),
+                       # signs fixed by the physics (ISO/Adams W-axes): Fx = 0 at any slip,
+                       # reversed side force, misspelt or unknown mounting side
+                       ("PKX1", "0.0"), ("PKX1", "-21.0"), ("PKY1", "18.0"),
+                       ("PCX1", "-1.6"), ("PDY1", "-1.05"), ("QSY1", "-0.01"),
+                       ("TYRESIDE", "'RIGTH'"), ("TYRESIDE", "'MIDDLE'")):
+        yield f"range_{key}_{value.strip(chr(39))}", f"range_{key}.tir", _set(
+            base, key, value).encode(), "error"
+    for side in ("'LEFT'", "'right'", "'Symmetric'"):
+        yield f"ok_tyreside_{side.strip(chr(39))}", "side.tir", _set(
+            base, "TYRESIDE", side).encode(), "ok"
+    yield "missing_PKX1", "missing_PKX1.tir", _drop(base, "PKX1").encode(), "error"
     yield "range_LCZ_0", "range_LCZ.tir", base.replace(
         "[SCALING_COEFFICIENTS]", "[SCALING_COEFFICIENTS]\nLCZ = 0").encode(), "error"
     # ---- wrong types
