@@ -22,3 +22,23 @@ def test_info_missing_body_is_a_one_line_error(capsys, tmp_path):
     assert main(["info", str(tmp_path / "nope.npz")]) == 2
     err = capsys.readouterr().err
     assert "nope.npz" in err and "Traceback" not in err
+
+
+def test_info_on_a_cut_deck_is_a_one_line_error(capsys, tmp_path):
+    p = tmp_path / "cut.bdf"
+    p.write_bytes(BRACKET.read_bytes()[:2000])
+    assert main(["info", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    assert "cut.bdf, line 41: GRID* 20" in err and "cut short" in err
+
+
+def test_info_text_of_an_empty_mesh():
+    import numpy as np
+
+    from flexpipe.cli_info import mesh_text
+    from flexpipe.mesh import Mesh
+
+    text = mesh_text(Mesh(points=np.zeros((0, 3)), blocks=(), source="empty.msh"))
+    assert text.startswith("empty.msh: 0 nodes") and "empty mesh" in text
+

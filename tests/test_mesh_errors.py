@@ -4,6 +4,8 @@ atomic."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import meshio
 import numpy as np
 import pytest
@@ -230,3 +232,45 @@ def test_binary_decks_name_the_file_and_line(tmp_path, name, kind):
     p.write_bytes(b"$ header\n\x00\x01binary")
     with pytest.raises(MeshError, match=rf"{name.replace('.', '[.]')}, line 2: not an? {kind}"):
         read_mesh(p)
+
+
+BRACKET = Path(__file__).resolve().parents[1] / "meshes" / "bracket.bdf"
+
+
+def test_deck_cut_inside_a_field_names_file_line_and_card(tmp_path):
+    p = tmp_path / "cut.bdf"
+    p.write_bytes(BRACKET.read_bytes()[:2000])   # inside GRID* 20's continuation line
+    with pytest.raises(MeshError, match=r"cut.bdf, line 41: GRID\* 20: the file ends at "
+                                        r"column 15 of line 41.*cut short"):
+        read_mesh(p)
+    p.write_bytes(BRACKET.read_bytes()[:4323])   # inside the name of the 2nd CQUAD4
+    with pytest.raises(MeshError, match=r"cut.bdf, line 89: CQ \?: the file ends.*cut short"):
+        read_mesh(p)
+
+
+def test_deck_with_no_element_names_its_last_card(tmp_path):
+    p = _write(tmp_path, "grids.bdf", _deck(*TET, "PSHELL,1,1,0.002", "MAT1,1,2.1+11,,0.3,7850."))
+    with pytest.raises(MeshError, match=r"grids.bdf, line 7: no element card: the deck has 4 "
+                                        r"GRID\(s\).*last card is MAT1 1 \(line 7\)"):
+        read_mesh(p)
+
+
+def test_continuation_without_its_card_names_the_line(tmp_path):
+    p = _write(tmp_path, "orphan.bdf", "BEGIN BULK\n*                     0.\n" +
+               "\n".join(TET) + "\nENDDATA\n")
+    with pytest.raises(MeshError, match=r"orphan.bdf, line 2: continuation line '\*  *0\.' "
+                                        r"has no card before it"):
+        read_mesh(p)
+
+
+@pytest.mark.parametrize("after, where", [("CTETRA,9,1,1,2,3,4", "line 8 starts a new card "
+                                                                  r"\(CTETRA 9\)"),
+                                          ("", "the bulk data ends there")])
+def test_card_whose_continuation_is_missing_names_the_card(tmp_path, after, where):
+    marked = f"{'CHEXA':<8}{1:>8}{1:>8}" + "".join(f"{g:>8}" for g in range(1, 7)) + "+C1"
+    p = _write(tmp_path, "nocont.bdf", _deck(*TET, "PSOLID,1,1", marked,
+                                            *([after] if after else [])))
+    with pytest.raises(MeshError, match=rf"nocont.bdf, line 7: CHEXA 1: line 7 ends with the "
+                                        rf"continuation marker '\+C1' but {where}"):
+        read_mesh(p)
+
