@@ -42,3 +42,13 @@ def test_info_text_of_an_empty_mesh():
     text = mesh_text(Mesh(points=np.zeros((0, 3)), blocks=(), source="empty.msh"))
     assert text.startswith("empty.msh: 0 nodes") and "empty mesh" in text
 
+
+def test_info_warns_about_a_missing_property(capsys, tmp_path):
+    p = tmp_path / "pid7.bdf"
+    p.write_text(BRACKET.read_text().replace(f"{'CQUAD4':<8}{1:>8}{1:>8}",
+                                             f"{'CQUAD4':<8}{1:>8}{7:>8}"))
+    assert main(["info", str(p)]) in (0, None)
+    cap = capsys.readouterr()
+    assert "PID7" in cap.out
+    assert "element 1 (CQUAD4" in cap.err and "PID 7" in cap.err and "PSHELL" in cap.err
+

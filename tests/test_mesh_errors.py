@@ -274,3 +274,21 @@ def test_card_whose_continuation_is_missing_names_the_card(tmp_path, after, wher
                                         rf"continuation marker '\+C1' but {where}"):
         read_mesh(p)
 
+
+def test_element_with_undefined_property_names_pid_card_and_defined_ids(tmp_path):
+    text = BRACKET.read_text().replace(f"{'CQUAD4':<8}{1:>8}{1:>8}", f"{'CQUAD4':<8}{1:>8}{7:>8}")
+    p = _write(tmp_path, "pid7.bdf", text)
+    with pytest.warns(MeshWarning, match=r"pid7.bdf: element 1 \(CQUAD4, pid7.bdf line 88\) "
+                                         r"refers to PID 7, which has no property card "
+                                         r"\(expected a PSHELL.* card with PID 7; quad property "
+                                         r"ids defined: "
+                                         r"1, 2\)"):
+        mesh = read_mesh(p)
+    assert "PID7" in mesh.cell_sets
+    with pytest.raises(MeshError, match=r"pid7.bdf: element 1 \(CQUAD4.*refers to PID 7.*"
+                                        r"PSHELL.*PID 7; quad property ids defined: 1, 2\); no "
+                                        r"material for 1 quad"):
+        assemble(mesh)
+    with pytest.raises(MeshError, match=r"refers to PID 7.*no positive thickness, e.g. ids \[1\]"):
+        assemble(mesh, STEEL)
+

@@ -1,10 +1,12 @@
 """Card bookkeeping of the Nastran reader (:mod:`flexpipe.mesh.nastran`): which cards
 are read, dropped or refused, the :class:`Deck` that sorts them by kind (duplicate ids are
-errors), and the whole-deck check that a deck has an element."""
+errors), and the whole-deck checks - a deck with no element, elements whose property card
+is missing."""
 
 from __future__ import annotations
 
 import difflib
+import warnings
 from collections import Counter, defaultdict
 from pathlib import Path
 
@@ -15,6 +17,7 @@ from flexpipe.mesh import _nastran_props as nprops
 from flexpipe.mesh._bulk import Card, FastLines
 from flexpipe.mesh._nastran_coords import KINDS as CORD_CARDS
 from flexpipe.mesh._nastran_elements import ELEMENTS
+from flexpipe.mesh.validate import MeshWarning
 
 SUPPORTED = tuple(ELEMENTS) + ("CELAS1", "CELAS2", "CBUSH", "CONM1", "CONM2", "RBE2", "RBE3",
                                "RBAR")
@@ -135,4 +138,20 @@ def require_elements(deck: Deck, fast: FastLines, cards: list[Card], path) -> No
         f"its last card is {last.name}" + (f" {last.label()}" if last.fields else "")
         + f" (line {last.line}) - is the file cut short?", file=str(last.file or path),
         line=last.line)
+
+
+def missing_property(pid: int, user: Card, cell_type: str, props: dict) -> dict:
+    """Warn that element ``user`` refers to property ``pid``, which no card defines, and
+    return the note (``"text"``) that the model-building error repeats (see
+    :func:`flexpipe.mesh.validate.missing_property_note`)."""
+    want = [n for n, kinds in nprops.KIND.items() if cell_type in kinds]
+    have = sorted(k for k, c in props.items() if cell_type in nprops.KIND.get(c.name, ()))
+    want = ", ".join(want[:-1]) + " or " + want[-1] if len(want) > 1 else want[0]
+    text = (f"element {user.label()} ({user.name}, {Path(user.file).name} line {user.line}) "
+            f"refers to PID {pid}, which has no property card (expected a {want} card with "
+            f"PID {pid}; " + (f"{cell_type} property ids defined: {', '.join(map(str, have))})"
+                              if have else f"no {cell_type} property is defined)"))
+    warnings.warn(MeshWarning(f"{user.file}: {text}; its elements get no section or "
+                              "material"), stacklevel=4)
+    return {"text": text, "element": int(user.int(0, "EID")), "line": user.line}
 

@@ -24,6 +24,9 @@ Strictness and tolerance (as Nastran)
   :mod:`flexpipe.mesh._bulk`: a continuation without its card, a continuation marker
   without its continuation, a last line that stops inside a field), and so is a deck
   with no element card.
+* An element whose PID has no property card is read with a warning naming the PID, the
+  card kinds expected and the property ids defined (``Mesh.info["missing_properties"]``);
+  building the model without a material/thickness for it is the error that names them.
 * GRIDs no element uses are accepted with a warning and left out (their DOF would be
   removed by AUTOSPC).
 * Two cards of one kind with the same id (GRID, element, property, material, coordinate
@@ -63,6 +66,7 @@ from flexpipe.mesh._nastran_deck import (  # noqa: F401 - the card lists are pub
     UNSUPPORTED_PROPERTIES,
     Deck,
     check_unique,
+    missing_property,
     require_elements,
 )
 from flexpipe.mesh._nastran_elements import (
@@ -112,7 +116,7 @@ def read_nastran(path) -> Mesh:
     for name in ("GRID", "CQUAD4", "CTRIA3"):
         read[name] += len(fast.lines[name])
     info = {"read": {k: v for k, v in read.items() if v}, "converted": {},
-            "dropped": dict(deck.dropped)}
+            "dropped": dict(deck.dropped), "missing_properties": {}}
 
     # ---- grids: ids, positions in basic (CP), displacement systems (CD)
     slow = deck.grids
@@ -253,8 +257,10 @@ def read_nastran(path) -> Mesh:
                 sections[name] = nprops.conrod_section(user, deck.mats, wtmass)
                 continue
             card = deck.props.get(int(p))
-            if card is None:
-                continue     # the assembler reports cells without section/material
+            if card is None:   # a warning here; an error when the model is built
+                info["missing_properties"].setdefault(str(p), missing_property(
+                    int(p), user, cell_type, deck.props))
+                continue
             if cell_type not in nprops.KIND.get(card.name, ()):
                 raise user.error(f"refers to {card.name} {card.label()} (line {card.line}), "
                                  f"which is not a property of {user.name} elements")
