@@ -18,6 +18,8 @@ def add_arguments(p) -> None:
 
     add_info_arguments(p)
     p.add_argument("--scale", type=float, default=1.0, help="mesh length scale (mesh files)")
+    p.add_argument("--units", help="unit system of a solver deck, e.g. mm-t-s (mesh files; "
+                   "converts lengths, E, rho and masses)")
 
 
 def mesh_text(mesh) -> str:
@@ -76,5 +78,5 @@ def run(args) -> int:
         return 0
     from flexpipe.mesh import read_mesh
 
-    print(mesh_text(read_mesh(path, args.scale)))
+    print(mesh_text(read_mesh(path, args.scale, units=args.units)))
     return 0

@@ -52,3 +52,13 @@ def test_info_warns_about_a_missing_property(capsys, tmp_path):
     assert "PID7" in cap.out
     assert "element 1 (CQUAD4" in cap.err and "PID 7" in cap.err and "PSHELL" in cap.err
 
+
+def test_info_reads_a_deck_in_its_units(capsys, tmp_path):
+    text = BRACKET.read_text()
+    mm = tmp_path / "mm.bdf"     # an mm-t-s material: read with --units
+    mm.write_text(text.replace("210000000000.0", "      210000.0").replace(
+        f"{'*':<8}{'7850.0':>16}", f"{'*':<8}{'7.85e-09':>16}"))
+    assert main(["info", str(mm)]) == 2
+    assert "units='mm-t-s'" in capsys.readouterr().err
+    assert main(["info", str(mm), "--units", "mm-t-s"]) in (0, None)
+    assert "rho=7850" in capsys.readouterr().out

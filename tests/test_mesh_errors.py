@@ -4,6 +4,8 @@ atomic."""
 
 from __future__ import annotations
 
+import re
+import warnings
 from pathlib import Path
 
 import meshio
@@ -292,3 +294,41 @@ def test_element_with_undefined_property_names_pid_card_and_defined_ids(tmp_path
     with pytest.raises(MeshError, match=r"refers to PID 7.*no positive thickness, e.g. ids \[1\]"):
         assemble(mesh, STEEL)
 
+
+def _bracket_with(tmp_path, name, E="210000000000.0", rho="7850.0"):
+    """bracket.bdf (SI) with the MAT1 E and RHO replaced (16-character fields)."""
+    text = BRACKET.read_text().replace(f"{'MAT1*':<8}{1:>16}{'210000000000.0':>16}",
+                                       f"{'MAT1*':<8}{1:>16}{E:>16}")
+    return _write(tmp_path, name, text.replace(f"{'*':<8}{'7850.0':>16}", f"{'*':<8}{rho:>16}"))
+
+
+@pytest.mark.parametrize("E, rho, speed, slip", [
+    ("210000000000.0", "7.85e-09", "5.17e+09", r"RHO looks like t/mm\^3"),
+    ("210000.0", "7850.0", "5.17", "E looks like MPa"),
+    ("210000.0", "7.85e-09", "5.17e+06", r"mm-t-s values.*units='mm-t-s'"),
+    ("210000000000.0", "7.85", "1.64e+05", r"RHO looks like g/cm\^3")])
+def test_material_unit_slip_names_the_card_values_and_slip(tmp_path, E, rho, speed, slip):
+    p = _bracket_with(tmp_path, "slip.bdf", E, rho)
+    values = re.escape(f"E = {float(E):g} and RHO = {float(rho):g} ")
+    with pytest.raises(MeshError, match=rf"slip.bdf, line 132: MAT1 1: {values}.*sqrt\(E/RHO\) "
+                                        rf"= {re.escape(speed)} m/s; valid: 10 to 50000 "
+                                        rf"m/s.*{slip}"):
+        read_mesh(p)
+
+
+def test_material_check_follows_the_stated_units(tmp_path):
+    mm = _bracket_with(tmp_path, "mm.bdf", "210000.0", "7.85e-09")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mesh = read_mesh(mm, units="mm-t-s")      # consistent once converted: no warning
+    assert mesh.sections["PID1"]["rho"] == pytest.approx(7850.0, rel=1e-12)
+    with pytest.warns(MeshWarning, match=r"MAT1 1: .*5.17 m/s.*look like SI.*check units 'mm-t-s'"):
+        read_mesh(BRACKET, units="mm-t-s")       # stated explicitly: a warning only
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in BRACKET.parent.iterdir()
+                                        if p.suffix in (".bdf", ".msh")))
+def test_shipped_meshes_pass_the_material_check(name):
+    with warnings.catch_warnings():
+        warnings.filterwarnings("error", message=".*wave speed")
+        read_mesh(BRACKET.parent / name)

@@ -1,13 +1,15 @@
 """Card bookkeeping of the Nastran reader (:mod:`flexpipe.mesh.nastran`): which cards
 are read, dropped or refused, the :class:`Deck` that sorts them by kind (duplicate ids are
 errors), and the whole-deck checks - a deck with no element, elements whose property card
-is missing."""
+is missing, the materials (MAT1/MAT8) the model uses (for :mod:`flexpipe.mesh.units`'
+plausibility check of E / RHO)."""
 
 from __future__ import annotations
 
 import difflib
 import warnings
 from collections import Counter, defaultdict
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
@@ -155,3 +157,41 @@ def missing_property(pid: int, user: Card, cell_type: str, props: dict) -> dict:
                               "material"), stacklevel=4)
     return {"text": text, "element": int(user.int(0, "EID")), "line": user.line}
 
+
+class Looked(Mapping):
+    """Read-only view of ``table`` that records the keys looked up (the cards in use)."""
+
+    def __init__(self, table: Mapping):
+        self.table, self.used = table, set()
+
+    def __getitem__(self, key):
+        value = self.table[key]
+        self.used.add(key)
+        return value
+
+    def __iter__(self):
+        return iter(self.table)
+
+    def __len__(self):
+        return len(self.table)
+
+
+def material_records(mats: Looked) -> dict:
+    """``{"MAT1 <mid>": (E, RHO, file, line)}`` of the MAT1/MAT8 cards the model uses
+    (MAT8: E1), file units, for the E / RHO plausibility check
+    (:func:`flexpipe.mesh.units.check_wave_speeds`)."""
+    out = {}
+    for mid in sorted(mats.used):
+        c = mats.table[mid]
+        if c.name == "MAT8":
+            E, rho = c.real(1, "E1", None), c.real(7, "RHO", None)
+        elif c.name == "MAT1":
+            E, G, nu, rho = (c.real(k, n, None) for k, n in ((1, "E"), (2, "G"), (3, "NU"),
+                                                             (4, "RHO")))
+            if E is None and G is not None and nu is not None:
+                E = 2.0 * (1.0 + nu) * G
+        else:
+            continue
+        if E and rho:
+            out[f"{c.name} {mid}"] = (float(E), float(rho), c.file, c.line)
+    return out

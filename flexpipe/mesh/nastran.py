@@ -27,6 +27,8 @@ Strictness and tolerance (as Nastran)
 * An element whose PID has no property card is read with a warning naming the PID, the
   card kinds expected and the property ids defined (``Mesh.info["missing_properties"]``);
   building the model without a material/thickness for it is the error that names them.
+* The MAT1/MAT8 cards the model uses go to ``Mesh.info["materials"]`` for the E / RHO
+  unit-consistency check of :func:`flexpipe.mesh.units.check_wave_speeds`.
 * GRIDs no element uses are accepted with a warning and left out (their DOF would be
   removed by AUTOSPC).
 * Two cards of one kind with the same id (GRID, element, property, material, coordinate
@@ -65,7 +67,9 @@ from flexpipe.mesh._nastran_deck import (  # noqa: F401 - the card lists are pub
     UNSUPPORTED_ELEMENTS,
     UNSUPPORTED_PROPERTIES,
     Deck,
+    Looked,
     check_unique,
+    material_records,
     missing_property,
     require_elements,
 )
@@ -117,6 +121,7 @@ def read_nastran(path) -> Mesh:
         read[name] += len(fast.lines[name])
     info = {"read": {k: v for k, v in read.items() if v}, "converted": {},
             "dropped": dict(deck.dropped), "missing_properties": {}}
+    mats = Looked(deck.mats)                 # records the materials the model uses
 
     # ---- grids: ids, positions in basic (CP), displacement systems (CD)
     slow = deck.grids
@@ -254,7 +259,7 @@ def read_nastran(path) -> Mesh:
             cell_sets.setdefault(name, {})[bi] = members
             user = user_of(int(members[0]))
             if p < 0:
-                sections[name] = nprops.conrod_section(user, deck.mats, wtmass)
+                sections[name] = nprops.conrod_section(user, mats, wtmass)
                 continue
             card = deck.props.get(int(p))
             if card is None:   # a warning here; an error when the model is built
@@ -268,9 +273,9 @@ def read_nastran(path) -> Mesh:
                 raise card.error(f"{card.name} is not supported; give an equivalent PSHELL "
                                  "or pass thickness and material to assemble() for this PID")
             if name not in sections:
-                sections[name] = (nprops.composite(card, deck.mats, wtmass)
+                sections[name] = (nprops.composite(card, mats, wtmass)
                                   if card.name in ("PCOMP", "PCOMPG")
-                                  else nprops.section(card, deck.mats, wtmass))
+                                  else nprops.section(card, mats, wtmass))
 
     # ---- springs
     pelas = {}
@@ -345,6 +350,7 @@ def read_nastran(path) -> Mesh:
     if ps:
         dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
     solution = extra.solution(case, deck, dof_sets, path)
+    info["materials"], info["wtmass"] = material_records(mats), wtmass
     if solution.get("spc") in spc_dirs:
         solution["spc_directions"] = spc_dirs[solution["spc"]]
 
