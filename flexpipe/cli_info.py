@@ -18,15 +18,18 @@ def add_arguments(p) -> None:
 
     add_info_arguments(p)
     p.add_argument("--scale", type=float, default=1.0, help="mesh length scale (mesh files)")
+    p.add_argument("--units", help="unit system of a solver deck, e.g. mm-t-s (mesh files; "
+                   "converts lengths, E, rho and masses)")
 
 
 def mesh_text(mesh) -> str:
-    """Human-readable summary of a :class:`~flexpipe.mesh.Mesh`."""
-    lo, hi = mesh.points.min(axis=0), mesh.points.max(axis=0)
+    """Human-readable summary of a :class:`~flexpipe.mesh.Mesh` (an empty one included)."""
     def fmt(v):
         return tuple(round(float(c), 4) for c in v)
 
-    lines = [f"{mesh.source}: {mesh.n_nodes} nodes, bounding box {fmt(lo)} .. {fmt(hi)} m"]
+    box = (f"bounding box {fmt(mesh.points.min(axis=0))} .. {fmt(mesh.points.max(axis=0))} m"
+           if mesh.n_nodes else "no bounding box (empty mesh)")
+    lines = [f"{mesh.source}: {mesh.n_nodes} nodes, {box}"]
     for b in mesh.blocks:
         lines.append(f"  {b.type:<10} {len(b):>9} elements")
     if mesh.node_sets:
@@ -75,5 +78,5 @@ def run(args) -> int:
         return 0
     from flexpipe.mesh import read_mesh
 
-    print(mesh_text(read_mesh(path, args.scale)))
+    print(mesh_text(read_mesh(path, args.scale, units=args.units)))
     return 0

@@ -87,6 +87,8 @@ def _material(args):
 
 
 def _check_file_materials(mesh) -> None:
+    from flexpipe.mesh.validate import missing_property_note
+
     for bi, b in enumerate(mesh.blocks):
         if b.type in ("vertex", "spring", "spring1") or len(b) == 0:
             continue
@@ -96,10 +98,11 @@ def _check_file_materials(mesh) -> None:
                 covered[mesh.cell_sets[name][bi]] = True
         if not covered.all():
             ids = b.ids[~covered][:5].tolist()
+            note = missing_property_note(mesh, bi, np.flatnonzero(~covered))
             raise InputError(
-                f"{int((~covered).sum())} {b.type} element(s) have no material in the file "
-                f"(e.g. ids {ids}); give --material steel|aluminium|magnesium or --E --nu --rho",
-                file=mesh.source)
+                f"{note}{int((~covered).sum())} {b.type} element(s) have no material in the "
+                f"file (e.g. ids {ids}); {'define that property or ' if note else ''}give "
+                "--material steel|aluminium|magnesium or --E --nu --rho", file=mesh.source)
 
 
 def run(args) -> int:

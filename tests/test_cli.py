@@ -175,3 +175,16 @@ def test_corrupt_mesh_is_a_one_line_error(tmp_path, capsys):
     err = cap.err.strip().splitlines()
     assert len(err) == 1 and "broken.vtu, line 1: not well-formed XML" in err[0]
     assert cap.out == ""
+
+
+def test_modes_names_the_missing_property_card(tmp_path, capsys):
+    text = (SAMPLES / "bracket.bdf").read_text().replace(f"{'CQUAD4':<8}{1:>8}{1:>8}",
+                                                         f"{'CQUAD4':<8}{1:>8}{7:>8}")
+    p = tmp_path / "pid7.bdf"
+    p.write_text(text)
+    assert cli.main(["modes", str(p), "-q", "-o", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and not (tmp_path / "out").exists()
+    (line,) = [ln for ln in err.splitlines() if "error:" in ln]
+    assert "pid7.bdf" in line and "element 1 (CQUAD4" in line and "PID 7" in line
+    assert "PSHELL" in line and "property ids defined: 1, 2" in line

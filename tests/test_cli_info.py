@@ -22,3 +22,43 @@ def test_info_missing_body_is_a_one_line_error(capsys, tmp_path):
     assert main(["info", str(tmp_path / "nope.npz")]) == 2
     err = capsys.readouterr().err
     assert "nope.npz" in err and "Traceback" not in err
+
+
+def test_info_on_a_cut_deck_is_a_one_line_error(capsys, tmp_path):
+    p = tmp_path / "cut.bdf"
+    p.write_bytes(BRACKET.read_bytes()[:2000])
+    assert main(["info", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    assert "cut.bdf, line 41: GRID* 20" in err and "cut short" in err
+
+
+def test_info_text_of_an_empty_mesh():
+    import numpy as np
+
+    from flexpipe.cli_info import mesh_text
+    from flexpipe.mesh import Mesh
+
+    text = mesh_text(Mesh(points=np.zeros((0, 3)), blocks=(), source="empty.msh"))
+    assert text.startswith("empty.msh: 0 nodes") and "empty mesh" in text
+
+
+def test_info_warns_about_a_missing_property(capsys, tmp_path):
+    p = tmp_path / "pid7.bdf"
+    p.write_text(BRACKET.read_text().replace(f"{'CQUAD4':<8}{1:>8}{1:>8}",
+                                             f"{'CQUAD4':<8}{1:>8}{7:>8}"))
+    assert main(["info", str(p)]) in (0, None)
+    cap = capsys.readouterr()
+    assert "PID7" in cap.out
+    assert "element 1 (CQUAD4" in cap.err and "PID 7" in cap.err and "PSHELL" in cap.err
+
+
+def test_info_reads_a_deck_in_its_units(capsys, tmp_path):
+    text = BRACKET.read_text()
+    mm = tmp_path / "mm.bdf"     # an mm-t-s material: read with --units
+    mm.write_text(text.replace("210000000000.0", "      210000.0").replace(
+        f"{'*':<8}{'7850.0':>16}", f"{'*':<8}{'7.85e-09':>16}"))
+    assert main(["info", str(mm)]) == 2
+    assert "units='mm-t-s'" in capsys.readouterr().err
+    assert main(["info", str(mm), "--units", "mm-t-s"]) in (0, None)
+    assert "rho=7850" in capsys.readouterr().out

@@ -66,6 +66,17 @@ def test_load_rejects_bad_files(tmp_path, bar_body):
         flexpipe.load_body(tmp_path / "trunc.npz")
 
 
+
+@pytest.mark.parametrize("content", [b"hello", b"", b"$ written by flexpipe\nGRID*"])
+def test_load_says_a_non_zip_file_is_not_an_npz_archive(tmp_path, content):
+    path = tmp_path / "text.npz"
+    path.write_bytes(content)
+    with pytest.raises(InputError) as err:
+        flexpipe.load_body(path)
+    msg = str(err.value)
+    assert "text.npz" in msg and "not a .npz (zip) archive" in msg
+    assert "flexpipe reduce" in msg and "pickle" not in msg
+
 def test_invariants_match_exudyn_interface(bar_body):
     from exudyn.FEM import FEMinterface, ObjectFFRFreducedOrderInterface
 

@@ -4,6 +4,10 @@ atomic."""
 
 from __future__ import annotations
 
+import re
+import warnings
+from pathlib import Path
+
 import meshio
 import numpy as np
 import pytest
@@ -230,3 +234,101 @@ def test_binary_decks_name_the_file_and_line(tmp_path, name, kind):
     p.write_bytes(b"$ header\n\x00\x01binary")
     with pytest.raises(MeshError, match=rf"{name.replace('.', '[.]')}, line 2: not an? {kind}"):
         read_mesh(p)
+
+
+BRACKET = Path(__file__).resolve().parents[1] / "meshes" / "bracket.bdf"
+
+
+def test_deck_cut_inside_a_field_names_file_line_and_card(tmp_path):
+    p = tmp_path / "cut.bdf"
+    p.write_bytes(BRACKET.read_bytes()[:2000])   # inside GRID* 20's continuation line
+    with pytest.raises(MeshError, match=r"cut.bdf, line 41: GRID\* 20: the file ends at "
+                                        r"column 15 of line 41.*cut short"):
+        read_mesh(p)
+    p.write_bytes(BRACKET.read_bytes()[:4323])   # inside the name of the 2nd CQUAD4
+    with pytest.raises(MeshError, match=r"cut.bdf, line 89: CQ \?: the file ends.*cut short"):
+        read_mesh(p)
+
+
+def test_deck_with_no_element_names_its_last_card(tmp_path):
+    p = _write(tmp_path, "grids.bdf", _deck(*TET, "PSHELL,1,1,0.002", "MAT1,1,2.1+11,,0.3,7850."))
+    with pytest.raises(MeshError, match=r"grids.bdf, line 7: no element card: the deck has 4 "
+                                        r"GRID\(s\).*last card is MAT1 1 \(line 7\)"):
+        read_mesh(p)
+
+
+def test_continuation_without_its_card_names_the_line(tmp_path):
+    p = _write(tmp_path, "orphan.bdf", "BEGIN BULK\n*                     0.\n" +
+               "\n".join(TET) + "\nENDDATA\n")
+    with pytest.raises(MeshError, match=r"orphan.bdf, line 2: continuation line '\*  *0\.' "
+                                        r"has no card before it"):
+        read_mesh(p)
+
+
+@pytest.mark.parametrize("after, where", [("CTETRA,9,1,1,2,3,4", "line 8 starts a new card "
+                                                                  r"\(CTETRA 9\)"),
+                                          ("", "the bulk data ends there")])
+def test_card_whose_continuation_is_missing_names_the_card(tmp_path, after, where):
+    marked = f"{'CHEXA':<8}{1:>8}{1:>8}" + "".join(f"{g:>8}" for g in range(1, 7)) + "+C1"
+    p = _write(tmp_path, "nocont.bdf", _deck(*TET, "PSOLID,1,1", marked,
+                                            *([after] if after else [])))
+    with pytest.raises(MeshError, match=rf"nocont.bdf, line 7: CHEXA 1: line 7 ends with the "
+                                        rf"continuation marker '\+C1' but {where}"):
+        read_mesh(p)
+
+
+def test_element_with_undefined_property_names_pid_card_and_defined_ids(tmp_path):
+    text = BRACKET.read_text().replace(f"{'CQUAD4':<8}{1:>8}{1:>8}", f"{'CQUAD4':<8}{1:>8}{7:>8}")
+    p = _write(tmp_path, "pid7.bdf", text)
+    with pytest.warns(MeshWarning, match=r"pid7.bdf: element 1 \(CQUAD4, pid7.bdf line 88\) "
+                                         r"refers to PID 7, which has no property card "
+                                         r"\(expected a PSHELL.* card with PID 7; quad property "
+                                         r"ids defined: "
+                                         r"1, 2\)"):
+        mesh = read_mesh(p)
+    assert "PID7" in mesh.cell_sets
+    with pytest.raises(MeshError, match=r"pid7.bdf: element 1 \(CQUAD4.*refers to PID 7.*"
+                                        r"PSHELL.*PID 7; quad property ids defined: 1, 2\); no "
+                                        r"material for 1 quad"):
+        assemble(mesh)
+    with pytest.raises(MeshError, match=r"refers to PID 7.*no positive thickness, e.g. ids \[1\]"):
+        assemble(mesh, STEEL)
+
+
+def _bracket_with(tmp_path, name, E="210000000000.0", rho="7850.0"):
+    """bracket.bdf (SI) with the MAT1 E and RHO replaced (16-character fields)."""
+    text = BRACKET.read_text().replace(f"{'MAT1*':<8}{1:>16}{'210000000000.0':>16}",
+                                       f"{'MAT1*':<8}{1:>16}{E:>16}")
+    return _write(tmp_path, name, text.replace(f"{'*':<8}{'7850.0':>16}", f"{'*':<8}{rho:>16}"))
+
+
+@pytest.mark.parametrize("E, rho, speed, slip", [
+    ("210000000000.0", "7.85e-09", "5.17e+09", r"RHO looks like t/mm\^3"),
+    ("210000.0", "7850.0", "5.17", "E looks like MPa"),
+    ("210000.0", "7.85e-09", "5.17e+06", r"mm-t-s values.*units='mm-t-s'"),
+    ("210000000000.0", "7.85", "1.64e+05", r"RHO looks like g/cm\^3")])
+def test_material_unit_slip_names_the_card_values_and_slip(tmp_path, E, rho, speed, slip):
+    p = _bracket_with(tmp_path, "slip.bdf", E, rho)
+    values = re.escape(f"E = {float(E):g} and RHO = {float(rho):g} ")
+    with pytest.raises(MeshError, match=rf"slip.bdf, line 132: MAT1 1: {values}.*sqrt\(E/RHO\) "
+                                        rf"= {re.escape(speed)} m/s; valid: 10 to 50000 "
+                                        rf"m/s.*{slip}"):
+        read_mesh(p)
+
+
+def test_material_check_follows_the_stated_units(tmp_path):
+    mm = _bracket_with(tmp_path, "mm.bdf", "210000.0", "7.85e-09")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        mesh = read_mesh(mm, units="mm-t-s")      # consistent once converted: no warning
+    assert mesh.sections["PID1"]["rho"] == pytest.approx(7850.0, rel=1e-12)
+    with pytest.warns(MeshWarning, match=r"MAT1 1: .*5.17 m/s.*look like SI.*check units 'mm-t-s'"):
+        read_mesh(BRACKET, units="mm-t-s")       # stated explicitly: a warning only
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in BRACKET.parent.iterdir()
+                                        if p.suffix in (".bdf", ".msh")))
+def test_shipped_meshes_pass_the_material_check(name):
+    with warnings.catch_warnings():
+        warnings.filterwarnings("error", message=".*wave speed")
+        read_mesh(BRACKET.parent / name)

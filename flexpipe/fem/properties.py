@@ -16,6 +16,7 @@ import numpy as np
 from flexpipe.errors import InputError, MeshError
 from flexpipe.fem.material import Material
 from flexpipe.mesh.mesh import Mesh
+from flexpipe.mesh.validate import missing_property_note
 
 
 @dataclass(frozen=True)
@@ -120,6 +121,7 @@ def material_arrays(mesh, bi, block, material):
     if missing:
         ids = block.ids[missing[:10]].tolist()
         raise MeshError(
+            f"{missing_property_note(mesh, bi, missing)}"
             f"no material for {len(missing)} {block.type} element(s), e.g. ids {ids}; pass "
             "material=Material(E, nu, rho) or a mapping {cell_set: Material, 'default': ...}",
             file=mesh.source or None,
@@ -139,6 +141,7 @@ def shell_props(mesh, bi, block, thickness):
     if bad:
         ids = block.ids[bad[:10]].tolist()
         raise MeshError(
+            f"{missing_property_note(mesh, bi, bad)}"
             f"{len(bad)} shell ({block.type}) element(s) have no positive thickness, e.g. ids "
             f"{ids}; pass thickness=<m> (or a mapping by cell set) or give PSHELL T",
             file=mesh.source or None,
@@ -205,6 +208,7 @@ def beam_props(mesh, bi, block, beam_section):
     if bad:
         ids = block.ids[bad[:10]].tolist()
         raise MeshError(
+            f"{missing_property_note(mesh, bi, bad)}"
             f"{len(bad)} beam element(s) have no cross-section, e.g. ids {ids}; pass "
             "beam_section=BeamSection(A, Iy, Iz, J) (or a mapping by cell set) or give PBAR",
             file=mesh.source or None,

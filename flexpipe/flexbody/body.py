@@ -330,6 +330,12 @@ def _reason(exc: BaseException) -> str:
 
 
 def _load(path: Path) -> FlexBody:
+    with path.open("rb") as fh:   # a zip starts with a local header or (empty) end record
+        head = fh.read(16)
+    if not head.startswith((b"PK\x03\x04", b"PK\x05\x06", np.lib.format.MAGIC_PREFIX)):
+        what = f"it starts with {head!r}" if head else "the file is empty"
+        raise InputError(f"not a .npz (zip) archive ({what}); expected a flexpipe body file "
+                         "written by 'flexpipe reduce' (FlexBody.save)", file=path)
     try:
         data = np.load(path, allow_pickle=False)
     except Exception as exc:  # noqa: BLE001 - any reader failure is a bad file

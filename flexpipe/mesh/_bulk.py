@@ -5,6 +5,11 @@ Handles free field (commas), small field (8 characters), large field (16 charact
 ``*``), ``$`` comments, executive/case control before ``BEGIN BULK``, ``ENDDATA`` and
 ``INCLUDE 'file'`` (relative to the including file).  Numbers may use Nastran's implied
 exponent (``7.85-9``, ``1.+5``) or ``D`` exponents.
+
+A deck cut short is an error naming the file, the line and the card (:func:`cut_checks`):
+a continuation line with no card before it, a continuation marker in field 10 with no
+continuation line after it, or - without ``ENDDATA`` - a last line that stops, without a
+newline, inside a fixed-format field.
 """
 
 from __future__ import annotations
@@ -166,6 +171,94 @@ def read_deck_text(path: Path, stack, *, include: str, kind: str) -> str:
     return text
 
 
+def _card_of(lines: list[str], i: int) -> str:
+    """``"GRID* 20"``: name and id of the card that physical line ``i`` belongs to."""
+    for j in range(i, -1, -1):
+        s = lines[j].split("$", 1)[0].rstrip().expandtabs(8)
+        if s.strip():
+            first, data = _split(s)
+            if first and first[0] not in "+*":
+                return f"{first.upper()} {data[0] if data and data[0] else '?'}"
+    return "?"
+
+
+def _marker(s: str) -> str:
+    """The continuation marker of card line ``s`` ('' if none): columns 73-80 of a fixed
+    field line, a last free field after the data fields that starts with ``+`` or ``*``."""
+    if "," not in s:
+        return s[72:80].strip()
+    parts = [p.strip() for p in s.split(",")]
+    width = 4 if parts[0].endswith("*") or parts[0].startswith("*") else 8
+    return parts[-1] if len(parts) > width + 1 and parts[-1][:1] in ("+", "*") else ""
+
+
+def _mid_field(s: str) -> tuple[int, int, int] | None:
+    """``(field number on the line, first and last column)`` when fixed-format line ``s``
+    stops inside a field that starts with a blank - its right-justified value is missing
+    or cut; None otherwise.  A complete line of a right-justified writer ends at a field
+    boundary; a left-justified value starts its field.  A line of only a card name (or
+    continuation mark) is cut too: every bulk-data card but ENDDATA has data fields."""
+    if "," in s or "\t" in s or "$" in s or not s.strip() \
+            or s.lstrip()[:7].upper() == "INCLUDE":
+        return None
+    if len(s) <= 8:
+        return 1, 1, 8
+    first = s[:8].strip()
+    width = 16 if first.endswith("*") or first.startswith("*") else 8
+    k = (len(s) - 8) % width
+    if k == 0 or s[len(s) - k] != " ":
+        return None
+    return 2 + (len(s) - 8) // width, len(s) - k + 1, len(s) - k + width
+
+
+def _is_continuation(s: str) -> bool:
+    """True when card line ``s`` continues the card before it (first field blank, + or *)."""
+    first = s.split(",", 1)[0].strip() if "," in s else s.expandtabs(8)[:8].strip()
+    return first == "" or first[0] in "+*"
+
+
+def cut_checks(lines: list[str], start: int, stop: int, *, ended: bool, newline: bool,
+               path: Path) -> None:
+    """Raise a :class:`MeshError` (file, line, card) if bulk-data lines ``start:stop`` of
+    ``path`` look cut short (see the module docstring).
+
+    This reader joins a continuation to the card line right before it, so a field-10
+    marker whose next card line is not a continuation means a missing (or misplaced)
+    continuation: the card would be read with its last fields blank.
+    """
+    def code(i):
+        return lines[i].split("$", 1)[0].rstrip()
+
+    def marked(ln):            # quick pre-filter: columns 73-80 used, or a last "+.." item
+        return len(ln) > 72 or ("," in ln and ln.rsplit(",", 1)[1].lstrip()[:1] in ("+", "*"))
+
+    for i in [i for i in range(start, stop) if marked(lines[i])]:
+        m = _marker(code(i).expandtabs(8))
+        if not m:
+            continue
+        j = next((j for j in range(i + 1, stop) if code(j).strip()), None)
+        if j is None:
+            raise MeshError(
+                f"{_card_of(lines, i)}: line {i + 1} ends with the continuation marker '{m}' "
+                f"but the {'bulk data' if ended else 'file'} ends there: its continuation "
+                "line is missing (the file is cut short?)", file=str(path), line=i + 1)
+        if not _is_continuation(code(j)):
+            raise MeshError(
+                f"{_card_of(lines, i)}: line {i + 1} ends with the continuation marker '{m}' "
+                f"but line {j + 1} starts a new card ({_card_of(lines, j)}): its "
+                "continuation line is missing or misplaced (it must follow its card "
+                "directly)", file=str(path), line=i + 1)
+    last = stop - 1
+    cut = _mid_field(lines[last]) if last >= start and not ended and not newline else None
+    if cut is not None:
+        raise MeshError(
+            f"{_card_of(lines, last)}: the file ends at column {len(lines[last])} of line "
+            f"{last + 1}, inside field {cut[0]} of the line (columns {cut[1]}-{cut[2]}, "
+            "right-justified: its value is missing or cut), with no newline and no "
+            "ENDDATA: the file is cut short; write it again or restore its end",
+            file=str(path), line=last + 1)
+
+
 def read_cards(path: Path, *, fast: FastLines | None = None, control: list | None = None,
                _stack: tuple = (), _seq: list | None = None) -> list[Card]:
     """All bulk-data cards of ``path`` (INCLUDE files inlined), in file order.
@@ -205,6 +298,7 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
     current: Card | None = None
     last = -1                    # index of the last card line read card by card
     includes = []
+    stop = None                  # index of the ENDDATA line
     for i in others:
         if fast_at:              # a fast line since the last card: it is the current card
             p = bisect.bisect_left(fast_at, i) - 1
@@ -222,6 +316,7 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
         if head == "ENDDATA":
             for j in fast_at[bisect.bisect_left(fast_at, i):]:
                 is_fast[j] = 0
+            stop = i
             break
         if head == "INCLUDE":
             current, last = None, -1
@@ -235,8 +330,9 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
                 current = Card(f0.upper(), d0, fpath, last + 1, base + last)
                 cards.append(current)
             if current is None:
-                raise MeshError("continuation line without a preceding card",
-                                file=str(path), line=i + 1)
+                raise MeshError(f"continuation line '{s.strip()[:40]}' has no card before "
+                                "it: the file starts inside a card (cut?), or the card's "
+                                "first line is missing", file=str(path), line=i + 1)
             current.fields.extend(data)
             continue
         current = Card(first.rstrip("*").upper(), data, fpath, i + 1, base + i)
@@ -244,6 +340,8 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
             current.preceding = lines[i - 1]
         last = i
         cards.append(current)
+    cut_checks(lines, start, len(lines) if stop is None else stop, ended=stop is not None,
+               newline=text.endswith(("\n", "\r")), path=path)
     if fast_at:
         kept = [i for i in fast_at if is_fast[i]]
         code = [lines[i][1] for i in kept]           # R: GRID, Q: CQUAD4, T: CTRIA3

@@ -20,6 +20,15 @@ set-up: see :mod:`flexpipe.mesh._nastran_extra` (``SPC``,
 
 Strictness and tolerance (as Nastran)
 -------------------------------------
+* A deck cut short is an error naming the file, the line and the card (see
+  :mod:`flexpipe.mesh._bulk`: a continuation without its card, a continuation marker
+  without its continuation, a last line that stops inside a field), and so is a deck
+  with no element card.
+* An element whose PID has no property card is read with a warning naming the PID, the
+  card kinds expected and the property ids defined (``Mesh.info["missing_properties"]``);
+  building the model without a material/thickness for it is the error that names them.
+* The MAT1/MAT8 cards the model uses go to ``Mesh.info["materials"]`` for the E / RHO
+  unit-consistency check of :func:`flexpipe.mesh.units.check_wave_speeds`.
 * GRIDs no element uses are accepted with a warning and left out (their DOF would be
   removed by AUTOSPC).
 * Two cards of one kind with the same id (GRID, element, property, material, coordinate
@@ -39,7 +48,6 @@ Every element gets the cell set ``"PID<n>"`` (``"CONROD<eid>"`` for CONRODs) and
 
 from __future__ import annotations
 
-import difflib
 import warnings
 from collections import Counter, defaultdict
 from pathlib import Path
@@ -51,9 +59,20 @@ from flexpipe.fem import spring
 from flexpipe.mesh import _nastran_extra as extra
 from flexpipe.mesh import _nastran_fast as _fast
 from flexpipe.mesh import _nastran_props as nprops
-from flexpipe.mesh._bulk import Card, FastLines, case_control, read_cards
-from flexpipe.mesh._nastran_coords import KINDS as CORD_CARDS
+from flexpipe.mesh._bulk import FastLines, case_control, read_cards
 from flexpipe.mesh._nastran_coords import Systems
+from flexpipe.mesh._nastran_deck import (  # noqa: F401 - the card lists are public here
+    NOT_STRUCTURAL,
+    SUPPORTED,
+    UNSUPPORTED_ELEMENTS,
+    UNSUPPORTED_PROPERTIES,
+    Deck,
+    Looked,
+    check_unique,
+    material_records,
+    missing_property,
+    require_elements,
+)
 from flexpipe.mesh._nastran_elements import (
     ELEMENTS,
     cell_arrays,
@@ -68,110 +87,11 @@ from flexpipe.mesh._nastran_elements import index_of as _index_of
 from flexpipe.mesh.mesh import CellBlock, Mesh, PointMass
 from flexpipe.mesh.validate import MeshWarning, prune, referenced
 
-SUPPORTED = tuple(ELEMENTS) + ("CELAS1", "CELAS2", "CBUSH", "CONM1", "CONM2", "RBE2", "RBE3",
-                               "RBAR")
-UNSUPPORTED_ELEMENTS = {
-    "CQUADR", "CTRIAR", "CQUAD", "CTRIAX", "CTRIAX6", "CQUADX", "CTUBE", "CELAS3", "CELAS4",
-    "CBUSH1D", "CBUSH2D", "CBEND", "CSHEAR", "CGAP", "CWELD", "CFAST", "CSEAM", "CDAMP1",
-    "CDAMP2", "CVISC", "CMASS1", "CMASS2", "RBE1", "RBAR1", "RROD", "RTRPLT", "RSPLINE",
-    "MPC", "GENEL", "DMIG", "CBEAM3", "CSPOT", "GRDSET", "CONM3",
-}
-UNSUPPORTED_PROPERTIES = {"PSHEAR", "PGAP", "PWELD", "PFAST", "PBEAM3",
-                          "PBUSH1D", "PCOMPLS", "PLPLANE"}
-#: cards that do not change M or K (loads, output, other solutions): listed as ignored
-NOT_STRUCTURAL = {
-    "FORCE", "FORCE1", "FORCE2", "MOMENT", "MOMENT1", "MOMENT2", "PLOAD", "PLOAD1", "PLOAD2",
-    "PLOAD4", "GRAV", "LOAD", "TEMP", "TEMPD", "DLOAD", "RLOAD1", "RLOAD2", "TLOAD1",
-    "TLOAD2", "FREQ", "FREQ1", "FREQ2", "TSTEP", "EIGR", "EIGRL", "DAREA", "TABDMP1",
-    "TABLED1", "TABLED2", "TABLEM1", "PLOTEL", "ASET", "ASET1", "QSET1", "BSET1", "CSET1",
-    "SUPORT", "SUPORT1", "SPOINT", "NLPARM", "DESVAR", "DRESP1", "DCONSTR", "MAT4",
-    "PARAM", "SPC", "SPC1", "SPCADD", "SPCD", "MPCADD", "ENDDATA", "DTI", "MDLPRM",
-    "PBUSHT", "PELAST",
-}
-_KNOWN = set(ELEMENTS) | set(SUPPORTED) | UNSUPPORTED_ELEMENTS | UNSUPPORTED_PROPERTIES | \
-    set(nprops.PROPERTIES) | {"MAT1", "GRID", "SET1"} | nprops.OTHER_MATERIALS | set(CORD_CARDS)
-#: names a misspelling is checked against (element, property, material, grid cards)
-_SPELLED = sorted(set(SUPPORTED) | set(nprops.PROPERTIES) | {"MAT1", "GRID", "MAT8"})
-
-
-class _Deck:
-    """Cards sorted by kind, with duplicate-id checks per kind."""
-
-    def __init__(self):
-        self.grids: list[Card] = []
-        self.elements: dict = defaultdict(list)      # card name -> cards
-        self.props: dict[int, Card] = {}
-        self.mats: dict[int, Card] = {}
-        self.coords: dict[int, Card] = {}
-        self.eigrl: dict[int, Card] = {}
-        self.spc: dict = defaultdict(list)
-        self.params: dict[str, Card] = {}
-        self.sets: dict[int, Card] = {}
-        self.dropped: Counter = Counter()
-        self.first: dict[str, Card] = {}
-
-    @staticmethod
-    def unique(table: dict, key: int, card: Card, what: str):
-        old = table.get(key)
-        if old is not None:
-            raise MeshError(
-                f"{what} id {key} is defined twice: {old.name} at {Path(old.file).name} line "
-                f"{old.line} and {card.name} at {Path(card.file).name} line {card.line}; ids "
-                "must be unique", file=card.file, line=card.line)
-        table[key] = card
-
-    def add(self, c: Card) -> None:
-        n = c.name
-        if n == "GRID":
-            self.grids.append(c)
-        elif n in ELEMENTS or n in SUPPORTED:
-            self.elements[n].append(c)
-        elif n in nprops.PROPERTIES or n in UNSUPPORTED_PROPERTIES:
-            self.unique(self.props, c.int(0, "PID"), c, "property")
-            if n == "PELAS" and c.raw(4):
-                self.unique(self.props, c.int(4, "PID2"), c, "property")
-        elif n == "MAT1" or n in nprops.OTHER_MATERIALS:
-            self.unique(self.mats, c.int(0, "MID"), c, "material")
-        elif n in CORD_CARDS:
-            self.unique(self.coords, c.int(0, "CID"), c, "coordinate system")
-        elif n == "EIGRL":
-            self.unique(self.eigrl, c.int(0, "SID"), c, "EIGRL")
-        elif n in ("SPC", "SPC1", "SPCADD"):
-            self.spc[n].append(c)
-        elif n == "SET1":
-            self.unique(self.sets, c.int(0, "SID"), c, "SET1")
-        elif n == "PARAM":
-            self.params[c.raw(0).upper()] = c
-        elif n in UNSUPPORTED_ELEMENTS:
-            raise c.error(f"{n} is not supported; supported element cards: "
-                          f"{', '.join(SUPPORTED)}. Remove or convert it")
-        else:
-            if n not in NOT_STRUCTURAL and n not in _KNOWN:
-                close = difflib.get_close_matches(n, _SPELLED, n=1, cutoff=0.7)
-                if close:
-                    raise c.error(f"unknown card '{n}': a misspelt {close[0]}? (an element "
-                                  "or property card that is not read would change the "
-                                  "structure)")
-            self.dropped[n] += 1
-            self.first.setdefault(n, c)
-
-
-def _check_unique(ids: np.ndarray, cards: list[Card], what: str) -> None:
-    order = np.argsort(ids, kind="stable")
-    s = ids[order]
-    dup = np.flatnonzero(s[1:] == s[:-1])
-    if dup.size:
-        a, b = cards[order[dup[0]]], cards[order[dup[0] + 1]]
-        raise MeshError(
-            f"{what} id {int(s[dup[0]])} is defined twice: {a.name} at {Path(a.file).name} "
-            f"line {a.line} and {b.name} at {Path(b.file).name} line {b.line}; ids must be "
-            "unique", file=b.file, line=b.line)
-
 
 def read_nastran(path) -> Mesh:
     """Read a Nastran bulk-data deck into a :class:`Mesh` (units of the file)."""
     path = Path(path)
-    deck, fast, control = _Deck(), FastLines(), []
+    deck, fast, control = Deck(), FastLines(), []
     cards = read_cards(path, fast=fast, control=control)   # + case-control lines
     fgrid = _fast.grids(fast.lines["GRID"], [w[2] for w in fast.where["GRID"]])
     fshell = {}
@@ -200,7 +120,8 @@ def read_nastran(path) -> Mesh:
     for name in ("GRID", "CQUAD4", "CTRIA3"):
         read[name] += len(fast.lines[name])
     info = {"read": {k: v for k, v in read.items() if v}, "converted": {},
-            "dropped": dict(deck.dropped)}
+            "dropped": dict(deck.dropped), "missing_properties": {}}
+    mats = Looked(deck.mats)                 # records the materials the model uses
 
     # ---- grids: ids, positions in basic (CP), displacement systems (CD)
     slow = deck.grids
@@ -224,7 +145,7 @@ def read_nastran(path) -> Mesh:
         return slow[i] if i < ns else fast.card("GRID", i - ns)
 
     grids = _fast.Lazy(grid_card, len(gid))
-    _check_unique(gid, grids, "GRID")
+    check_unique(gid, grids, "GRID")
     sorter = np.argsort(gid, kind="stable")
     done = cp == 0
 
@@ -241,6 +162,7 @@ def read_nastran(path) -> Mesh:
         X[rows] = systems.to_basic(int(sys_id), X[rows], grids[rows[0]])
         done[rows] = True
     frame_cache: dict = {}
+    require_elements(deck, fast, cards, path)   # after the GRIDs' own field errors
 
     def cd_frames(nodes, user):
         nodes = np.asarray(nodes).ravel()
@@ -269,7 +191,7 @@ def read_nastran(path) -> Mesh:
         name, base = ("CQUAD4", offsets[0]) if i < offsets[1] else ("CTRIA3", offsets[1])
         return fast.card(name, i - base)
 
-    _check_unique(np.concatenate([np.array([c.int(0, "EID") for c in el_cards],
+    check_unique(np.concatenate([np.array([c.int(0, "EID") for c in el_cards],
                                            dtype=np.int64)] + fast_ids),
                   _fast.Lazy(el_card, int(offsets[-1])), "element")
 
@@ -337,11 +259,13 @@ def read_nastran(path) -> Mesh:
             cell_sets.setdefault(name, {})[bi] = members
             user = user_of(int(members[0]))
             if p < 0:
-                sections[name] = nprops.conrod_section(user, deck.mats, wtmass)
+                sections[name] = nprops.conrod_section(user, mats, wtmass)
                 continue
             card = deck.props.get(int(p))
-            if card is None:
-                continue     # the assembler reports cells without section/material
+            if card is None:   # a warning here; an error when the model is built
+                info["missing_properties"].setdefault(str(p), missing_property(
+                    int(p), user, cell_type, deck.props))
+                continue
             if cell_type not in nprops.KIND.get(card.name, ()):
                 raise user.error(f"refers to {card.name} {card.label()} (line {card.line}), "
                                  f"which is not a property of {user.name} elements")
@@ -349,9 +273,9 @@ def read_nastran(path) -> Mesh:
                 raise card.error(f"{card.name} is not supported; give an equivalent PSHELL "
                                  "or pass thickness and material to assemble() for this PID")
             if name not in sections:
-                sections[name] = (nprops.composite(card, deck.mats, wtmass)
+                sections[name] = (nprops.composite(card, mats, wtmass)
                                   if card.name in ("PCOMP", "PCOMPG")
-                                  else nprops.section(card, deck.mats, wtmass))
+                                  else nprops.section(card, mats, wtmass))
 
     # ---- springs
     pelas = {}
@@ -426,6 +350,7 @@ def read_nastran(path) -> Mesh:
     if ps:
         dof_sets["GRID_PS"] = np.array([(k, int(ch) - 1) for k, ch in ps])
     solution = extra.solution(case, deck, dof_sets, path)
+    info["materials"], info["wtmass"] = material_records(mats), wtmass
     if solution.get("spc") in spc_dirs:
         solution["spc_directions"] = spc_dirs[solution["spc"]]
 

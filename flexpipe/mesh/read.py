@@ -10,7 +10,7 @@ import numpy as np
 
 from flexpipe.errors import FlexpipeError, InputError, MeshError
 from flexpipe.mesh.mesh import SHELL_TYPES, Mesh
-from flexpipe.mesh.units import convert, resolve
+from flexpipe.mesh.units import check_wave_speeds, convert, resolve
 from flexpipe.mesh.validate import MeshWarning, validate
 
 #: file suffix -> format name
@@ -128,8 +128,10 @@ def read_mesh(path, scale: float = 1.0, *, units: str | None = None, thickness=N
     ------
     MeshError
         Unreadable or corrupt file, unsupported element type, duplicate ids, NaN
-        coordinates, unreferenced nodes, inverted or degenerate elements; the message
-        names the file, the line where known, and the node or element id.
+        coordinates, unreferenced nodes, inverted or degenerate elements, a material
+        whose E / rho is no solid's in SI units (without ``units``; see
+        :func:`~flexpipe.mesh.units.check_wave_speeds`); the message names the file, the
+        line where known, and the node or element id.
     """
     path = Path(path)
     if not path.is_file():
@@ -150,6 +152,7 @@ def read_mesh(path, scale: float = 1.0, *, units: str | None = None, thickness=N
                         f"{sorted(NODES_PER_CELL)}", file=str(path), key="keep")
     mesh = _read_raw(path, fmt, tuple(keep))
     mesh = convert(mesh, system, materials=materials)
+    check_wave_speeds(mesh, system, materials=materials)
     mesh = replace(mesh, source=str(path))
     if thickness is not None:
         mesh = _add_thickness(mesh, thickness)

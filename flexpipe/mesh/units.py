@@ -17,6 +17,11 @@ per radian ...), like the materials.
     ``mass / (length time^2)``, rho by ``mass / length^3``, point masses by ``mass`` and
     rotary inertias by ``mass length^2``.  ``units="mm-t-s"`` therefore turns E = 210000
     (MPa) into 2.1e11 Pa and rho = 7.85e-9 (t/mm^3) into 7850 kg/m^3.
+
+:func:`check_wave_speeds` then checks each material card the model uses (the reader's
+``Mesh.info["materials"]``, Nastran MAT1/MAT8): its bar wave speed ``sqrt(E / rho)`` in
+the model's SI units must be one of a solid (:data:`WAVE_SPEED_RANGE`), which catches E or
+RHO given in another unit system than the rest of the deck.
 """
 
 from __future__ import annotations
@@ -25,7 +30,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from flexpipe.errors import InputError
+from flexpipe.errors import InputError, MeshError
 
 LENGTH_M = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6}
 MASS_KG = {"kg": 1.0, "t": 1e3, "g": 1e-3, "mg": 1e-6}
@@ -151,3 +156,78 @@ def convert(mesh, system: UnitSystem, *, materials: bool):
                 solution[key] = float(solution[key]) / system.time
     return replace(mesh, points=mesh.points * L, blocks=tuple(blocks), sections=sections,
                    point_masses=masses, solution=solution)
+
+
+#: Bar wave speed sqrt(E / rho) of a solid material, m/s: (lowest, highest) accepted.
+#: The softest solids in a vehicle model, rubber bushes and foams (E ~ 1 MPa at
+#: rho ~ 1100-1500 kg/m^3, or ~0.1-1 MPa at 30-100 kg/m^3), have c ~ 30 m/s; the stiffest
+#: solid, diamond (E ~ 1050 GPa, rho = 3510 kg/m^3), 17-18 km/s (beryllium 12.9 km/s,
+#: high-modulus CFRP along the fibres ~14 km/s); metals, glass, wood, plastics and
+#: composites lie in between (steel, aluminium, titanium, magnesium: 5.0-5.2 km/s).  The
+#: bounds keep a margin of about 3x beyond both ends, while the usual unit slips move c
+#: far outside: E in MPa with rho in kg/m^3 gives 5 m/s for any metal (c / 1000), rho in
+#: g/cm^3 1.6e5 m/s (c x 31.6), a whole mm-t-s deck read as SI 5.2e6 m/s (c x 1000), rho
+#: in t/mm^3 with E in Pa 5.2e9 m/s (c x 1e6).
+WAVE_SPEED_RANGE = (10.0, 5.0e4)
+#: factor on c of each slip (with SI assumed) -> what it looks like and what to do
+_SLIPS = (
+    (1e6, "RHO looks like t/mm^3 (an mm-t-s value) while E is in Pa: give RHO in kg/m^3 "
+          "(steel: 7850)"),
+    (1e3, "E and RHO look like mm-t-s values (MPa, t/mm^3): read the deck with "
+          "units='mm-t-s' (option --units mm-t-s; mesh_units in a car file)"),
+    (10**1.5, "RHO looks like g/cm^3: give it in kg/m^3 (steel: 7850)"),
+    (1e-3, "E looks like MPa (N/mm^2) while RHO is in kg/m^3: give E in Pa (steel: 2.1e11)"),
+    (10**-4.5, "E looks like GPa: give it in Pa (steel: 2.1e11)"),
+)
+_STEEL_C = (210e9 / 7850.0) ** 0.5
+
+
+def check_wave_speeds(mesh, system: UnitSystem, *, materials: bool) -> None:
+    """Check that every material card the model uses has a plausible bar wave speed.
+
+    ``mesh.info["materials"]`` (``{"MAT1 <mid>": (E, RHO, file, line)}``, file units)
+    and ``mesh.info["wtmass"]`` (PARAM WTMASS) come from the Nastran reader; E and
+    RHO x WTMASS are taken as the model takes them: converted with ``system`` when
+    ``materials`` (``units`` was given), as SI otherwise.
+
+    Raises
+    ------
+    MeshError
+        When the deck states no unit conversion (no ``units``, no WTMASS: E and RHO are
+        taken as SI), a speed outside :data:`WAVE_SPEED_RANGE`; the message names the
+        card, E, RHO, the speed and the likely unit slip.  With ``units`` or a WTMASS the
+        same finding is a :class:`MeshWarning` - the conversion was stated explicitly
+        (the message says when the values look like SI).
+    """
+    import warnings
+
+    from flexpipe.mesh.validate import MeshWarning
+
+    lo, hi = WAVE_SPEED_RANGE
+    wtmass = float(mesh.info.get("wtmass", 1.0))
+    fE = system.factor(SECTION_DIMENSIONS["E"]) if materials else 1.0
+    frho = (system.factor(SECTION_DIMENSIONS["rho"]) if materials else 1.0) * wtmass
+    for name, (E, rho, file, line) in (mesh.info.get("materials") or {}).items():
+        if not (E > 0 and rho > 0):
+            continue
+        c = float(np.sqrt(E * fE / (rho * frho)))
+        if lo <= c <= hi:
+            continue
+        taken = ([f"converted from units {system.name!r}"] if materials else
+                 ["taken as SI (Pa, kg/m^3)" + ("" if wtmass != 1.0 else
+                                                ", as no units were given")])
+        if wtmass != 1.0:
+            taken.append(f"RHO times PARAM WTMASS {wtmass:g}")
+        what = (f"{name}: E = {E:g} and RHO = {rho:g} ({', '.join(taken)}) give a bar wave "
+                f"speed sqrt(E/RHO) = {c:.3g} m/s; valid: {lo:g} to {hi:g} m/s, the range "
+                "of solid materials (soft rubber ~30, steel 5200, diamond 18000)")
+        if materials or wtmass != 1.0:      # a stated conversion: warn, do not overrule
+            stated = f"units {system.name!r}" if materials else f"WTMASS {wtmass:g}"
+            hint = (f"the values look like SI (m-kg-s) ones: check {stated}"
+                    if lo <= np.sqrt(E / rho) <= hi else f"check E, RHO and {stated}")
+            warnings.warn(MeshWarning(f"{file} line {line}: {what}; {hint}"), stacklevel=3)
+            continue
+        r = np.log10(c / _STEEL_C)
+        f, hint = min(_SLIPS, key=lambda fs: abs(np.log10(fs[0]) - r))
+        hint = hint if abs(np.log10(f) - r) < 1.0 else "check the units of E and RHO"
+        raise MeshError(f"{what}; {hint}", file=file, line=line)

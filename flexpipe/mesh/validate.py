@@ -232,4 +232,15 @@ def validate(mesh: Mesh, *, prune_unreferenced: bool = False,
     return mesh
 
 
-__all__ = ["MeshWarning", "prune", "referenced", "validate"]
+def missing_property_note(mesh: Mesh, block: int, rows) -> str:
+    """The reader's note (``Mesh.info["missing_properties"]``, Nastran) on the missing
+    property card of cells ``rows`` of block ``block``, followed by ``"; "``; '' if none."""
+    notes = mesh.info.get("missing_properties") or {}
+    for name, members in mesh.cell_sets.items():
+        if name.startswith("PID") and name[3:] in notes and block in members \
+                and np.isin(members[block], rows).any():
+            return notes[name[3:]]["text"] + "; "
+    return ""
+
+
+__all__ = ["MeshWarning", "missing_property_note", "prune", "referenced", "validate"]
