@@ -242,3 +242,43 @@ def test_matrix_csv_writes_what_the_generic_writer_writes(tmp_path):
     write_matrix_csv(tmp_path / "b.csv", header, data)
     a, b = (tmp_path / "a.csv").read_text(), (tmp_path / "b.csv").read_text()
     assert a == b and ",," in a  # the non-finite values are empty in both
+
+
+# --------------------------------------------------------------- newcomer audit findings
+def test_stress_png_states_element_kinds_clipping_max_and_hot_spots(straight, tmp_path,
+                                                                     monkeypatch):
+    """The figure says which element kinds it draws, where its colour scale is clipped,
+    the max with its element id and kind, and marks the top hot spots by id."""
+    import matplotlib.pyplot as plt
+    from PIL import Image
+
+    from flexpipe.durability.recover import recover_stress
+    from flexpipe.durability.report import write_png
+    from flexpipe.durability.rundir import load_run
+    from flexpipe.fem.stress import KIND
+
+    run = load_run(straight[0])
+    body = run.body()
+    sr = recover_stress(run.motion, body)
+    figs = []
+    close = plt.close
+    monkeypatch.setattr(plt, "close", lambda fig=None: (figs.append(fig), close(fig)))
+    write_png(tmp_path / "s.png", body, sr, title="a scenario title")
+    fig = figs[-1]
+    i = int(np.argmax(sr.max_von_mises))
+    eid, kind, vmax = int(sr.element_id[i]), KIND[sr.cell_type[i]], sr.max_von_mises[i] / 1e6
+    assert kind == "beam"  # the sample's peak is in a beam, which the old figure left out
+    clip = np.percentile(sr.max_von_mises / 1e6, 99.5)
+    title = fig._suptitle.get_text()
+    assert title.startswith("a scenario title")
+    assert f"max {vmax:.1f} MPa at element {eid} (beam" in title
+    assert f"99.5th percentile, {clip:.1f} MPa" in title
+    assert "shells as faces" in title and "beams as lines" in title
+    label = fig.axes[-1].get_ylabel()  # the colour bar
+    assert "shell" in label and "beam" in label
+    assert f"{clip:.1f} MPa" in label and f"max {vmax:.1f} MPa" in label
+    marked = {t.get_text().strip() for ax in fig.axes[:2] for t in ax.texts}
+    assert {str(int(e)) for e in sr.element_id[sr.top(5)]} <= marked
+    assert Image.open(tmp_path / "s.png").text["Title"] == title
+    desc = straight[1]["file_descriptions"]["stress/stress_max.png"]
+    assert "element" in desc and "99.5th percentile" in desc and "beams as lines" in desc
