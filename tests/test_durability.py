@@ -282,3 +282,50 @@ def test_stress_png_states_element_kinds_clipping_max_and_hot_spots(straight, tm
     assert Image.open(tmp_path / "s.png").text["Title"] == title
     desc = straight[1]["file_descriptions"]["stress/stress_max.png"]
     assert "element" in desc and "99.5th percentile" in desc and "beams as lines" in desc
+
+
+def test_animation_folder_is_replaced_as_a_whole(straight, tmp_path, monkeypatch):
+    """A sparser animation leaves no frames of a denser one; an interrupted one leaves the
+    previous animation and no staging folder; a folder of other files is refused."""
+    import flexpipe.durability.animate as A
+    from flexpipe.durability.pipeline import animate_outputs
+    from flexpipe.errors import InputError
+
+    out, _ = straight
+    dest = tmp_path / "anim"
+
+    def frames():
+        pvd = ET.parse(dest / "body.pvd").getroot().findall("./Collection/DataSet")
+        return sorted(f.get("file") for f in pvd), sorted(p.name for p in
+                                                          dest.glob("body_*.vtu"))
+
+    assert main(["animate", str(out), "--dest", str(dest), "--every", "10"]) == 0
+    listed, on_disk = frames()
+    assert len(listed) > 5 and listed == on_disk
+    assert main(["animate", str(out), "--dest", str(dest), "--every", "50"]) == 0
+    listed, on_disk = frames()
+    assert len(listed) < 6 and listed == on_disk
+    before = sorted(p.name for p in dest.iterdir())
+    calls = []
+
+    def interrupted(path, mesh):
+        calls.append(path)
+        if len(calls) > 4:
+            raise KeyboardInterrupt
+        write(path, mesh)
+
+    write = A._write
+    monkeypatch.setattr(A, "_write", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        animate_outputs(out, dest=dest, every=2, scale=100.0, log=lambda *a: None)
+    monkeypatch.undo()
+    assert sorted(p.name for p in dest.iterdir()) == before
+    assert frames()[0] == frames()[1]
+    assert not list(tmp_path.glob(".anim.staging-*"))
+    other = tmp_path / "mine"
+    other.mkdir()
+    (other / "notes.txt").write_text("keep")
+    with pytest.raises(InputError) as e:
+        animate_outputs(out, dest=other, log=lambda *a: None)
+    assert str(other) in str(e.value) and "dest" in str(e.value)
+    assert "notes.txt" in str(e.value) and (other / "notes.txt").read_text() == "keep"
