@@ -329,3 +329,65 @@ def test_animation_folder_is_replaced_as_a_whole(straight, tmp_path, monkeypatch
         animate_outputs(out, dest=other, log=lambda *a: None)
     assert str(other) in str(e.value) and "dest" in str(e.value)
     assert "notes.txt" in str(e.value) and (other / "notes.txt").read_text() == "keep"
+
+
+def _copy_run(out, dest):
+    import shutil
+
+    shutil.copytree(out, dest)
+    return dest
+
+
+def test_summary_describes_what_stress_and_animate_rewrote(straight, tmp_path):
+    out = _copy_run(straight[0], tmp_path / "run")
+    assert main(["animate", str(out), "--scale", "100", "--every", "50"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    n = len(ET.parse(out / "animation" / "body.pvd").getroot().findall(
+        "./Collection/DataSet"))
+    desc = summary["file_descriptions"]["animation/body.pvd"]
+    assert desc.startswith(f"{n} frames") and "deformation x 100" in desc
+    assert "animation/body.pvd" in summary["files"]
+    assert main(["stress", str(out), "--top", "3", "--no-fatigue"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["file_descriptions"]["stress/hotspots.csv"].startswith("top 3 elements")
+    assert summary["file_descriptions"]["animation/body.pvd"] == desc  # the rest kept
+    assert not list(out.glob(".summary.json.*"))  # the temp file was renamed
+
+
+@pytest.fixture(scope="module")
+def short_runs(straight, tmp_path_factory):
+    """Short runs that reuse the reduced body cached by ``straight`` (its FLEXPIPE_CACHE):
+    the flexible body alone with and without progress bars (stderr and log lines kept),
+    and the rigid body alone."""
+    import contextlib
+    import io
+
+    from flexpipe.scenarios.runner import DEFAULT_CAR, SCENARIOS, run_pair
+
+    d = tmp_path_factory.mktemp("short")
+    sc = SCENARIOS["straight"]
+    runs = {}
+    for name, bodies, progress in (("flex_progress", ("flexible",), True),
+                                   ("flex_quiet", ("flexible",), False),
+                                   ("rigid", ("rigid",), False)):
+        log, err = [], io.StringIO()
+        with contextlib.redirect_stderr(err):
+            run_pair(DEFAULT_CAR, road=sc.road(), path=None, speed=sc.speed_kmh / 3.6,
+                     t_end=0.1, out=d / name, title=sc.title, bodies=bodies,
+                     progress=progress, log=log.append)
+        runs[name] = (d / name, log, err.getvalue())
+    return runs
+
+
+def test_scenario_run_prints_final_paths(short_runs):
+    out, log, _ = short_runs["flex_quiet"]
+    line = next(m for m in log if m.startswith("animation:"))
+    assert f"{out}/animation/animation.pvd" in line and "staging" not in line
+    assert not any("staging" in m for m in log)
+
+
+def test_scenario_durability_shows_progress_unless_quiet(short_runs):
+    _, _, err = short_runs["flex_progress"]
+    assert "stress recovery" in err and "animation frames" in err
+    _, _, err = short_runs["flex_quiet"]
+    assert "stress recovery" not in err and "animation frames" not in err
