@@ -391,3 +391,12 @@ def test_scenario_durability_shows_progress_unless_quiet(short_runs):
     assert "stress recovery" in err and "animation frames" in err
     _, _, err = short_runs["flex_quiet"]
     assert "stress recovery" not in err and "animation frames" not in err
+
+
+def test_stress_and_animate_of_a_rigid_only_run_say_so(short_runs, capsys):
+    out, _, _ = short_runs["rigid"]
+    for cmd in ("stress", "animate"):
+        assert main([cmd, str(out)]) == 2
+        err = capsys.readouterr().err
+        assert str(out) in err and "motion_flexible.npz" in err
+        assert "rigid body model" in err and "--body flexible" in err
