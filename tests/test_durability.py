@@ -242,3 +242,161 @@ def test_matrix_csv_writes_what_the_generic_writer_writes(tmp_path):
     write_matrix_csv(tmp_path / "b.csv", header, data)
     a, b = (tmp_path / "a.csv").read_text(), (tmp_path / "b.csv").read_text()
     assert a == b and ",," in a  # the non-finite values are empty in both
+
+
+# --------------------------------------------------------------- newcomer audit findings
+def test_stress_png_states_element_kinds_clipping_max_and_hot_spots(straight, tmp_path,
+                                                                     monkeypatch):
+    """The figure says which element kinds it draws, where its colour scale is clipped,
+    the max with its element id and kind, and marks the top hot spots by id."""
+    import matplotlib.pyplot as plt
+    from PIL import Image
+
+    from flexpipe.durability.recover import recover_stress
+    from flexpipe.durability.report import write_png
+    from flexpipe.durability.rundir import load_run
+    from flexpipe.fem.stress import KIND
+
+    run = load_run(straight[0])
+    body = run.body()
+    sr = recover_stress(run.motion, body)
+    figs = []
+    close = plt.close
+    monkeypatch.setattr(plt, "close", lambda fig=None: (figs.append(fig), close(fig)))
+    write_png(tmp_path / "s.png", body, sr, title="a scenario title")
+    fig = figs[-1]
+    i = int(np.argmax(sr.max_von_mises))
+    eid, kind, vmax = int(sr.element_id[i]), KIND[sr.cell_type[i]], sr.max_von_mises[i] / 1e6
+    assert kind == "beam"  # the sample's peak is in a beam, which the old figure left out
+    clip = np.percentile(sr.max_von_mises / 1e6, 99.5)
+    title = fig._suptitle.get_text()
+    assert title.startswith("a scenario title")
+    assert f"max {vmax:.1f} MPa at element {eid} (beam" in title
+    assert f"99.5th percentile, {clip:.1f} MPa" in title
+    assert "shells as faces" in title and "beams as lines" in title
+    label = fig.axes[-1].get_ylabel()  # the colour bar
+    assert "shell" in label and "beam" in label
+    assert f"{clip:.1f} MPa" in label and f"max {vmax:.1f} MPa" in label
+    marked = {t.get_text().strip() for ax in fig.axes[:2] for t in ax.texts}
+    assert {str(int(e)) for e in sr.element_id[sr.top(5)]} <= marked
+    assert Image.open(tmp_path / "s.png").text["Title"] == title
+    desc = straight[1]["file_descriptions"]["stress/stress_max.png"]
+    assert "element" in desc and "99.5th percentile" in desc and "beams as lines" in desc
+
+
+def test_animation_folder_is_replaced_as_a_whole(straight, tmp_path, monkeypatch):
+    """A sparser animation leaves no frames of a denser one; an interrupted one leaves the
+    previous animation and no staging folder; a folder of other files is refused."""
+    import flexpipe.durability.animate as A
+    from flexpipe.durability.pipeline import animate_outputs
+    from flexpipe.errors import InputError
+
+    out, _ = straight
+    dest = tmp_path / "anim"
+
+    def frames():
+        pvd = ET.parse(dest / "body.pvd").getroot().findall("./Collection/DataSet")
+        return sorted(f.get("file") for f in pvd), sorted(p.name for p in
+                                                          dest.glob("body_*.vtu"))
+
+    assert main(["animate", str(out), "--dest", str(dest), "--every", "10"]) == 0
+    listed, on_disk = frames()
+    assert len(listed) > 5 and listed == on_disk
+    assert main(["animate", str(out), "--dest", str(dest), "--every", "50"]) == 0
+    listed, on_disk = frames()
+    assert len(listed) < 6 and listed == on_disk
+    before = sorted(p.name for p in dest.iterdir())
+    calls = []
+
+    def interrupted(path, mesh):
+        calls.append(path)
+        if len(calls) > 4:
+            raise KeyboardInterrupt
+        write(path, mesh)
+
+    write = A._write
+    monkeypatch.setattr(A, "_write", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        animate_outputs(out, dest=dest, every=2, scale=100.0, log=lambda *a: None)
+    monkeypatch.undo()
+    assert sorted(p.name for p in dest.iterdir()) == before
+    assert frames()[0] == frames()[1]
+    assert not list(tmp_path.glob(".anim.staging-*"))
+    other = tmp_path / "mine"
+    other.mkdir()
+    (other / "notes.txt").write_text("keep")
+    with pytest.raises(InputError) as e:
+        animate_outputs(out, dest=other, log=lambda *a: None)
+    assert str(other) in str(e.value) and "dest" in str(e.value)
+    assert "notes.txt" in str(e.value) and (other / "notes.txt").read_text() == "keep"
+
+
+def _copy_run(out, dest):
+    import shutil
+
+    shutil.copytree(out, dest)
+    return dest
+
+
+def test_summary_describes_what_stress_and_animate_rewrote(straight, tmp_path):
+    out = _copy_run(straight[0], tmp_path / "run")
+    assert main(["animate", str(out), "--scale", "100", "--every", "50"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    n = len(ET.parse(out / "animation" / "body.pvd").getroot().findall(
+        "./Collection/DataSet"))
+    desc = summary["file_descriptions"]["animation/body.pvd"]
+    assert desc.startswith(f"{n} frames") and "deformation x 100" in desc
+    assert "animation/body.pvd" in summary["files"]
+    assert main(["stress", str(out), "--top", "3", "--no-fatigue"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["file_descriptions"]["stress/hotspots.csv"].startswith("top 3 elements")
+    assert summary["file_descriptions"]["animation/body.pvd"] == desc  # the rest kept
+    assert not list(out.glob(".summary.json.*"))  # the temp file was renamed
+
+
+@pytest.fixture(scope="module")
+def short_runs(straight, tmp_path_factory):
+    """Short runs that reuse the reduced body cached by ``straight`` (its FLEXPIPE_CACHE):
+    the flexible body alone with and without progress bars (stderr and log lines kept),
+    and the rigid body alone."""
+    import contextlib
+    import io
+
+    from flexpipe.scenarios.runner import DEFAULT_CAR, SCENARIOS, run_pair
+
+    d = tmp_path_factory.mktemp("short")
+    sc = SCENARIOS["straight"]
+    runs = {}
+    for name, bodies, progress in (("flex_progress", ("flexible",), True),
+                                   ("flex_quiet", ("flexible",), False),
+                                   ("rigid", ("rigid",), False)):
+        log, err = [], io.StringIO()
+        with contextlib.redirect_stderr(err):
+            run_pair(DEFAULT_CAR, road=sc.road(), path=None, speed=sc.speed_kmh / 3.6,
+                     t_end=0.1, out=d / name, title=sc.title, bodies=bodies,
+                     progress=progress, log=log.append)
+        runs[name] = (d / name, log, err.getvalue())
+    return runs
+
+
+def test_scenario_run_prints_final_paths(short_runs):
+    out, log, _ = short_runs["flex_quiet"]
+    line = next(m for m in log if m.startswith("animation:"))
+    assert f"{out}/animation/animation.pvd" in line and "staging" not in line
+    assert not any("staging" in m for m in log)
+
+
+def test_scenario_durability_shows_progress_unless_quiet(short_runs):
+    _, _, err = short_runs["flex_progress"]
+    assert "stress recovery" in err and "animation frames" in err
+    _, _, err = short_runs["flex_quiet"]
+    assert "stress recovery" not in err and "animation frames" not in err
+
+
+def test_stress_and_animate_of_a_rigid_only_run_say_so(short_runs, capsys):
+    out, _, _ = short_runs["rigid"]
+    for cmd in ("stress", "animate"):
+        assert main([cmd, str(out)]) == 2
+        err = capsys.readouterr().err
+        assert str(out) in err and "motion_flexible.npz" in err
+        assert "rigid body model" in err and "--body flexible" in err

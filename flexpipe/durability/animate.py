@@ -13,19 +13,29 @@
 * ``road.vtu`` - the road surface as a strip along the driven track;
 * ``animation.pvd`` - all three as parts of one time series (open this in ParaView);
 * ``preview.png`` - one frame rendered headless with matplotlib.
+
+The folder is a transaction: the frames are written into a staging folder
+``.NAME.staging-PID`` next to it, which then replaces the folder as a whole, so it always
+holds exactly one animation (no frames of an earlier, denser or interrupted one).
 """
 
 from __future__ import annotations
 
+import os
+import re
+import shutil
 from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import atomic_path, write_text_atomic
+from flexpipe._io import atomic_path, commit_directory, write_text_atomic
 from flexpipe.errors import InputError
 
 WHEEL_SEGMENTS = 24
 WHEEL_HALF_WIDTH = 0.1  # m
+#: names of the files an animation folder holds (hidden names: temporary files)
+_ANIMATION_FILE = re.compile(r"(body|wheels)_\d+\.vtu|(body|wheels|animation)\.pvd|"
+                             r"road\.vtu|preview\.png|\..*")
 
 
 def _pvd(path, entries):
@@ -150,14 +160,54 @@ def _road_mesh(road):
     return pts, quads
 
 
+def stage_animation(dest) -> Path:
+    """A fresh, empty staging folder ``.NAME.staging-PID`` next to the animation folder.
+
+    ``dest`` must be absent, empty or an animation folder (only the files an animation
+    writes), so that replacing it never removes other files.  Staging folders left by
+    processes that no longer exist are removed.
+
+    Raises
+    ------
+    InputError
+        ``dest`` is a file, or a folder holding other files.
+    """
+    from flexpipe._io import _alive
+
+    dest = Path(dest)
+    if dest.exists():
+        if not dest.is_dir():
+            raise InputError("the animation folder is an existing file; choose another "
+                             "--dest", file=dest, key="dest")
+        other = sorted(e.name for e in dest.iterdir() if not _ANIMATION_FILE.fullmatch(e.name))
+        if other:
+            raise InputError(f"the folder holds files that are not an animation's ({other[:3]});"
+                             " the animation replaces its folder as a whole: choose a new, "
+                             "empty or animation folder as --dest", file=dest, key="dest")
+    parent = dest.resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    for old in parent.glob(f".{dest.name}.staging-*"):
+        pid = old.name.rsplit("-", 1)[-1]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(old, ignore_errors=True)
+    stage = parent / f".{dest.name}.staging-{os.getpid()}"
+    shutil.rmtree(stage, ignore_errors=True)
+    stage.mkdir()
+    return stage
+
+
 def write_animation(out, run, body, *, scale: float = 1.0, every: int = 1,
                     stress: bool = True, progress: bool = False, log=None) -> dict:
     """Write the animation folder (see module docstring); returns ``{file: description}``.
 
+    The frames go into a staging folder (:func:`stage_animation`) that replaces ``out``
+    as a whole when every file is written; on an error or interrupt it is removed and
+    ``out`` keeps its previous animation.
+
     Parameters
     ----------
     out : path
-        Folder to write into.
+        Folder to write (absent, empty or a previous animation folder).
     run : RunData
         The run (:func:`flexpipe.durability.rundir.load_run`).
     body : FlexBody
@@ -169,14 +219,26 @@ def write_animation(out, run, body, *, scale: float = 1.0, every: int = 1,
     stress : bool
         Add the von Mises field when the body has stress modes.
     """
-    import meshio
-
     if not (np.isfinite(scale) and scale >= 0):
         raise InputError(f"scale must be a finite number >= 0, got {scale}", key="scale")
     if int(every) < 1:
         raise InputError(f"every must be an integer >= 1, got {every}", key="every")
+    stage = stage_animation(out)
+    try:
+        files = _write_frames(stage, run, body, scale=scale, every=int(every), stress=stress,
+                              progress=progress)
+        commit_directory(stage, out)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    return files
+
+
+def _write_frames(out, run, body, *, scale, every, stress, progress) -> dict:
+    """The files of :func:`write_animation`, written into the folder ``out``."""
+    import meshio
+
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     car = run.car()
     motion = run.motion
     steps = np.arange(0, len(motion.t), int(every))

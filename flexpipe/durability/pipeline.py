@@ -3,11 +3,12 @@ and the work behind ``flexpipe stress`` and ``flexpipe animate``."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import write_matrix_csv
+from flexpipe._io import write_matrix_csv, write_text_atomic
 from flexpipe.durability.rundir import MOTION_FILE, RunData, load_run, road_strip
 
 #: time between animation frames written by a scenario run, s
@@ -58,9 +59,31 @@ def write_hardpoints(path, body, motion):
     write_matrix_csv(path, header, data, rest="%.9g")
 
 
+def record_files(out, files: dict, *, folder: str) -> None:
+    """Describe rewritten outputs in ``OUT/summary.json`` (atomically: temp file + rename).
+
+    The entries of ``file_descriptions`` and ``files`` under ``folder/`` are replaced by
+    ``files`` (``{path relative to out: description}``), so that the summary describes
+    what ``flexpipe stress`` / ``flexpipe animate`` wrote last.
+    """
+    path = Path(out) / "summary.json"
+    summary = json.loads(path.read_text())
+    prefix = folder.rstrip("/") + "/"
+    desc = {k: v for k, v in summary.get("file_descriptions", {}).items()
+            if not k.startswith(prefix)}
+    summary["file_descriptions"] = dict(sorted({**desc, **files}.items()))
+    summary["files"] = sorted({f for f in summary.get("files", []) if not f.startswith(prefix)}
+                              | set(files))
+    write_text_atomic(path, json.dumps(summary, indent=2) + "\n")
+
+
 def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=None,
-                   body=None, progress: bool = False) -> dict:
-    """``flexpipe stress OUT_DIR``: modal stress recovery and fatigue into ``OUT_DIR/stress``."""
+                   body=None, progress: bool = False, record: bool = True) -> dict:
+    """``flexpipe stress OUT_DIR``: modal stress recovery and fatigue into ``OUT_DIR/stress``.
+
+    ``record``: update ``OUT_DIR/summary.json`` with the new file descriptions
+    (:func:`record_files`; a scenario run writes its summary itself).
+    """
     import time
 
     from flexpipe.durability.recover import recover_stress
@@ -86,25 +109,47 @@ def stress_outputs(out, *, top: int = 20, fatigue: bool = True, log=print, run=N
         per_km = sr.damage[j] / max(sr.distance_km, 1e-12)
         log(f"fatigue: max damage {sr.damage[j]:.3g} ({per_km:.3g} per km) at element "
             f"{sr.element_id[j]}")
-    return {f"stress/{k}": v for k, v in files.items()}
+    files = {f"stress/{k}": v for k, v in files.items()}
+    if record:
+        record_files(out, files, folder="stress")
+    return files
 
 
 def animate_outputs(out, *, dest=None, scale: float = 1.0, every: int = 1,
-                    progress: bool = False, log=print, run=None, body=None) -> dict:
-    """``flexpipe animate OUT_DIR``: the ParaView animation into ``OUT_DIR/animation``."""
+                    progress: bool = False, log=print, run=None, body=None,
+                    record: bool = True, shown=None) -> dict:
+    """``flexpipe animate OUT_DIR``: the ParaView animation into ``OUT_DIR/animation``.
+
+    ``dest`` replaces the animation folder as a whole (:func:`write_animation`).
+    ``record``: update ``OUT_DIR/summary.json`` when ``dest`` is inside ``OUT_DIR``
+    (:func:`record_files`).  ``shown``: the name ``OUT_DIR`` is printed as (the final
+    folder of a scenario run that writes into a staging folder).
+    """
     from flexpipe.durability.animate import write_animation
 
+    out = Path(out)
     run = load_run(out) if run is None else run
     body = run.body(log=log) if body is None else body
-    dest = Path(out) / "animation" if dest is None else Path(dest)
+    dest = out / "animation" if dest is None else Path(dest)
     files = write_animation(dest, run, body, scale=scale, every=every, progress=progress)
-    log(f"animation: {dest}/animation.pvd ({len(range(0, len(run.motion.t), every))} frames)")
-    rel = dest.name if dest.parent == Path(out) else str(dest)
-    return {f"{rel}/{k}": v for k, v in files.items()}
+    inside = dest.resolve().is_relative_to(out.resolve())
+    rel = dest.resolve().relative_to(out.resolve()).as_posix() if inside else str(dest)
+    printed = Path(shown) / rel if inside and shown is not None else dest
+    log(f"animation: {printed}/animation.pvd ({len(range(0, len(run.motion.t), every))} "
+        "frames)")
+    files = {f"{rel}/{k}": v for k, v in files.items()}
+    if record and inside:
+        record_files(out, files, folder=rel)
+    return files
 
 
-def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=print) -> dict:
+def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=print,
+                     progress: bool = False, final=None) -> dict:
     """Durability outputs of a scenario run (motion, hardpoints, stress, animation).
+
+    ``out`` is the folder written (a staging folder), ``final`` the folder it becomes
+    (printed in messages; default ``out``); ``progress`` shows progress bars of the
+    stress recovery and the animation frames.
 
     Returns ``{file: description}`` of every file written (and of the run's own files).
     """
@@ -129,7 +174,10 @@ def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=prin
     run = RunData(out, {"car_file": str(car.file), "title": title}, r.t, r.channels, r.motion,
                   Path(info["path"]), band, (X, Y, Z))
     if body.stress is not None:
-        files.update(stress_outputs(out, log=log, run=run, body=body))
+        files.update(stress_outputs(out, log=log, run=run, body=body, progress=progress,
+                                    record=False))
     every = max(1, int(round(ANIMATION_FRAME_STEP / r.info["output_step"])))
-    files.update(animate_outputs(out, every=every, log=log, run=run, body=body))
+    files.update(animate_outputs(out, every=every, log=log, run=run, body=body,
+                                 progress=progress, record=False,
+                                 shown=out if final is None else final))
     return files

@@ -10,7 +10,9 @@
 * ``stress_max.vtu`` - the body mesh with the max von Mises, time of max and damage per
   element (cell data) and nodal max von Mises (point data: solids from their nodal
   stress modes, shells and beams the average of their elements' maxima);
-* ``stress_max.png`` - the body coloured by max von Mises (headless matplotlib).
+* ``stress_max.png`` - the body coloured by max von Mises (headless matplotlib): shells,
+  beams and solids on one colour scale, the top hot spots marked, the clipping of the
+  scale and the largest value with its element stated (:func:`png_text`).
 """
 
 from __future__ import annotations
@@ -23,9 +25,17 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe._io import atomic_path, write_matrix_csv, write_text_atomic
+from flexpipe.fem.stress import KIND
 
 #: channels considered as loads for the correlation column
 LOAD_PREFIXES = ("hub_", "tire_")
+#: the PNG's colour scale ends at this percentile of the max von Mises of all elements, so
+#: that a few peak elements do not leave the rest of the body in one colour
+CLIP_PERCENTILE = 99.5
+#: hot spots (largest max von Mises) marked with their element ids in the PNG
+PNG_HOTSPOTS = 5
+#: how each element kind is drawn in the PNG
+DRAWN_AS = {"shell": "faces", "beam": "lines", "solid": "centroid points"}
 
 
 def _correlated(sig, channels):
@@ -134,24 +144,100 @@ def polygons(body, cells=None):
     return polys, np.asarray(index, dtype=np.int64)
 
 
+def _kind_counts(body) -> dict:
+    counts: dict = {}
+    for b in body.stress.blocks:
+        counts[b.kind] = counts.get(b.kind, 0) + len(b)
+    return counts
+
+
+def png_text(body, sr, *, title: str = "", hotspots: int = PNG_HOTSPOTS) -> dict:
+    """What ``stress_max.png`` shows, in words: its title, colour-bar label, description.
+
+    The figure draws every element with stresses (:data:`DRAWN_AS`) on one colour scale
+    ending at the :data:`CLIP_PERCENTILE` th percentile of their max von Mises; the text
+    states that clipping, the largest value, its element id and kind, and the hot spots
+    marked.
+
+    Returns
+    -------
+    dict
+        ``title``, ``colorbar``, ``description`` (str), ``vmax_MPa`` (end of the colour
+        scale), ``hotspots`` (positions of the marked elements in ``sr``).
+    """
+    vals = sr.max_von_mises / 1e6
+    clip = max(float(np.percentile(vals, CLIP_PERCENTILE)), 1e-9)
+    i = int(np.argmax(vals))
+    kind = KIND.get(sr.cell_type[i], str(sr.cell_type[i]))
+    drawn = ", ".join(f"{n} {k}s as {DRAWN_AS[k]}" for k, n in _kind_counts(body).items())
+    top = [int(j) for j in sr.top(hotspots)]
+    at_max = (f"max {vals[i]:.1f} MPa at element {int(sr.element_id[i])} ({kind}, "
+              f"{sr.location[i]}) at t = {sr.time_of_max[i]:.3f} s")
+    if vals[i] > clip:
+        scale = (f"colour scale clipped at the {CLIP_PERCENTILE:g}th percentile, "
+                 f"{clip:.1f} MPa (higher values in the top colour)")
+    else:
+        scale = f"colour scale 0 to {clip:.1f} MPa"
+    marked = (f"top {len(top)} hot spots marked with their element ids: "
+              + ", ".join(str(int(sr.element_id[j])) for j in top))
+    head = title or "Max von Mises stress over the run"
+    return {
+        "title": f"{head}\n{drawn}; {at_max}\n{scale}\n{marked} (red)",
+        "colorbar": (f"max von Mises [MPa] of {', '.join(_kind_counts(body))} elements\n"
+                     f"scale clipped at {clip:.1f} MPa; max {vals[i]:.1f} MPa"),
+        "description": (f"body coloured by max von Mises over the run (MPa), two views: "
+                        f"{drawn}; {scale}; {at_max}; {marked}"),
+        "vmax_MPa": clip, "hotspots": top,
+    }
+
+
 def write_png(path, body, sr, *, title=""):
-    """Body coloured by max von Mises, two views (matplotlib, headless)."""
+    """Body coloured by max von Mises, two views (matplotlib, headless).
+
+    Shells are drawn as faces, beams as lines, solids as points at their centroids, all
+    on one colour scale; the top hot spots are marked with their element ids.  The
+    title, colour-bar label and description (:func:`png_text`) are also stored as the
+    PNG's ``Title`` and ``Description`` text.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
-    polys, idx = polygons(body)
-    vals = sr.max_von_mises[idx] / 1e6
-    norm = matplotlib.colors.Normalize(vmin=0.0, vmax=max(float(np.percentile(vals, 99.5)),
-                                                         1e-9))
+    text = png_text(body, sr, title=title)
+    vals = sr.max_von_mises / 1e6
+    norm = matplotlib.colors.Normalize(vmin=0.0, vmax=text["vmax_MPa"])
     cmap = matplotlib.colormaps["viridis"]
-    fig = plt.figure(figsize=(12, 5.5))
+    polys, idx = polygons(body)
+    segs, sidx, pts, pidx, ofs = [], [], [], [], 0
+    for b in body.stress.blocks:
+        rows = np.arange(ofs, ofs + len(b))
+        if b.kind == "beam":
+            segs.extend(list(body.nodes[b.cells[:, [0, -1]]]))
+            sidx.extend(rows)
+        elif b.kind == "solid":
+            pts.append(b.centroids)
+            pidx.extend(rows)
+        ofs += len(b)
+    fig = plt.figure(figsize=(12, 6))
     for k, (elev, azim) in enumerate(((25, -60), (90, -90))):
         ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-        pc = Poly3DCollection(polys, facecolors=cmap(norm(vals)), edgecolors="none")
-        ax.add_collection3d(pc)
+        ax.computed_zorder = False  # draw order: the hot-spot marks stay on top
+        if polys:
+            ax.add_collection3d(Poly3DCollection(polys, facecolors=cmap(norm(vals[idx])),
+                                                 edgecolors="none"))
+        if segs:
+            ax.add_collection3d(Line3DCollection(segs, colors=cmap(norm(vals[sidx])),
+                                                 linewidths=1.5))
+        if pts:
+            c = np.vstack(pts)
+            ax.scatter(c[:, 0], c[:, 1], c[:, 2], c=cmap(norm(vals[pidx])), s=4)
+        for j in text["hotspots"]:
+            c = sr.centroid[j]
+            ax.scatter(*c, s=80, facecolors="none", edgecolors="red", linewidths=1.5,
+                       zorder=10)
+            ax.text(*c, f"  {int(sr.element_id[j])}", color="red", fontsize=7, zorder=11)
         lo, hi = body.nodes.min(axis=0), body.nodes.max(axis=0)
         ax.set_xlim(lo[0], hi[0])
         ax.set_ylim(lo[1], hi[1])
@@ -160,10 +246,12 @@ def write_png(path, body, sr, *, title=""):
         ax.view_init(elev=elev, azim=azim)
         ax.set_axis_off()
     sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
-    fig.colorbar(sm, ax=fig.axes, shrink=0.6, label="max von Mises stress [MPa]")
-    fig.suptitle(title or "Max von Mises stress over the run (shell elements)")
+    fig.colorbar(sm, ax=fig.axes, shrink=0.6, label=text["colorbar"],
+                 extend="max" if vals.max() > text["vmax_MPa"] else "neither")
+    fig.suptitle(text["title"], fontsize=9)
     with atomic_path(path, suffix=".png") as tmp:
-        fig.savefig(tmp, dpi=110)
+        fig.savefig(tmp, dpi=110, metadata={"Title": text["title"],
+                                            "Description": text["description"]})
     plt.close(fig)
     return Path(path)
 
@@ -192,7 +280,7 @@ def write_stress_report(out, sr, body, channels, *, top: int = 20, title: str = 
                                 "hot-spot elements at their critical location vs time (s)",
         "stress_max.vtu": "body mesh (body axes) with max von Mises (Pa), time of max (s), "
                           "damage per element and nodal-averaged max von Mises; ParaView",
-        "stress_max.png": "body coloured by max von Mises over the run (MPa)",
+        "stress_max.png": png_text(body, sr, title=title)["description"],
     }
     meta = {"elements": int(len(sr.element_id)), "distance_km": sr.distance_km,
             "max_von_mises_MPa": float(sr.max_von_mises.max() / 1e6),

@@ -113,6 +113,21 @@ class RunData:
         return body
 
 
+def _why_no_motion(summary: dict, body: str) -> str:
+    """Why a run folder has no recorded motion of ``body``, and what to do."""
+    if summary.get("state") in ("error", "interrupted"):
+        return (f"the run ended with state '{summary['state']}' before writing it "
+                f"({summary.get('message', 'see summary.json')}): rerun the scenario")
+    ran = list(summary.get("messages") or {})
+    if ran and body not in ran:
+        return (f"the run simulated only the {' and '.join(ran)} body model"
+                f"{'s' if len(ran) > 1 else ''} (summary.json 'messages'); stress recovery "
+                f"and animation need the {body} body's motion: rerun with --body {body} "
+                f"(or --body rigid,{body}, the default of flexpipe run)")
+    return (f"the run has no recorded {body} body motion (rerun the scenario with this "
+            "flexpipe version)")
+
+
 def load_run(out, *, body: str = "flexible") -> RunData:
     """Read a run folder (see module docstring)."""
     from flexpipe.vehicle.result import BodyMotion
@@ -126,8 +141,7 @@ def load_run(out, *, body: str = "flexible") -> RunData:
     summary = json.loads(summary_path.read_text())
     mpath = out / MOTION_FILE.format(body=body)
     if not mpath.is_file():
-        raise InputError(f"no {mpath.name}: the run has no recorded {body} body motion "
-                         "(rerun the scenario with this flexpipe version)", file=out)
+        raise InputError(f"no {mpath.name}: {_why_no_motion(summary, body)}", file=out)
     motion = BodyMotion.load(mpath)
     with np.load(mpath, allow_pickle=False) as d:
         body_file = Path(str(d["body_file"])) if "body_file" in d.files else Path()

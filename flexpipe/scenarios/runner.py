@@ -139,7 +139,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         summary = _summary(base, results, path=path, speed=speed)
         files += _plots(results, stage, plots=plots, path=path, title=title)
         summary["files"] = sorted(files + ["summary.json"])
-        _durability(stage, results, summary, car=car, road=road, log=log)
+        _durability(stage, results, summary, car=car, road=road, log=log, progress=progress,
+                    final=out)
     except BaseException as exc:
         _write_failure(stage, base, results, files, exc, bodies=bodies, t0=t0)
         commit_directory(stage, out)
@@ -241,10 +242,11 @@ def _write_failure(stage, base, results, files, exc, *, bodies, t0) -> None:
     write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
 
 
-def _durability(out, results, summary, *, car, road, log):
+def _durability(out, results, summary, *, car, road, log, progress=False, final=None):
     """Durability outputs (feat/durability): body motion, hardpoints, stress and fatigue
     (``stress/``), ParaView animation (``animation/``); ``summary["file_descriptions"]``
-    says what every file holds."""
+    says what every file holds.  ``out`` is the staging folder, ``final`` the folder it
+    becomes (the paths printed); ``progress`` shows the stress and frame progress bars."""
     from flexpipe.durability.pipeline import scenario_outputs
 
     if road is None:
@@ -252,7 +254,8 @@ def _durability(out, results, summary, *, car, road, log):
 
         road = flat(1000.0, dx=1.0, track_width=1.5)
     t0 = time.perf_counter()
-    desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log)
+    desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log,
+                            progress=progress, final=final)
     summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
     summary["files"] = sorted(set(summary["files"]) | set(desc))
     summary["file_descriptions"] = dict(sorted(desc.items()))
