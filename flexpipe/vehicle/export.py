@@ -25,6 +25,7 @@ _UNITS = (
     (r"^ay$", "m/s^2"),
     (r"^drive_torque$", "N m"),
     (r"^hub_\w+_[xyz]$", "N"),
+    (r"^mount_\w+_[xyz]$", "N"),
     (r"^tire_\w+_F[xyz]$", "N"),
     (r"^travel_\w+$", "m"),
     (r"^spin_\w+$", "rad/s"),
