@@ -123,3 +123,41 @@ def test_mount_forces_carry_newton_in_csv_and_hdf5(car_results, tmp_path):
     assert all(f"{n} [N]" in header for n in mounts)
     with h5py.File(r.save(tmp_path / "r.h5", format="hdf5"), "r") as f:
         assert {f[f"channels/{n}"].attrs["unit"] for n in mounts} == {"N"}
+
+
+def test_mat_holds_every_channel_of_the_linkage_car_by_its_full_name(car_results, tmp_path):
+    """MATLAB's classic limit on struct field names is 31 characters; mount channels are
+    longer (``mount_rear_lateral_link_inner_l_x``, 33).  The file holds every channel."""
+    from scipy.io import loadmat
+
+    r = car_results["sedan_linkage"]
+    names = list(r.channels)
+    assert max(map(len, names)) > 31
+    d = loadmat(r.save(tmp_path / "linkage.mat", format="mat"), simplify_cells=True)
+    # lossless for any name: cell arrays of names and units, matrix column j = names{j}
+    assert list(d["channel_names"]) == names
+    assert list(d["channel_units"]) == [channel_unit(n) for n in names]
+    assert d["channel_data"].shape == (len(r.t), len(names))
+    for j, n in enumerate(names):
+        np.testing.assert_array_equal(d["channel_data"][:, j], r[n])
+    # and the structs by name (MATLAB 7.6+ reads 63-character field names)
+    assert sorted(d["channels"]) == sorted(names)
+    for n in names:
+        np.testing.assert_array_equal(np.ravel(d["channels"][n]), r[n])
+        assert d["units"][n] == channel_unit(n)
+    np.testing.assert_array_equal(np.ravel(d["t"]), r.t)
+
+
+def test_mat_names_matlab_cannot_use_as_fields_are_kept_in_the_cell_array(result, tmp_path):
+    from scipy.io import loadmat
+
+    long = "acc_" + "a_very_long_point_name_from_a_quoted_toml_key" * 2 + "_x"  # > 63
+    odd = "acc_driver seat_x"  # a quoted TOML key with a space
+    result.channels.update({long: np.zeros(len(result.t)), odd: np.ones(len(result.t))})
+    with pytest.warns(UserWarning, match="channel_names"):
+        path = result.save(tmp_path / "r.mat", format="mat")
+    d = loadmat(path, simplify_cells=True)
+    names = list(d["channel_names"])
+    assert long in names and odd in names
+    np.testing.assert_array_equal(d["channel_data"][:, names.index(odd)], 1.0)
+    assert long not in d["channels"] and "speed" in d["channels"]
