@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -81,3 +83,81 @@ def test_bad_format_and_motion_file(result, tmp_path):
     with pytest.raises(ValueError, match="position"):
         BodyMotion(t=[0.0, 1.0], q=np.zeros((2, 1)), position=np.zeros((3, 3)),
                    rotation=np.zeros((2, 3, 3)), mode_index=[6])
+
+
+# ------------------------------------------------------------- the sample cars' channels
+ROOT = Path(__file__).resolve().parents[1]
+
+#: channels that are genuinely dimensionless (unit "-"), with the reason; none so far:
+#: every recorded channel is a position, angle, speed, acceleration, force, torque or rate
+DIMENSIONLESS: dict = {}
+
+
+@pytest.fixture(scope="module")
+def car_results():
+    """Short rigid-body runs of the linkage car and the prismatic car: every channel the
+    recorder builds for them (mount forces, hub and tyre forces, points, driver)."""
+    import flexpipe as fp
+
+    return {name: fp.simulate(fp.load_car(ROOT / "cars" / f"{name}.toml"), speed=10.0,
+                              t_end=0.05, body="rigid", cache=False)
+            for name in ("sedan_linkage", "sedan")}
+
+
+def test_every_channel_of_the_sample_cars_has_a_unit(car_results):
+    linkage = car_results["sedan_linkage"]
+    assert any(n.startswith("mount_") for n in linkage.channels)  # the per-mount forces
+    for name, r in car_results.items():
+        assert r.status == 0, r.message
+        missing = [n for n in r.channels if channel_unit(n) == "-" and n not in DIMENSIONLESS]
+        assert not missing, f"{name}: channels without a unit: {missing}"
+    assert channel_unit("mount_rear_trailing_link_front_l_x") == "N"
+    assert channel_unit("mount_front_rack_mount_r_z") == "N"
+
+
+def test_mount_forces_carry_newton_in_csv_and_hdf5(car_results, tmp_path):
+    h5py = pytest.importorskip("h5py")
+    r = car_results["sedan_linkage"]
+    mounts = [n for n in r.channels if n.startswith("mount_")]
+    header = r.to_csv(tmp_path / "r.csv").read_text().splitlines()[0].split(",")
+    assert all(f"{n} [N]" in header for n in mounts)
+    with h5py.File(r.save(tmp_path / "r.h5", format="hdf5"), "r") as f:
+        assert {f[f"channels/{n}"].attrs["unit"] for n in mounts} == {"N"}
+
+
+def test_mat_holds_every_channel_of_the_linkage_car_by_its_full_name(car_results, tmp_path):
+    """MATLAB's classic limit on struct field names is 31 characters; mount channels are
+    longer (``mount_rear_lateral_link_inner_l_x``, 33).  The file holds every channel."""
+    from scipy.io import loadmat
+
+    r = car_results["sedan_linkage"]
+    names = list(r.channels)
+    assert max(map(len, names)) > 31
+    d = loadmat(r.save(tmp_path / "linkage.mat", format="mat"), simplify_cells=True)
+    # lossless for any name: cell arrays of names and units, matrix column j = names{j}
+    assert list(d["channel_names"]) == names
+    assert list(d["channel_units"]) == [channel_unit(n) for n in names]
+    assert d["channel_data"].shape == (len(r.t), len(names))
+    for j, n in enumerate(names):
+        np.testing.assert_array_equal(d["channel_data"][:, j], r[n])
+    # and the structs by name (MATLAB 7.6+ reads 63-character field names)
+    assert sorted(d["channels"]) == sorted(names)
+    for n in names:
+        np.testing.assert_array_equal(np.ravel(d["channels"][n]), r[n])
+        assert d["units"][n] == channel_unit(n)
+    np.testing.assert_array_equal(np.ravel(d["t"]), r.t)
+
+
+def test_mat_names_matlab_cannot_use_as_fields_are_kept_in_the_cell_array(result, tmp_path):
+    from scipy.io import loadmat
+
+    long = "acc_" + "a_very_long_point_name_from_a_quoted_toml_key" * 2 + "_x"  # > 63
+    odd = "acc_driver seat_x"  # a quoted TOML key with a space
+    result.channels.update({long: np.zeros(len(result.t)), odd: np.ones(len(result.t))})
+    with pytest.warns(UserWarning, match="channel_names"):
+        path = result.save(tmp_path / "r.mat", format="mat")
+    d = loadmat(path, simplify_cells=True)
+    names = list(d["channel_names"])
+    assert long in names and odd in names
+    np.testing.assert_array_equal(d["channel_data"][:, names.index(odd)], 1.0)
+    assert long not in d["channels"] and "speed" in d["channels"]

@@ -85,7 +85,11 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     ``out`` which then replaces ``out`` as a whole, so ``out`` never mixes files of two
     runs.  A run that fails or is interrupted (Ctrl-C, SIGTERM) still replaces ``out``
     with its own ``summary.json`` (``state`` "error" or "interrupted", the message and
-    the channel files of the runs that finished), then the exception propagates.
+    the channel files of the runs that finished), then the exception propagates.  A
+    channel file that cannot be written in ``format`` (``hdf5``, ``mat``) is written as
+    CSV instead and the run goes on; at the end ``out`` holds every output and a summary
+    with ``state`` "error", and a :class:`~flexpipe.errors.FlexpipeError` says which file
+    failed and where its channels are.
 
     Returns
     -------
@@ -94,10 +98,11 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         stopped early; ``state`` "completed" or "stopped early".
     """
     from flexpipe._io import commit_directory, stage_directory
-    from flexpipe.vehicle.export import SUFFIX
+    from flexpipe.vehicle.export import check_format
     from flexpipe.vehicle.simulation import simulate
     from flexpipe.vehicle.spec import Car, load_car
 
+    fmt = check_format(format)  # before minutes of simulation
     car = car if isinstance(car, Car) else load_car(car)
     if isinstance(road, (str, Path)):
         from flexpipe.roads import load_road
@@ -119,7 +124,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     if not bodies:
         raise InputError("give at least one body kind", key="bodies")
     stage = stage_directory(out)
-    results, files = {}, []
+    results, files, output_errors = {}, [], []
     base = {"scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
             "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
@@ -132,8 +137,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
                          prewarp=prewarp, inertia_coupling=inertia_coupling,
                          profile=profile, **kw)
             results[body] = r
-            files.append(r.save(stage / f"{body}{SUFFIX.get(format, '.csv')}",
-                                format=format).name)
+            files.append(_save_channels(r, stage, body, fmt, output_errors, log=log))
             log(f"      {r.message}; CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s "
                 f"simulated (real-time factor {r.realtime_factor:.2f})")
         summary = _summary(base, results, path=path, speed=speed)
@@ -142,13 +146,18 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         _durability(stage, results, summary, car=car, road=road, log=log, progress=progress,
                     final=out)
     except BaseException as exc:
-        _write_failure(stage, base, results, files, exc, bodies=bodies, t0=t0)
+        _write_failure(stage, base, results, files, exc, bodies=bodies, t0=t0,
+                       output_errors=output_errors)
         commit_directory(stage, out)
         raise
+    if output_errors:  # every result is in out; the run still failed to give the format
+        summary.update(status=2, state="error", message="; ".join(output_errors))
     summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
     write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
     commit_directory(stage, out)
     log(f"wrote {out}/: {', '.join(summary['files'])}")
+    if output_errors:
+        raise FlexpipeError(f"{out}: {summary['message']}")
     d = summary.get("hub_force_difference_rigid_vs_flexible", {}).get("fl_z")
     if d is not None:
         log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
@@ -209,6 +218,31 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
     return summary
 
 
+def _save_channels(result, stage, body: str, fmt: str, errors: list, *, log) -> str:
+    """Write ``result``'s channel file ``BODY.SUFFIX``; returns the name written.
+
+    When the writer of an optional format (``hdf5``, ``mat``) raises, the channels are
+    written as ``BODY.csv`` instead (the run is not lost) and the one-line reason is
+    appended to ``errors``.
+    """
+    from flexpipe.vehicle.export import SUFFIX
+
+    name = f"{body}{SUFFIX[fmt]}"
+    try:
+        return result.save(stage / name, format=fmt).name
+    except Exception as exc:  # noqa: BLE001 - any writer failure: keep the run as CSV
+        if fmt == "csv":
+            raise
+        reason = " ".join(str(exc).split()) or type(exc).__name__
+        if not isinstance(exc, FlexpipeError):
+            reason = f"{type(exc).__name__}: {reason}"
+        fallback = result.save(stage / f"{body}.csv", format="csv").name
+        errors.append(f"{name}: cannot write format {fmt!r} ({reason}); the {body} "
+                      f"run's channels are in {fallback} instead")
+        log(f"      error: {errors[-1]}")
+        return fallback
+
+
 def _plots(results, stage, *, plots, path, title) -> list:
     from flexpipe.vehicle import plots as P
 
@@ -221,8 +255,9 @@ def _plots(results, stage, *, plots, path, title) -> list:
     return files
 
 
-def _write_failure(stage, base, results, files, exc, *, bodies, t0) -> None:
-    """summary.json of a run that raised: state, message, the runs that finished."""
+def _write_failure(stage, base, results, files, exc, *, bodies, t0, output_errors=()) -> None:
+    """summary.json of a run that raised: state, message (and the channel files written
+    as CSV instead of their format, ``output_errors``), the runs that finished."""
     from flexpipe._signals import interrupt_info, interrupt_text
 
     running = next((b for b in bodies if b not in results), None)
@@ -235,6 +270,7 @@ def _write_failure(stage, base, results, files, exc, *, bodies, t0) -> None:
         message = " ".join(str(exc).split()) or type(exc).__name__
         if not isinstance(exc, FlexpipeError):
             message = f"{type(exc).__name__}: {message}"
+    message = "; ".join([message, *output_errors])
     summary = {**base, "status": status, "state": state, "message": message,
                "completed_runs": {b: r.message for b, r in results.items()},
                "files": sorted(files + ["summary.json"]),
