@@ -136,14 +136,124 @@ def read_numeric_rows(path, *, kind: str, columns: str):
     return rows
 
 
+# --------------------------------------------------------------------------- output paths
+def _first_existing(path: Path) -> Path:
+    for p in (path, *path.parents):
+        if p.exists():
+            return p
+    return Path(".")
+
+
+def _check_creatable(path: Path, start: Path, option: str, what: str) -> None:
+    """The first existing folder from ``start`` up must be a writable folder."""
+    from flexpipe.errors import InputError
+
+    anc = _first_existing(start)
+    if not anc.is_dir():
+        raise InputError(f"{anc} is a file, so the {what} {path} cannot be created in it; "
+                         f"choose another {option}", file=path, key=option)
+    if not os.access(anc, os.W_OK | os.X_OK):
+        raise InputError(f"no permission to create the {what} in {anc}; choose another "
+                         f"{option}", file=path, key=option)
+
+
+def check_output_folder(out, *, option: str = "--out") -> Path:
+    """Check, before any work, that the output folder ``out`` can be written.
+
+    ``out`` must be an existing folder or a path whose first existing ancestor is a
+    writable folder.  Commands call this first so that an analysis never runs only to
+    fail on its output path.
+
+    Parameters
+    ----------
+    out : str or Path
+        The output folder.
+    option : str
+        The option or key that gave it (``--out``, ``-o``), named in the error.
+
+    Raises
+    ------
+    InputError
+        ``out`` is an existing file, lies under a file, or its parent is not writable.
+    """
+    from flexpipe.errors import InputError
+
+    out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"exists and is a file; {option} takes a folder (the command writes "
+                         "several files into it): give a new or existing folder",
+                         file=out, key=option)
+    _check_creatable(out, out, option, "folder")
+    return out
+
+
+def check_output_file(path, *, option: str = "-o") -> Path:
+    """Check, before any work, that the output file ``path`` can be written (it is not an
+    existing folder and its folder can be created).
+
+    Raises
+    ------
+    InputError
+        ``path`` is an existing folder, lies under a file, or its parent is not writable.
+    """
+    from flexpipe.errors import InputError
+
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(f"is an existing folder; {option} takes a file name", file=path,
+                         key=option)
+    _check_creatable(path, path.parent, option, "file")
+    return path
+
+
 # --------------------------------------------------------------------------- staged folders
+def failed_folder(out) -> Path:
+    """``OUT.failed`` next to the output folder ``out``: where a run that failed or was
+    interrupted leaves its own ``summary.json`` (and the files of the parts that
+    finished), so that ``out`` keeps the last successful run."""
+    out = Path(out).resolve()
+    return out.parent / f"{out.name}.failed"
+
+
+def _check_replaceable(folder: Path, option: str) -> None:
+    from flexpipe.errors import InputError
+
+    if not folder.exists():
+        return
+    if not folder.is_dir():
+        raise InputError(f"exists and is a file; {option} takes a folder: choose another "
+                         f"{option}", file=folder, key=option)
+    entries = [e.name for e in folder.iterdir()]
+    if entries and "summary.json" not in entries:
+        raise InputError(
+            f"the folder exists and is not a previous flexpipe run (no summary.json; it holds "
+            f"{sorted(entries)[:3]}); a run replaces its output folder (and OUT.failed) as a "
+            f"whole: choose a new or empty folder as {option}", file=folder, key=option)
+
+
+def check_run_folder(out, *, option: str = "--out") -> Path:
+    """Check that a run may write ``out`` and ``OUT.failed``: each is absent, empty or a
+    previous run's folder (holds a ``summary.json``), and can be created.
+
+    Raises
+    ------
+    InputError
+        One of them is a file or a folder of other files, or cannot be created.
+    """
+    out = Path(out)
+    _check_replaceable(out, option)
+    _check_replaceable(failed_folder(out), option)
+    check_output_folder(out, option=option)
+    return out
+
+
 def stage_directory(out) -> Path:
     """A fresh, empty staging folder ``.NAME.staging-PID`` next to the output folder ``out``.
 
-    Checks first that ``out`` is absent, empty or a previous run's folder (it holds a
-    ``summary.json``), so that :func:`commit_directory` never
-    replaces a folder of the user's other files.  Staging folders left by processes that
-    no longer exist are removed.
+    Checks first (:func:`check_run_folder`) that ``out`` and ``OUT.failed`` are absent,
+    empty or a previous run's folder, so that :func:`commit_directory` never replaces a
+    folder of the user's other files.  Staging folders left by processes that no longer
+    exist are removed.
 
     Raises
     ------
@@ -152,19 +262,7 @@ def stage_directory(out) -> Path:
     """
     import shutil
 
-    from flexpipe.errors import InputError
-
-    out = Path(out)
-    if out.exists():
-        if not out.is_dir():
-            raise InputError("the output folder is an existing file; choose another --out",
-                             file=out)
-        entries = [e.name for e in out.iterdir()]
-        if entries and "summary.json" not in entries:
-            raise InputError(
-                f"the output folder exists and is not a previous flexpipe run (no summary.json;"
-                f" it holds {sorted(entries)[:3]}); a run replaces its output folder as a "
-                "whole: choose a new or empty folder", file=out)
+    out = check_run_folder(out)
     parent = out.resolve().parent
     parent.mkdir(parents=True, exist_ok=True)
     for old in parent.glob(f".{out.name}.staging-*"):

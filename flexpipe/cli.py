@@ -68,10 +68,17 @@ def _top_parser(commands) -> argparse.ArgumentParser:
 
 
 def _one_line(exc: BaseException) -> str:
+    """The error as one line: its message, then its notes (e.g. where a failed run left
+    its summary) in parentheses."""
     text = str(exc) or type(exc).__name__
     if isinstance(exc, OSError) and exc.filename:
         text = f"{exc.filename}: {exc.strerror or text}"
-    return " ".join(text.split())
+    return " ".join((text + _notes(exc)).split())
+
+
+def _notes(exc: BaseException) -> str:
+    notes = getattr(exc, "__notes__", None) or []
+    return f" ({'; '.join(notes)})" if notes else ""
 
 
 def main(argv=None) -> int:
@@ -113,7 +120,7 @@ def main(argv=None) -> int:
         print(f"flexpipe {name}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR
     except KeyboardInterrupt as exc:
-        print(f"flexpipe {name}: {interrupt_text(exc)}", file=sys.stderr)
+        print(f"flexpipe {name}: {interrupt_text(exc)}{_notes(exc)}", file=sys.stderr)
         return interrupt_info(exc)[0]
     return int(code or 0)
 

@@ -15,8 +15,13 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
+    from pathlib import Path
+
+    from flexpipe._io import check_output_folder
     from flexpipe.durability.pipeline import animate_outputs
 
+    check_output_folder(Path(args.out_dir) / "animation" if args.dest is None else args.dest,
+                        option="--dest")
     files = animate_outputs(args.out_dir, dest=args.dest, scale=args.scale, every=args.every,
                             progress=True)
     print(f"wrote: {', '.join(sorted(files))}")

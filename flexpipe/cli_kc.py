@@ -7,13 +7,12 @@ units in the headers, ``kc_summary.json`` and PNG plots to OUT.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 
 def add_arguments(p) -> None:
     """Options of ``flexpipe kc``."""
     p.add_argument("car", help="car file with [suspension.front] / [suspension.rear]")
-    p.add_argument("-o", "--out", default="out/kc", help="output folder (default out/kc)")
+    p.add_argument("-o", "--out", default="out/kc",
+                   help="output folder, created if needed (default out/kc)")
     p.add_argument("--travel", type=float, default=80.0, help="wheel travel +- in mm")
     p.add_argument("--points", type=int, default=33, help="points per sweep")
     p.add_argument("--rack", type=float, default=30.0, help="rack travel +- in mm")
@@ -23,12 +22,13 @@ def add_arguments(p) -> None:
 
 def run(args) -> int:
     """Run ``flexpipe kc``."""
+    from flexpipe._io import check_output_folder
     from flexpipe.errors import InputError
     from flexpipe.vehicle.suspension.kc import kc
 
     if args.travel <= 0 or args.points < 3 or args.rack <= 0 or args.force <= 0:
         raise InputError("--travel, --rack and --force must be > 0 and --points >= 3")
-    out = Path(args.out)
+    out = check_output_folder(args.out, option="-o")  # before the analysis, not after
     res = kc(args.car, out=out, travel=args.travel / 1e3, n=args.points,
              rack_travel=args.rack / 1e3, force=args.force)
     for axle, s in res.summary.items():

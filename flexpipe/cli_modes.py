@@ -51,7 +51,8 @@ def add_arguments(p) -> None:
     p.add_argument("--prune", action="store_true", help="drop nodes no element uses")
     p.add_argument("--allow-disconnected", action="store_true",
                    help="accept several unconnected parts")
-    p.add_argument("-o", "--out", help="output directory (default out/modes/<mesh stem>)")
+    p.add_argument("-o", "--out", help="output folder, created if needed (default "
+                   "out/modes/<mesh stem>)")
     p.add_argument("--per-mode", action="store_true", help="also write one .vtu per mode")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
 
@@ -107,6 +108,7 @@ def _check_file_materials(mesh) -> None:
 
 def run(args) -> int:
     """Run ``flexpipe modes``."""
+    from flexpipe._io import check_output_folder
     from flexpipe.fem import assemble, eigenmodes
     from flexpipe.mesh import read_mesh
     from flexpipe.mesh.vtu import write_modes
@@ -115,6 +117,8 @@ def run(args) -> int:
         raise InputError(f"--n must be a positive number of modes, got {args.n}", key="--n")
     material = _material(args)
     path = Path(args.mesh)
+    out = check_output_folder(args.out if args.out else Path("out") / "modes" / path.stem,
+                              option="-o")  # before the analysis, not after
     with _step(f"reading {path}", args.quiet):
         mesh = read_mesh(path, args.scale, units=args.units, thickness=args.thickness,
                          keep=tuple(args.keep), prune_unreferenced=args.prune)
@@ -149,7 +153,6 @@ def run(args) -> int:
         if f_hi is not None:
             keep &= freqs <= f_hi
         freqs, shapes = freqs[keep], shapes[:, keep]
-    out = Path(args.out) if args.out else Path("out") / "modes" / path.stem
     written = write_modes(out / "modes.vtu", mesh, freqs, shapes,
                           per_mode_dir=out if args.per_mode else None)
     csv = "mode,frequency_hz\n" + "".join(f"{k + 1},{f:.10g}\n" for k, f in enumerate(freqs))

@@ -65,6 +65,7 @@ def add_info_arguments(p) -> None:
 
 def run(args) -> int:
     """Run ``flexpipe reduce``."""
+    from flexpipe._io import check_output_file
     from flexpipe.cli_modes import _check_file_materials, _material, _step
     from flexpipe.fem import assemble
     from flexpipe.mesh import read_mesh
@@ -74,6 +75,9 @@ def run(args) -> int:
     out = Path(args.out)
     if out.suffix != ".npz":
         raise InputError("the output FlexBody file must end in .npz", key="-o")
+    check_output_file(out, option="-o")  # before the analysis, not after
+    if args.vtu:
+        _check_vtu(args.vtu)
     material = _material(args)
     path = Path(args.mesh)
     with _step(f"reading {path}", args.quiet):
@@ -100,6 +104,8 @@ def run_info(args) -> int:
     """Run ``flexpipe info BODY.npz``."""
     from flexpipe.reduction import load_body
 
+    if args.vtu:
+        _check_vtu(args.vtu)
     body = load_body(args.body)
     print(info_text(body, path=args.body, mac_size=args.mac_size))
     if args.vtu:
@@ -169,6 +175,15 @@ def info_text(body, *, path="", mac_size: int = 12) -> str:
 
 def _p(x) -> str:
     return "(" + ", ".join(f"{v:.4g}" for v in x) + ")"
+
+
+def _check_vtu(path) -> None:
+    """The ``--vtu`` file, checked before any work: a ``.vtu`` name that can be written."""
+    from flexpipe._io import check_output_file
+
+    if Path(path).suffix != ".vtu":
+        raise InputError("the mode-shape file must end in .vtu", key="--vtu")
+    check_output_file(path, option="--vtu")
 
 
 def write_modes_vtu(body, path) -> Path:

@@ -5,6 +5,11 @@ sample: runs the car with the chosen body models (default rigid and flexible), w
 one CSV per run, ``hub_force_fl.png`` (and ``trajectory.png`` when a path is given) and
 ``summary.json`` into ``--out``.
 
+A run is a transaction (:data:`OUTPUTS`): bad arguments are reported before anything is
+written; the results are staged next to ``--out`` and put in its place only when the run
+completes; a run that stops early, fails or is interrupted leaves ``--out`` as it was
+and its own ``summary.json`` in ``OUT.failed``.
+
 Examples::
 
     flexpipe run cars/sedan.toml --road roads/iso_c_200m.toml --speed 60 --t-end 8
@@ -13,11 +18,29 @@ Examples::
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
+
+#: what a run leaves in its output folder (shown by ``flexpipe run --help``)
+OUTPUTS = """\
+outputs: --out DIR receives BODY.csv (or .h5/.mat) per body model, hub_force_fl.png,
+trajectory.png (with --path), summary.json and the durability files.  The run is a
+transaction.  Bad arguments (--speed, --t-end, --h, --body, files, road or path too
+short, an --out that is a file or a folder of other files) are reported before DIR is
+created or touched.  The results are written to a staging folder .DIR.staging-PID and
+renamed onto DIR only when the run completes (an earlier run in DIR is then replaced
+as a whole; the next completed run also removes DIR.failed).  A run that stops early,
+fails or is interrupted leaves DIR as it was (an earlier run's results stay) and puts
+its own summary.json ("state": "stopped early", "error" or "interrupted", with the
+message) and the files of the body runs that finished in DIR.failed, next to DIR.
+Exit code 0 when every run reached --t-end, 1 when one stopped early, 2 on an error,
+130/143 on Ctrl-C/SIGTERM."""
 
 
 def add_arguments(parser) -> None:
     """Options of ``flexpipe run``."""
+    parser.epilog = OUTPUTS
+    parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.add_argument("car", help="car file (.toml), e.g. cars/sedan.toml")
     parser.add_argument("--road", default=None,
                         help="road file (.toml spec, .crg, .csv); default: flat")
@@ -32,7 +55,8 @@ def add_arguments(parser) -> None:
                              "(default: rigid,flexible)")
     parser.add_argument("--h", type=float, default=None, help="time step, s (default 1e-3)")
     parser.add_argument("--out", default=None,
-                        help="output directory (default: out/<car>-<road>-<speed>kmh)")
+                        help="output directory (default: out/<car>-<road>-<speed>kmh); "
+                             "replaced only by a completed run, see 'outputs' below")
     parser.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
     parser.add_argument("--check-step", action="store_true",
                         help="step-convergence study instead of a run: the first body model "
@@ -62,30 +86,26 @@ def add_arguments(parser) -> None:
 def run(args) -> int:
     """Run the scenario; exit code 0 when every run reached its end time, else 1.
 
-    The output folder is replaced as a whole when the run ends, also when it fails or is
-    interrupted (then its ``summary.json`` says so: see
-    :func:`~flexpipe.scenarios.runner.run_pair`)."""
+    Every argument is checked before anything is written (:func:`check_arguments`).
+    The output folder is replaced as a whole only when the run completes; a run that
+    stops early, fails or is interrupted leaves it as it was and writes ``OUT.failed``
+    (see :data:`OUTPUTS` and :func:`~flexpipe.scenarios.runner.run_pair`)."""
     import os
 
+    bodies = check_arguments(args)
     if args.profile:  # only the range-checked module times the parts (flexpipe.exu.MODULE_ENV)
         os.environ.setdefault("FLEXPIPE_EXUDYN", "checked")
-    from flexpipe.errors import InputError
     from flexpipe.scenarios.runner import run_pair
 
-    bodies = tuple(b.strip() for b in args.body.split(",") if b.strip())
-    bad = [b for b in bodies if b not in ("rigid", "flexible", "full")]
-    if bad or not bodies:
-        raise InputError(f"--body {args.body!r}: valid body models are rigid, flexible, full "
-                         "(comma-separated)", key="body")
-    if not (args.speed >= 0):
-        raise InputError(f"--speed must be >= 0 km/h, got {args.speed}", key="speed")
     out = args.out
     if out is None:
         tag = Path(args.road).stem if args.road else (Path(args.path).stem if args.path
                                                       else "flat")
         out = Path("out") / f"{Path(args.car).stem}-{tag}-{args.speed:g}kmh"
     if args.check_step:
-        return _check_step(args, bodies[0], Path(out))
+        from flexpipe._io import check_output_folder
+
+        return _check_step(args, bodies[0], check_output_folder(out))
     title = (f"{Path(args.road).name if args.road else 'flat road'}, "
              f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
     summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed / 3.6,
@@ -97,7 +117,49 @@ def run(args) -> int:
                        inertia_coupling=args.inertia_coupling, profile=args.profile)
     if args.profile and not args.quiet:
         _print_profile(summary)
-    return 0 if summary["status"] == 0 else 1
+    if summary["status"] != 0:
+        import sys
+
+        from flexpipe._io import failed_folder
+
+        print(f"flexpipe run: stopped early ({'; '.join(summary['messages'].values())}); "
+              f"{out} is unchanged; this run's files are in {failed_folder(out)}",
+              file=sys.stderr)
+        return 1
+    return 0
+
+
+def check_arguments(args) -> tuple[str, ...]:
+    """The body models of ``--body``, after checking the numbers of a ``flexpipe run`` in
+    the options' own units (``--speed`` in km/h) against the ranges that
+    :func:`~flexpipe.vehicle.run_inputs.check_run` accepts.
+
+    Raises
+    ------
+    InputError
+        Naming the option, its unit and the valid range.
+    """
+    from flexpipe.errors import InputError
+    from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX, checked_number
+    from flexpipe.vehicle.simulation import DEFAULT_STEP
+
+    bodies = tuple(b.strip() for b in args.body.split(",") if b.strip())
+    bad = [b for b in bodies if b not in ("rigid", "flexible", "full")]
+    if bad or not bodies:
+        raise InputError(f"--body {args.body!r}: valid body models are rigid, flexible, full "
+                         "(comma-separated)", key="body")
+    checked_number(args.speed, "--speed", lo=0.0, hi=round(SPEED_MAX * 3.6, 6),
+                   lo_closed=True, unit="km/h", key="speed")
+    t_end = checked_number(args.t_end, "--t-end", lo=0.0, hi=T_END_MAX, unit="s",
+                           key="t_end")
+    h = DEFAULT_STEP
+    if args.h is not None:
+        h = checked_number(args.h, "--h", lo=H_MIN, hi=H_MAX, lo_closed=True, unit="s",
+                           key="h")
+    if h > t_end:
+        raise InputError(f"--h {h:g} s is longer than --t-end {t_end:g} s; choose --h <= "
+                         "--t-end", key="h")
+    return bodies
 
 
 def _print_profile(summary: dict) -> None:

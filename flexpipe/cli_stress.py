@@ -14,11 +14,16 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
+    from pathlib import Path
+
+    from flexpipe._io import check_output_folder
     from flexpipe.durability.pipeline import stress_outputs
     from flexpipe.errors import InputError
 
     if args.top < 1:
         raise InputError(f"--top must be >= 1, got {args.top}", key="--top")
+    if Path(args.out_dir).is_dir():  # else load_run says the run folder is missing
+        check_output_folder(Path(args.out_dir) / "stress", option="OUT_DIR")
     files = stress_outputs(args.out_dir, top=args.top, fatigue=not args.no_fatigue,
                            progress=True)
     print(f"wrote {args.out_dir}/: {', '.join(sorted(files))}")

@@ -32,11 +32,14 @@ def add_arguments(parser) -> None:
 
 def run(args) -> int:
     """Run the sweep; exit code 0 when every run reached its end time, else 1."""
+    from flexpipe._io import check_output_folder
     from flexpipe.errors import InputError
     from flexpipe.sweeps import sweep
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers must be >= 1, got {args.workers}", key="workers")
+    if args.out is not None:
+        check_output_folder(args.out, option="--out")  # before the sweep, not after
     res = sweep(args.spec, out=args.out, scheduler=args.scheduler, n_workers=args.workers,
                 progress=not args.no_progress, retry_failed=args.retry_failed,
                 cache=not args.no_cache)

@@ -188,3 +188,50 @@ def test_modes_names_the_missing_property_card(tmp_path, capsys):
     (line,) = [ln for ln in err.splitlines() if "error:" in ln]
     assert "pid7.bdf" in line and "element 1 (CQUAD4" in line and "PID 7" in line
     assert "PSHELL" in line and "property ids defined: 1, 2" in line
+
+
+def _never(*a, **k):
+    raise AssertionError("the analysis ran before the output path was checked")
+
+
+@pytest.mark.parametrize("argv, patched, words", [
+    (["modes", "{mesh}", "--material", "steel", "-o", "{file}", "-q"],
+     "flexpipe.mesh.read_mesh", ["'-o'", "takes a folder"]),
+    (["modes", "{mesh}", "--material", "steel", "-o", "{file}/sub", "-q"],
+     "flexpipe.mesh.read_mesh", ["'-o'", "is a file"]),
+    (["kc", "{car}", "-o", "{file}"], "flexpipe.vehicle.suspension.kc.kc",
+     ["'-o'", "takes a folder"]),
+    (["reduce", "{mesh}", "--interfaces", "x.toml", "-o", "{dir}.npz"],
+     "flexpipe.mesh.read_mesh", ["'-o'", "takes a file name"]),
+    (["reduce", "{mesh}", "--interfaces", "x.toml", "-o", "b.npz", "--vtu", "{file}/m.vtu"],
+     "flexpipe.mesh.read_mesh", ["'--vtu'", "is a file"]),
+    (["info", "body.npz", "--vtu", "{file}/m.vtu"], "flexpipe.reduction.load_body",
+     ["'--vtu'", "is a file"]),
+    (["animate", "{dir}", "--dest", "{file}"], "flexpipe.durability.pipeline.animate_outputs",
+     ["'--dest'", "takes a folder"]),
+    (["run", "{car}", "--speed", "10", "--check-step", "--out", "{file}"],
+     "flexpipe.vehicle.convergence.check_step", ["'--out'", "takes a folder"]),
+    (["run", "{car}", "--speed", "10", "--out", "{file}"],
+     "flexpipe.vehicle.simulation.simulate", ["'--out'", "takes a folder"]),
+])
+def test_output_paths_are_checked_before_the_analysis(tmp_path, capsys, monkeypatch, argv,
+                                                      patched, words):
+    """An output path that cannot be written (a file where a folder is needed, a folder
+    where a file is needed, a file on the way) is a one-line error naming the option,
+    given before any analysis runs (the analysis is replaced by one that fails)."""
+    import importlib
+
+    monkeypatch.chdir(tmp_path)
+    module, name = patched.rsplit(".", 1)  # the module, also where a package re-exports
+    monkeypatch.setattr(importlib.import_module(module), name, _never)  # a same-named name
+    (tmp_path / "taken").write_text("")
+    (tmp_path / "dir.npz").mkdir()
+    root = Path(__file__).resolve().parents[1]
+    fill = {"mesh": str(root / "meshes" / "bracket.bdf"), "file": str(tmp_path / "taken"),
+            "dir": str(tmp_path / "dir"), "car": str(root / "cars" / "sedan_linkage.toml")}
+    assert cli.main([a.format(**fill) for a in argv]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"flexpipe {argv[0]}: error: ")
+    assert str(tmp_path / "taken") in err[0] or str(tmp_path / "dir") in err[0]
+    for w in words:
+        assert w in err[0], err[0]

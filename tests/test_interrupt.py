@@ -1,9 +1,10 @@
 """Ctrl-C (SIGINT) and SIGTERM during integration, reduction and writing, in a subprocess.
 
 Contract (issue 14): the command stops with exit code 130 / 143, prints one line (no
-traceback), never reports the interrupt as a solver failure, and the output folder is
-replaced as a whole by the interrupted run's own ``summary.json`` ("interrupted at
-t = ..."), never an old summary beside new data; no temporary file is left behind.
+traceback), never reports the interrupt as a solver failure, and the output folder keeps
+the earlier run as a whole (never an old summary beside new data) while the interrupted
+run's own ``summary.json`` ("interrupted at t = ...") goes to ``OUT.failed``; no
+temporary file is left behind.
 """
 
 from __future__ import annotations
@@ -74,6 +75,13 @@ def _old_run(out: Path) -> None:
     (out / "flexible.csv").write_text("t,x\n0,0\n")
 
 
+def _old_run_kept(out: Path) -> None:
+    """The earlier run is still in ``out``, whole and alone."""
+    assert sorted(p.name for p in out.iterdir()) == ["flexible.csv", "summary.json"]
+    assert json.loads((out / "summary.json").read_text())["state"] == "completed"
+    assert (out / "flexible.csv").read_text() == "t,x\n0,0\n"
+
+
 def _no_temp_left(folder: Path):
     left = [p.name for p in folder.iterdir() if p.name.startswith(".")]
     assert not left, left
@@ -93,12 +101,13 @@ def test_signal_during_integration(tmp_path, cache, sig):
     assert code == CODE[sig], proc.text[-2000:]
     assert "Traceback" not in proc.text
     assert "converge" not in proc.text and "too large step" not in proc.text
-    summary = json.loads((out / "summary.json").read_text())
+    summary = json.loads((tmp_path / "run.failed" / "summary.json").read_text())
     assert summary["state"] == "interrupted" and summary["status"] == CODE[sig]
     assert f"interrupted ({signal.Signals(sig).name}) at t = " in summary["message"]
     t = float(summary["message"].split("at t = ")[1].split()[0])
     assert 0.0 < t < 60.0
-    assert not (out / "flexible.csv").exists()  # the old run's data went with its summary
+    assert "run.failed" in proc.text  # the message says where the summary went
+    _old_run_kept(out)  # the old run keeps its data and its summary
     _no_temp_left(tmp_path)
 
 
@@ -114,10 +123,12 @@ def test_signal_during_reduction(tmp_path, sig):
     code = proc.finish()
     assert code == CODE[sig], proc.text[-2000:]
     assert "Traceback" not in proc.text
-    summary = json.loads((out / "summary.json").read_text())
+    assert not out.exists()  # an interrupted run does not create the output folder
+    failed = tmp_path / "run.failed"
+    summary = json.loads((failed / "summary.json").read_text())
     assert summary["state"] == "interrupted"
     assert "during the flexible body run" in summary["message"]
-    assert sorted(p.name for p in out.iterdir()) == ["rigid.csv", "summary.json"]
+    assert sorted(p.name for p in failed.iterdir()) == ["rigid.csv", "summary.json"]
     assert not [p for p in cache.iterdir() if p.name.startswith(".")]  # no temp file
     assert not list(cache.glob("body-*.npz"))  # no half-written cache entry
     _no_temp_left(tmp_path)
@@ -149,9 +160,11 @@ def test_signal_while_writing(tmp_path, cache, sig):
     code = proc.finish()
     assert code == CODE[sig], proc.text[-2000:]
     assert "Traceback" not in proc.text
-    summary = json.loads((out / "summary.json").read_text())
+    failed = tmp_path / "run.failed"
+    summary = json.loads((failed / "summary.json").read_text())
     assert summary["state"] == "interrupted"
     assert summary["completed_runs"]["rigid"].startswith("reached t_end")
-    assert sorted(p.name for p in out.iterdir()) == ["rigid.csv", "summary.json"]
+    assert sorted(p.name for p in failed.iterdir()) == ["rigid.csv", "summary.json"]
+    _old_run_kept(out)
     script.unlink()
     _no_temp_left(tmp_path)

@@ -54,9 +54,10 @@ def test_summary_compares_only_runs_that_both_completed(preload_car):
     assert "not computed" in one["hub_force_difference_note"]
 
 
-def test_failed_run_replaces_the_folder_with_its_own_status(tmp_path, preload_car):
-    """A run that raises midway (here: a bad road after the first body) leaves only its
-    own summary with state 'error', never the old run's files."""
+def test_failed_run_keeps_the_old_folder_and_writes_its_own_status(tmp_path, monkeypatch):
+    """A run that raises midway (here: its plot, after the rigid body run) leaves the old
+    run's files in ``out`` untouched and its own summary (state 'error') with the files of
+    the finished runs in ``OUT.failed``; no staging folder is left."""
     import json
 
     from flexpipe.scenarios.runner import run_pair
@@ -65,15 +66,49 @@ def test_failed_run_replaces_the_folder_with_its_own_status(tmp_path, preload_ca
     out.mkdir()
     (out / "summary.json").write_text('{"status": 0}')
     (out / "flexible.csv").write_text("old")
-    with pytest.raises(InputError):
+
+    def broken_plot(*a, **k):
+        raise InputError("nonsense plot", key="plot")
+
+    monkeypatch.setattr("flexpipe.vehicle.plots.hub_force", broken_plot)
+    with pytest.raises(InputError) as info:
         run_pair(ROOT / "cars" / "sedan.toml", road=None, path=None, speed=10.0, t_end=0.1,
-                 out=out, title="t", bodies=("rigid", "nonsense"), plots=(),
+                 out=out, title="t", bodies=("rigid",), plots=("hub_force_fl",),
                  log=lambda *a: None, progress=False)
-    summary = json.loads((out / "summary.json").read_text())
+    assert any("run.failed" in n for n in info.value.__notes__)
+    assert (out / "summary.json").read_text() == '{"status": 0}'
+    assert (out / "flexible.csv").read_text() == "old"
+    failed = tmp_path / "run.failed"
+    summary = json.loads((failed / "summary.json").read_text())
     assert summary["state"] == "error" and summary["status"] == 2
     assert "nonsense" in summary["message"]
-    assert sorted(p.name for p in out.iterdir()) == ["rigid.csv", "summary.json"]
+    assert sorted(p.name for p in failed.iterdir()) == ["rigid.csv", "summary.json"]
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+
+@pytest.mark.parametrize("kw, key", [({"bodies": ("rigid", "nonsense")}, "body"),
+                                     ({"t_end": 0.0}, "t_end"),
+                                     ({"speed": 1000.0 / 3.6}, "speed"),
+                                     ({"h": 2.0}, "h"),
+                                     ({"t_end": 100.0, "road": ROOT / "roads" / "bump.csv"},
+                                      None)])
+def test_bad_arguments_raise_before_the_output_folder_is_touched(tmp_path, kw, key):
+    """run_pair checks every body's arguments (numbers, body kind, road length) before it
+    stages anything: the old run stays, no OUT.failed, no staging folder."""
+    from flexpipe.scenarios.runner import run_pair
+
+    out = tmp_path / "run"
+    out.mkdir()
+    (out / "summary.json").write_text('{"status": 0}')
+    args = {"road": None, "path": None, "speed": 10.0, "t_end": 0.1, "out": out,
+            "title": "t", "bodies": ("rigid",), "plots": (), "log": lambda *a: None,
+            "progress": False, **kw}
+    with pytest.raises(InputError) as info:
+        run_pair(ROOT / "cars" / "sedan.toml", **args)
+    assert info.value.key == key
+    assert sorted(p.name for p in tmp_path.iterdir() if p.name != "cache") == ["run"]
+    assert [p.name for p in out.iterdir()] == ["summary.json"]
+    assert (out / "summary.json").read_text() == '{"status": 0}'
 
 
 @pytest.mark.parametrize("kw, key", [({"h": 4e-3, "t_end": 2e-3}, "h"),

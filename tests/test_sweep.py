@@ -75,12 +75,14 @@ def test_sweep_equals_serial_simulate_and_resumes(client, tmp_path):
 
 def test_failed_run_is_recorded_and_the_sweep_goes_on(client, tmp_path):
     car = rigid_sedan(tmp_path)
-    # 400 km/h is beyond simulate()'s speed range: that run fails, the other one runs
-    spec = _spec(car) | {"parameters": {"speed_kmh": [50.0, 400.0]}}
+    # a -1e6 N spring preload passes every check before the runs but diverges at once:
+    # that run fails on its worker, the other one runs
+    spec = _spec(car, design="list") | {"runs": [
+        {"speed_kmh": 50.0}, {"speed_kmh": 50.0, "car.corners.fl.spring_preload_N": -1e6}]}
     res = fp.sweep(spec, out=tmp_path / "out", scheduler=client, progress=False)
-    t = res.table.set_index("speed_kmh")
-    assert t.loc[50.0, "status"] == 0
-    assert t.loc[400.0, "status"] < 0 and "speed must be" in t.loc[400.0, "message"]
+    t = res.table.set_index("index")
+    assert t.loc[0, "status"] == 0
+    assert t.loc[1, "status"] < 0 and "spring_preload_N" in t.loc[1, "message"]
     assert res.n_failed == 1
 
 
@@ -192,3 +194,78 @@ def test_runs_sharing_a_body_share_one_reduction_key():
     # (both speeds excite the road above the 30 Hz band limit)
     assert len(runs) == 8 and len({k[1] for k in keys}) == 2 and len({k[0] for k in keys}) == 2
     assert {k[2] for k in keys} == {30.0}
+
+
+def _spec_file(folder, text: str) -> Path:
+    car = rigid_sedan(folder)
+    path = Path(folder) / "study.toml"
+    path.write_text(f'''[sweep]
+car = "{car.name}"
+road = "{ROAD.as_posix()}"
+body = "rigid"
+t_end_s = 0.2
+''' + text)
+    return path
+
+
+@pytest.mark.parametrize("text, key, words", [
+    # (a) the settle window leaves no samples for the metrics
+    ("settle_s = 5.0\n[parameters]\nspeed_kmh = [50.0, 60.0]\n", "sweep.settle_s",
+     ["settle_s = 5", "t_end_s = 0.2", "sweep.t_end_s", "at least 4"]),
+    ("settle_s = 0.1\n[parameters]\nt_end_s = [0.5, 0.1]\n", "sweep.settle_s",
+     ["parameters.t_end_s", "t_end_s = 0.1"]),
+    # (b) an unknown metric to plot
+    ("[parameters]\nspeed_kmh = [50.0, 60.0]\n[plots]\nmetrics = [\"hub_fl_z_rms_N\", "
+     "\"travel_absmax_mm\"]\n", "plots.metrics",
+     ["travel_absmax_mm", "did you mean 'travel_absmax_m'", "aw_driver_floor_z_m_per_s2",
+      "lateral_error_absmax_m"]),
+    # (c) run parameters, in the sweep's own keys and units
+    ("h_s = 2.0\n[parameters]\nspeed_kmh = [50.0, 60.0]\n", "sweep.h_s",
+     ["[1e-05, 0.005] s", "2.0"]),
+    ("[parameters]\nspeed_kmh = [50.0, 400.0]\n", "parameters.speed_kmh",
+     ["[0, 288] km/h", "400"]),
+    ("[parameters]\nspeed_kmh = [50.0]\n\"road.road_class\" = [\"C\", \"Z\"]\n",
+     "parameters.road.road_class", ["run 1", "'Z'", "'A'"]),
+    ("[parameters]\nt_end_s = [30.0]\nspeed_kmh = [20.0, 60.0]\n", None,
+     ["run 1", "speed_kmh = 60.0", "use a longer road"]),
+    # (d) a repeated value of an axis
+    ("[parameters]\nspeed_kmh = [50.0, 50.0]\n", "parameters.speed_kmh",
+     ["50.0 appears twice"]),
+    ("[parameters]\nspeed_kmh = [50, 60.0, 50.0]\n", "parameters.speed_kmh",
+     ["appears twice"]),
+])
+def test_bad_sweep_is_rejected_before_any_run_starts(tmp_path, text, key, words):
+    """Every run's settings, the metrics window, the plotted metrics and the sweep axes
+    are checked before a run starts: the error names the sweep file and the sweep key,
+    and nothing is written."""
+    path = _spec_file(tmp_path, text)
+    with pytest.raises(InputError) as info:
+        fp.sweep(path, out=tmp_path / "out", progress=False)
+    msg = str(info.value)
+    assert info.value.key == key and info.value.file == path and str(path) in msg
+    for w in words:
+        assert w in msg, msg
+    assert not (tmp_path / "out").exists()
+
+
+def test_cli_sweep_rejects_an_output_file_before_running(tmp_path, capsys):
+    from flexpipe.cli import main
+
+    path = _spec_file(tmp_path, "[parameters]\nspeed_kmh = [50.0, 60.0]\n")
+    (tmp_path / "taken").write_text("")
+    assert main(["sweep", str(path), "--out", str(tmp_path / "taken"), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "'--out'" in err and "takes a folder" in err
+
+
+def test_sample_sweep_passes_the_checks():
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.checks import check_plot_metrics, check_runs
+    from flexpipe.sweeps.execute import _cars
+
+    spec = load_sweep(ROOT / "sweeps" / "sample.toml")
+    runs = spec.runs()
+    cars = _cars(runs)
+    check_runs(spec, runs, cars)
+    check_plot_metrics(spec, cars)
+    assert len(runs) == 18

@@ -55,10 +55,111 @@ def test_run_reports_bad_input_in_one_line(tmp_path, capsys, args, words):
     assert not out.exists() or not any(out.iterdir())  # nothing half-written
 
 
+def _earlier_run(out: Path) -> dict:
+    """A folder holding an earlier successful run; returns its files' bytes."""
+    out.mkdir()
+    files = {"summary.json": b'{"status": 0, "state": "completed"}\n',
+             "rigid.csv": b"t [s],x [m]\n0,0\n", "hub_force_fl.png": b"\x89PNG\r\n\x1a\nold"}
+    for name, data in files.items():
+        (out / name).write_bytes(data)
+    return files
+
+
+def _files(folder: Path) -> dict:
+    return {p.name: p.read_bytes() for p in folder.iterdir()}
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--t-end", "0"], ["--t-end", "(0, 3600] s"]),
+    (["--t-end", "nan"], ["--t-end", "(0, 3600] s"]),
+    (["--h", "1"], ["--h", "[1e-05, 0.005] s"]),
+    (["--h", "0"], ["--h", "[1e-05, 0.005] s"]),
+    (["--speed", "5000"], ["--speed", "[0, 288] km/h", "5000"]),
+    (["--speed", "-10"], ["--speed", "[0, 288] km/h"]),
+    (["--body", "rgid"], ["--body", "rigid, flexible, full"]),
+    (["--t-end", "0.0005"], ["--h", "--t-end"]),
+    (["--road", str(ROOT / "roads" / "bump.csv"), "--t-end", "100"], ["bump.csv", "30 m"]),
+])
+def test_bad_run_arguments_leave_the_output_folder_untouched(tmp_path, capsys, args, words):
+    """Argument errors are found before any work: an earlier run in --out keeps every
+    file, a new --out is not created, no staging or failure folder is left."""
+    base = ["run", str(SEDAN), "--body", "rigid", "--speed", "10", "--t-end", "0.2", "-q"]
+    old = tmp_path / "old"
+    before = _earlier_run(old)
+    assert main([*base, "--out", str(old), *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("flexpipe run: error:") and "\n" not in err
+    for w in words:
+        assert w in err, err
+    assert _files(old) == before
+    new = tmp_path / "new"
+    assert main([*base, "--out", str(new), *args]) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["old"]
+
+
+def test_speed_error_speaks_km_per_h(tmp_path, capsys):
+    code = main(["run", str(SEDAN), "--speed", "5000", "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert code == 2 and "--speed" in err and "km/h" in err and "[0, 288]" in err
+    assert "1388" not in err  # not the m/s value of the library
+
+
+def test_failed_run_keeps_the_previous_results(tmp_path, capsys, monkeypatch):
+    """A run that fails after it started leaves --out as it was and its own summary in
+    OUT.failed; the next completed run replaces --out and removes OUT.failed."""
+    from flexpipe.errors import InputError
+
+    out = tmp_path / "run"
+    before = _earlier_run(out)
+
+    def broken_plot(*a, **k):
+        raise InputError("the plot broke", key="plot")
+
+    monkeypatch.setattr("flexpipe.vehicle.plots.hub_force", broken_plot)
+    argv = ["run", str(SEDAN), "--speed", "20", "--t-end", "0.1", "--body", "rigid",
+            "--out", str(out), "-q"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "the plot broke" in err and "run.failed" in err and "\n" not in err
+    assert _files(out) == before
+    failed = tmp_path / "run.failed"
+    summary = json.loads((failed / "summary.json").read_text())
+    assert summary["state"] == "error" and "the plot broke" in summary["message"]
+    assert sorted(p.name for p in failed.iterdir()) == ["rigid.csv", "summary.json"]
+    monkeypatch.undo()
+    assert main(argv) == 0
+    assert json.loads((out / "summary.json").read_text())["state"] == "completed"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cache", "run"]
+
+
+def test_run_that_stops_early_keeps_the_previous_results(tmp_path, capsys):
+    from tests.badinput.gen_cars import base_text
+
+    car = tmp_path / "car.toml"
+    car.write_text(base_text().replace("[corners.fl]\n",
+                                       "[corners.fl]\nspring_preload_N = -1e6\n", 1))
+    out = tmp_path / "run"
+    before = _earlier_run(out)
+    code = main(["run", str(car), "--speed", "10", "--t-end", "0.2", "--body", "rigid",
+                 "--out", str(out), "-q"])
+    assert code == 1
+    assert "stopped early" in capsys.readouterr().err
+    assert _files(out) == before
+    summary = json.loads((tmp_path / "run.failed" / "summary.json").read_text())
+    assert summary["state"] == "stopped early" and summary["status"] == -1
+
+
+def test_run_help_says_what_a_failed_run_leaves(capsys):
+    assert main(["run", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "DIR.failed" in text and "before DIR is created or touched" in text
+
+
 def test_failing_channel_format_keeps_the_run_as_csv(tmp_path, capsys, monkeypatch):
     """An exception in an optional format's writer (here scipy's savemat) never discards
-    the finished run: its channels go to CSV, the plots and summary are written, and the
-    CLI reports one line naming the file, the format and where the channels are."""
+    the finished run: its channels go to CSV, the plots and summary are written, the run
+    counts as failed (its folder is OUT.failed, as any failed run's) and the CLI reports
+    one line naming the file, the format and where the channels are."""
     def boom(*args, **kwargs):
         raise ValueError("Field names are restricted to 31 characters")
 
@@ -70,10 +171,12 @@ def test_failing_channel_format_keeps_the_run_as_csv(tmp_path, capsys, monkeypat
     err = capsys.readouterr().err.strip()
     assert err.startswith("flexpipe run: error:") and "\n" not in err
     assert "rigid.mat" in err and "'mat'" in err and "31 characters" in err
-    assert "rigid.csv" in err
-    assert sorted(p.name for p in out.iterdir()) == ["hub_force_fl.png", "rigid.csv",
-                                                     "summary.json"]
-    summary = json.loads((out / "summary.json").read_text())
+    assert "rigid.csv" in err and "run.failed" in err
+    assert not out.exists()  # a failed run never becomes (or replaces) --out
+    failed = tmp_path / "run.failed"
+    assert sorted(p.name for p in failed.iterdir()) == ["hub_force_fl.png", "rigid.csv",
+                                                        "summary.json"]
+    summary = json.loads((failed / "summary.json").read_text())
     assert summary["state"] == "error" and summary["status"] == 2
     assert "rigid.mat" in summary["message"] and "rigid.csv" in summary["message"]
     assert summary["messages"]["rigid"].startswith("reached t_end")  # the run's own results

@@ -7,6 +7,7 @@ import sys
 
 
 def main(argv=None) -> int:
+    from flexpipe.cli import _notes, _one_line
     from flexpipe.errors import FlexpipeError
     from flexpipe.scenarios.runner import SCENARIOS, run_scenario
 
@@ -27,13 +28,10 @@ def main(argv=None) -> int:
             summary = run_scenario(args.name, out=args.out, car=args.car, t_end=args.t_end,
                                    cache=not args.no_cache)
     except (FlexpipeError, OSError) as exc:
-        text = str(exc)
-        if isinstance(exc, OSError) and exc.filename:
-            text = f"{exc.filename}: {exc.strerror or text}"
-        print(f"error: {' '.join(text.split())}", file=sys.stderr)
+        print(f"error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt as exc:
-        print(interrupt_text(exc), file=sys.stderr)
+        print(interrupt_text(exc) + _notes(exc), file=sys.stderr)
         return interrupt_info(exc)[0]
     return 0 if summary["status"] == 0 else 1
 

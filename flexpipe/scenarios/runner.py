@@ -81,15 +81,22 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              profile: bool = False) -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
-    The run is a transaction: everything is written into a staging folder next to
-    ``out`` which then replaces ``out`` as a whole, so ``out`` never mixes files of two
-    runs.  A run that fails or is interrupted (Ctrl-C, SIGTERM) still replaces ``out``
-    with its own ``summary.json`` (``state`` "error" or "interrupted", the message and
-    the channel files of the runs that finished), then the exception propagates.  A
-    channel file that cannot be written in ``format`` (``hdf5``, ``mat``) is written as
-    CSV instead and the run goes on; at the end ``out`` holds every output and a summary
-    with ``state`` "error", and a :class:`~flexpipe.errors.FlexpipeError` says which file
-    failed and where its channels are.
+    The run is a transaction.  Every argument (numbers, body kinds, car, road and path
+    files, road and path lengths) and the output folder are checked first
+    (:func:`~flexpipe.vehicle.run_inputs.check_run`); a bad one raises before anything
+    is written.  Then everything is written into a staging folder next to ``out``,
+    which replaces ``out`` as a whole only when the run completes, so ``out`` never
+    mixes files of two runs.  A run that stops early (``status`` -1), fails or is
+    interrupted (Ctrl-C, SIGTERM) leaves ``out`` as it was (an earlier run's results
+    stay) and puts its staging folder in place of ``OUT.failed`` next to it
+    (:func:`flexpipe._io.failed_folder`): its ``summary.json`` (``state`` "stopped
+    early", "error" or "interrupted", the message) and the files of the runs that
+    finished; an exception propagates with a note naming that folder.  A completed run
+    removes an earlier run's ``OUT.failed``.  A channel file that cannot be written in
+    ``format`` (``hdf5``, ``mat``) is written as CSV instead and the other runs, plots
+    and durability outputs go on; the run then counts as failed (``state`` "error",
+    ``OUT.failed`` holds every output) and a :class:`~flexpipe.errors.FlexpipeError`
+    says which file failed and where its channels are.
 
     Returns
     -------
@@ -97,12 +104,14 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         The summary: ``status`` 0 when every run reached its end time, -1 when one
         stopped early; ``state`` "completed" or "stopped early".
     """
-    from flexpipe._io import commit_directory, stage_directory
+    from flexpipe._io import check_run_folder, commit_directory, failed_folder, stage_directory
     from flexpipe.vehicle.export import check_format
+    from flexpipe.vehicle.run_inputs import check_run
     from flexpipe.vehicle.simulation import simulate
     from flexpipe.vehicle.spec import Car, load_car
 
     fmt = check_format(format)  # before minutes of simulation
+    out = check_run_folder(out)
     car = car if isinstance(car, Car) else load_car(car)
     if isinstance(road, (str, Path)):
         from flexpipe.roads import load_road
@@ -119,17 +128,19 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         path = read_path(path)
     elif path == "straight":
         path = None
-    out = Path(out)
     bodies = tuple(bodies)
     if not bodies:
         raise InputError("give at least one body kind", key="bodies")
+    kw = {} if h is None else {"h": h}
+    for body in bodies:  # every argument checked before the output folder is touched
+        check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
+                  prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
     stage = stage_directory(out)
     results, files, output_errors = {}, [], []
     base = {"scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
             "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
     try:
-        kw = {} if h is None else {"h": h}
         for i, body in enumerate(bodies, 1):
             log(f"[{i}/{len(bodies)}] {car.name}: {body} body, {title}")
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
@@ -148,16 +159,23 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     except BaseException as exc:
         _write_failure(stage, base, results, files, exc, bodies=bodies, t0=t0,
                        output_errors=output_errors)
-        commit_directory(stage, out)
+        failed = commit_directory(stage, failed_folder(out))
+        exc.add_note(f"{out} {_kept(out)}; this run's summary.json is in {failed}")
         raise
-    if output_errors:  # every result is in out; the run still failed to give the format
+    if output_errors:  # every result is kept, but not in the format asked for
         summary.update(status=2, state="error", message="; ".join(output_errors))
     summary["total_wall_time_s"] = round(time.perf_counter() - t0, 2)
     write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
+    if summary["status"] != 0:  # stopped early or a format failed: out stays as it was
+        failed = commit_directory(stage, failed_folder(out))
+        if output_errors:
+            raise FlexpipeError(f"{summary['message']}; {out} {_kept(out)}; this run's "
+                                f"files are in {failed}/")
+        log(f"stopped early; {out} {_kept(out)}; this run's files are in {failed}/")
+        return summary
     commit_directory(stage, out)
+    _remove_stale_failure(failed_folder(out))
     log(f"wrote {out}/: {', '.join(summary['files'])}")
-    if output_errors:
-        raise FlexpipeError(f"{out}: {summary['message']}")
     d = summary.get("hub_force_difference_rigid_vs_flexible", {}).get("fl_z")
     if d is not None:
         log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
@@ -165,6 +183,19 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
             f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
     return summary
+
+
+def _kept(out: Path) -> str:
+    return "keeps the previous run" if out.exists() else "was not created"
+
+
+def _remove_stale_failure(failed: Path) -> None:
+    """A completed run removes the ``OUT.failed`` of an earlier failed run (only a run
+    folder: :func:`flexpipe._io.check_run_folder` refused any other content)."""
+    import shutil
+
+    if (failed / "summary.json").is_file():
+        shutil.rmtree(failed, ignore_errors=True)
 
 
 def _summary(base: dict, results: dict, *, path, speed) -> dict:

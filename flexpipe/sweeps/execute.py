@@ -1,7 +1,8 @@
 """``sweep(spec)``: run every case of a sweep on dask.distributed and collect the results.
 
-The client (this process) validates every run's car first (a bad dotted key stops the
-sweep before anything runs), skips runs whose record is already on disk, then submits
+The client (this process) validates every run first (its settings, car, road, path and
+the ``[plots]`` metrics: :mod:`flexpipe.sweeps.checks`; a bad one stops the sweep before
+anything runs), skips runs whose record is already on disk, then submits
 
 * one mass-properties task per distinct body mesh and trim (the FE model assembled once),
 * one reduction task per distinct reduced body (mesh, trim, hardpoints and band: the
@@ -132,22 +133,30 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
     Raises
     ------
     InputError
-        A bad spec, or a run whose car overrides do not validate (named with its
-        parameters), before any run starts.
+        A bad spec, a run whose car overrides or arguments do not validate (named with
+        its parameters and the sweep key), an unknown ``[plots]`` metric or an output
+        folder that cannot be written, before any run starts.
 
     Notes
     -----
     The local cluster starts worker processes by spawning: in a script, call ``sweep``
     under ``if __name__ == "__main__":``.
     """
+    from flexpipe._io import check_output_folder
+    from flexpipe.sweeps.checks import check_plot_metrics, check_runs
+
     t_start = time.perf_counter()
     spec = load_sweep(spec)
     runs = spec.runs()
+    option = "out" if out is not None else "sweep.out"
     if out is None:
         stem = spec.file.stem if spec.file is not None else "sweep"
         out = spec.out or Path("out") / f"sweep-{stem}"
-    store = Store(out)
+    check_output_folder(out, option=option)
     cars = _cars(runs)
+    check_runs(spec, runs, cars)  # every run's arguments, before any run starts
+    check_plot_metrics(spec, cars)
+    store = Store(out)
     done = store.finished(retry_failed=retry_failed)
     todo = [(r, c) for r, c in zip(runs, cars, strict=True) if r.key not in done]
     reductions = []

@@ -33,6 +33,10 @@ import numpy as np
 from flexpipe.sweeps.iso2631 import AXIS_WEIGHTING, HEALTH_K, ride_metrics
 
 CORNERS = ("fl", "fr", "rl", "rr")
+#: fewest samples after ``settle`` the metrics are computed from (NaN below)
+MIN_SAMPLES = 4
+#: numeric columns of a run's record besides the metrics (a plot may show them too)
+RECORD_NUMBERS = ("cpu_s", "wall_s", "simulated_time_s", "task_s", "n_elastic_modes")
 
 
 def points_of(channels) -> list[str]:
@@ -60,7 +64,7 @@ def run_metrics(t, channels, *, settle: float = 0.0) -> dict:
     t = np.asarray(t, dtype=float)
     sel = t >= settle - 1e-12
     n = int(sel.sum())
-    ok = n >= 4
+    ok = n >= MIN_SAMPLES
     dt = float(np.median(np.diff(t))) if t.size >= 2 else float("nan")
 
     def sig(name):
@@ -102,4 +106,18 @@ def run_metrics(t, channels, *, settle: float = 0.0) -> dict:
     return out
 
 
-__all__ = ["points_of", "run_metrics"]
+def metric_names(points) -> list[str]:
+    """Every metric column :func:`run_metrics` writes for a car with the named body
+    ``points`` (its ``[body.points]``), in the order it writes them, then
+    :data:`RECORD_NUMBERS`."""
+    out = [f"hub_{c}_{k}_{s}" for c in CORNERS for k in "xyz" for s in ("rms_N", "peak_N")]
+    for p in points:
+        for k in "xyz":
+            out += [f"aw_{p}_{k}_m_per_s2", f"crest_{p}_{k}", f"vdv_{p}_{k}_m_per_s1.75"]
+        out.append(f"av_{p}_m_per_s2")
+    out += [f"travel_{c}_{s}" for c in CORNERS for s in ("max_m", "min_m")]
+    out += ["travel_absmax_m", "lateral_error_absmax_m", *RECORD_NUMBERS]
+    return out
+
+
+__all__ = ["MIN_SAMPLES", "RECORD_NUMBERS", "metric_names", "points_of", "run_metrics"]

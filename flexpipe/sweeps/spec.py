@@ -45,6 +45,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from flexpipe.errors import InputError
+from flexpipe.sweeps.metrics import MIN_SAMPLES
+from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX
 from flexpipe.vehicle.simulation import DEFAULT_STEP
 
 SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road")
@@ -125,7 +127,9 @@ class SweepSpec:
         return out
 
     def runs(self) -> list[RunSpec]:
-        """Every run, resolved and keyed (duplicates keep their first position)."""
+        """Every run, resolved and keyed; each run's settings are checked here (ranges,
+        the settle window), naming the spec file and key.  Duplicates (e.g. Latin
+        hypercube samples of a small integer range) keep their first position."""
         car_sha = _sha(self.car)
         road_desc = _describe_road(self.road)
         out, seen = [], set()
@@ -136,8 +140,18 @@ class SweepSpec:
                 out.append(r)
         return out
 
+    def _key(self, name: str, point: dict, index: int) -> str:
+        """Key of the spec that gave setting ``name`` of a run: ``parameters.NAME``,
+        ``runs[I].NAME`` (list design) or ``sweep.NAME`` (the base value)."""
+        if name in point:
+            return f"runs[{index}].{name}" if self.design == "list" else f"parameters.{name}"
+        return f"sweep.{name}"
+
     def _resolve(self, index, point, car_sha, road_desc) -> RunSpec:
         where = self.file
+
+        def key(name):
+            return self._key(name, point, index)
         s = dict(self.base)
         car_over, road_over = {}, {}
         road = self.road
@@ -166,16 +180,26 @@ class SweepSpec:
         body = s["body"]
         if body not in BODIES:
             raise InputError(f"body {body!r}; valid: {', '.join(BODIES)}", file=where,
-                             key="body")
+                             key=key("body"))
         path = s["path"]
         if path != "straight":
-            path = str(_file(path, self.file, "path"))
-        speed = _num(s["speed_kmh"], "speed_kmh", where, lo=0.0) / 3.6
-        t_end = _num(s["t_end_s"], "t_end_s", where, lo=0.0, open_=True)
-        h = _num(s["h_s"], "h_s", where, lo=0.0, open_=True)
+            path = str(_file(path, self.file, key("path")))
+        # the ranges simulate() accepts (flexpipe.vehicle.run_inputs), in the spec's units
+        speed = _num(s["speed_kmh"], key("speed_kmh"), where, lo=0.0,
+                     hi=round(SPEED_MAX * 3.6, 6), unit="km/h") / 3.6
+        t_end = _num(s["t_end_s"], key("t_end_s"), where, lo=0.0, open_=True, hi=T_END_MAX,
+                     unit="s")
+        h = _num(s["h_s"], key("h_s"), where, lo=H_MIN, hi=H_MAX, unit="s")
+        if h > t_end:
+            raise InputError(f"h_s = {h:g} s is longer than t_end_s = {t_end:g} s "
+                             f"({key('t_end_s')}); choose h_s <= t_end_s", file=where,
+                             key=key("h_s"))
         output_step = h if s["output_step_s"] is None else _num(
-            s["output_step_s"], "output_step_s", where, lo=0.0, open_=True)
-        settle = _num(s["settle_s"], "settle_s", where, lo=0.0)
+            s["output_step_s"], key("output_step_s"), where, lo=0.0, open_=True, hi=1.0,
+            unit="s")
+        settle = _num(s["settle_s"], key("settle_s"), where, lo=0.0, unit="s")
+        _check_window(settle, t_end, h, output_step, where=where,
+                      keys=(key("settle_s"), key("t_end_s")))
         ident = {"car": str(self.car), "car_sha": car_sha, "car_overrides": car_over,
                  "road": road_desc if road is self.road else _describe_road(road),
                  "path": path, "path_sha": _sha(Path(path)) if path != "straight" else "",
@@ -215,13 +239,45 @@ def _file(value, base_file, key) -> Path:
     return p
 
 
-def _num(v, key, where, *, lo=None, open_=False) -> float:
+def _num(v, key, where, *, lo=None, open_=False, hi=None, unit="") -> float:
+    u = f" {unit}" if unit else ""
     if isinstance(v, bool) or not isinstance(v, int | float) or not math.isfinite(v):
-        raise InputError(f"expected a finite number, got {v!r}", file=where, key=key)
-    if lo is not None and (v < lo or (open_ and v == lo)):
-        raise InputError(f"must be {'>' if open_ else '>='} {lo:g}, got {v!r}", file=where,
-                         key=key)
+        raise InputError(f"expected a finite number{u}, got {v!r}", file=where, key=key)
+    if (lo is not None and (v < lo or (open_ and v == lo))) or (hi is not None and v > hi):
+        if hi is None:
+            rng = f"{'>' if open_ else '>='} {lo:g}{u}"
+        else:
+            rng = f"in {'(' if open_ else '['}{lo:g}, {hi:g}]{u}"
+        raise InputError(f"must be {rng}, got {v!r}{u}", file=where, key=key)
     return float(v)
+
+
+def _check_window(settle, t_end, h, output_step, *, where, keys) -> None:
+    """The metrics need samples after ``settle``: at least :data:`MIN_SAMPLES` of the
+    output times ``j * dt`` (``dt`` the output step as simulate() rounds it to whole
+    steps ``h``) up to ``t_end``."""
+    every = max(1, int(round(output_step / h)))
+    dt = every * h
+    n_out = int(round(t_end / h)) // every
+    first = max(1, math.ceil((settle - 1e-12) / dt))
+    n = max(0, n_out - first + 1)
+    if n < MIN_SAMPLES:
+        latest = (n_out - MIN_SAMPLES + 1) * dt
+        fix = f"choose settle_s <= {latest:.6g} s or " if latest >= 0 else "choose "
+        raise InputError(
+            f"settle_s = {settle:g} s ({keys[0]}) with t_end_s = {t_end:g} s ({keys[1]}) "
+            f"leaves {n} output sample(s) (every {dt:g} s) for the metrics, which need at "
+            f"least {MIN_SAMPLES}; {fix}a longer t_end_s", file=where, key=keys[0])
+
+
+def _duplicates(values) -> tuple | None:
+    """``(i, j, value)`` of the first value ``values[j]`` equal to an earlier ``values[i]``
+    (50 and 50.0 are equal: they make the same run; true and 1 are not)."""
+    for j, v in enumerate(values):
+        for i in range(j):
+            if isinstance(values[i], bool) == isinstance(v, bool) and values[i] == v:
+                return i, j, v
+    return None
 
 
 def _parameters(raw, design, where) -> dict:
@@ -240,6 +296,12 @@ def _parameters(raw, design, where) -> dict:
             out[name] = (v["min"], v["max"]) if all(
                 isinstance(x, int) for x in (v["min"], v["max"])) else (lo, hi)
         elif isinstance(v, list) and v:
+            dup = _duplicates(v)
+            if dup is not None:  # a repeated value would silently run once
+                i, j, value = dup
+                raise InputError(f"value {value!r} appears twice (positions {i} and {j}); each "
+                                 "value of a sweep axis runs once: remove the repeat",
+                                 file=where, key=key)
             out[name] = list(v)
         else:
             what = "a non-empty list of values" + (" or {min, max}" if design == "lhs" else "")

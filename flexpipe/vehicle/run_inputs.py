@@ -1,26 +1,67 @@
 """Argument checks of :func:`flexpipe.vehicle.simulation.simulate`: numbers in range, and
 the car, road and path each given as an object, a file or ``None``, turned into objects
-with a clear error naming the argument otherwise."""
+with a clear error naming the argument otherwise.
+
+:func:`check_run` does every check of a run that needs no reduction and no time
+integration, so callers that write outputs (``flexpipe run``, a sweep) can reject bad
+arguments before they touch their output folder."""
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
+
+import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.vehicle.spec import Car, load_car
 
+#: body models of a run (see :mod:`flexpipe.vehicle.simulation`)
+BODIES = ("flexible", "rigid", "full")
+#: highest target speed, m/s (288 km/h): faster than a road car is driven in any ride,
+#: durability or handling run; a larger number is most likely km/h given as m/s
+SPEED_MAX = 80.0
+#: longest simulated time, s: one hour of driving (3.6 million steps at 1 ms); more is
+#: most likely milliseconds given as seconds
+T_END_MAX = 3600.0
+#: time step range, s, that :func:`~flexpipe.vehicle.simulation.simulate` documents: at
+#: 2 ms the flexible body's hub forces are already 8 % off (README, step convergence), so
+#: beyond 5 ms the run means little; below 10 us a few seconds take days.  A value outside
+#: is most likely milliseconds given as seconds
+H_MIN, H_MAX = 1e-5, 5e-3
+#: distance along the path of the body origin at t = 0, beyond the wheelbase, m
+START_MARGIN_M = 3.0
 
-def checked_number(value, name, *, lo=None, hi=None, lo_closed=False):
+
+def checked_number(value, name, *, lo=None, hi=None, lo_closed=False, unit: str = "",
+                   key: str | None = None):
+    """``float(value)`` when it is finite and in the range, else an :class:`InputError`.
+
+    Parameters
+    ----------
+    value : object
+        The value to check.
+    name : str
+        Its name in the message (an argument, or a command-line option like ``--speed``).
+    lo, hi : float, optional
+        Bounds; ``lo`` is excluded unless ``lo_closed``, ``hi`` is included.
+    unit : str
+        Unit appended to the range and the value in the message (e.g. ``"km/h"``).
+    key : str, optional
+        ``key`` of the error (default ``name``).
+    """
+    key = name if key is None else key
+    u = f" {unit}" if unit else ""
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}", key=name) from None
+        raise InputError(f"{name} must be a number, got {value!r}", key=key) from None
     below = lo is not None and (v < lo if lo_closed else v <= lo)
     if not math.isfinite(v) or below or (hi is not None and v > hi):
         left = "[" if lo_closed else "("
         rng = f"in {left}{lo:g}, {hi:g}]" if hi is not None else f"> {lo:g}"
-        raise InputError(f"{name} must be finite and {rng}, got {value!r}", key=name)
+        raise InputError(f"{name} must be finite and {rng}{u}, got {value!r}{u}", key=key)
     return v
 
 
@@ -57,3 +98,95 @@ def as_path(path, needed: float):
         return read_path(path)
     raise InputError(f"path must be a flexpipe.driver.Path, a path file (.csv/.toml), "
                      f"'straight' or None, got {type(path).__name__}", key="path")
+
+
+@dataclass(frozen=True)
+class RunArguments:
+    """The checked arguments of one run (:func:`check_run`)."""
+
+    car: Car
+    body: str
+    speed: float
+    t_end: float
+    h: float
+    every: int
+    max_mode_hz: float | None
+    f_max: float | None
+    rates: np.ndarray
+    start: float
+    road: object
+    path: object
+    steering: object
+    speed_pi: object
+
+
+def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
+              h: float = 1e-3, output_step: float | None = None, driver=None, f_max=None,
+              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), prewarp: bool = True,
+              inertia_coupling: str = "auto") -> RunArguments:
+    """Check the arguments of :func:`~flexpipe.vehicle.simulation.simulate` (same meaning,
+    same units: speed in m/s, times in s) without reducing or integrating anything: the
+    numbers, the body model, the car, road, path and driver files, and that the road
+    and path are long enough.
+
+    Raises
+    ------
+    InputError
+        The first bad argument, named by its ``key``.
+    """
+    car = as_car(car)
+    if body not in BODIES:
+        raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
+    if not isinstance(prewarp, (bool, np.bool_)):
+        raise InputError(f"prewarp must be True or False, got {prewarp!r}", key="prewarp")
+    speed = checked_number(speed, "speed", lo=0.0, hi=SPEED_MAX, lo_closed=True)
+    t_end = checked_number(t_end, "t_end", lo=0.0, hi=T_END_MAX)
+    h = checked_number(h, "h", lo=0.0, hi=H_MAX)
+    if h < H_MIN:
+        raise InputError(f"h must be >= {H_MIN:g} s, got {h}", key="h")
+    if output_step is None:
+        output_step = h
+    output_step = checked_number(output_step, "output_step", lo=0.0, hi=1.0)
+    if h > t_end:  # flexpipe#14 (robust): checked here, not by Exudyn
+        raise InputError(f"h = {h:g} s is longer than t_end = {t_end:g} s; choose h <= t_end",
+                         key="h")
+    if inertia_coupling not in ("auto", "constant", "full"):
+        raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: auto, constant, full",
+                         key="inertia_coupling")
+    if max_mode_hz is not None:  # flexpipe#14 (robust)
+        max_mode_hz = checked_number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
+    every = max(1, int(round(output_step / h)))
+    if body in ("full", "flexible") and car.body.mesh is None and car.body.body_file is None:
+        raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
+                         "properties ([body.rigid]); use body='rigid'", file=car.file,
+                         key="body.mesh")
+    if f_max is not None:
+        f_max = checked_number(f_max, "f_max", lo=0.0, hi=5000.0)
+    rates = np.asarray(initial_rates, dtype=float).reshape(-1)
+    if rates.shape != (3,) or not np.all(np.isfinite(rates)):
+        raise InputError(f"initial_rates must be 3 finite numbers, got {initial_rates!r}",
+                         key="initial_rates")
+    start = abs(min(c.wheel_center[0] for c in car.corners)) + START_MARGIN_M
+    travel = speed * t_end
+    needed = start + travel + 10.0
+    road_obj = as_road(road, needed)
+    path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
+        else as_path(path, needed)  # path="road": follow the road's reference line
+    what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
+    road_obj.require_length(needed, what=what, start=road_obj.x[0])
+    path_obj.require_length(travel + 10.0, what=what, start=start)
+    if driver is None:
+        steering = speed_pi = None
+    elif isinstance(driver, (str, Path)):
+        from flexpipe.driver import read_driver
+
+        steering, speed_pi = read_driver(driver)
+    else:
+        try:
+            steering, speed_pi = driver
+        except (TypeError, ValueError):
+            raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file",
+                             key="driver") from None
+    return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,
+                        max_mode_hz=max_mode_hz, f_max=f_max, rates=rates, start=start,
+                        road=road_obj, path=path_obj, steering=steering, speed_pi=speed_pi)

@@ -22,7 +22,6 @@ Bodies
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
@@ -38,7 +37,13 @@ from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
     reduce_car_body,
 )
 from flexpipe.vehicle.result import Result
-from flexpipe.vehicle.run_inputs import as_car, as_path, as_road, checked_number
+from flexpipe.vehicle.run_inputs import (  # noqa: F401 - BODIES, START_MARGIN_M re-exported
+    BODIES,
+    START_MARGIN_M,
+    as_car,
+    as_road,
+    check_run,
+)
 from flexpipe.vehicle.settle import settled_start
 from flexpipe.vehicle.spec import Car
 
@@ -55,11 +60,8 @@ SPECTRAL_RADIUS = 0.7
 #: attachment modes beyond what a 2 ms step can follow (README)
 DEFAULT_STEP = 1e-3
 
-BODIES = ("flexible", "rigid", "full")
 #: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
 FULL_CUTOFF_HZ = 250.0
-#: distance along the path of the body origin at t = 0, beyond the wheelbase, m
-START_MARGIN_M = 3.0
 
 
 def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
@@ -247,60 +249,13 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     InputError
         Bad arguments, bad car file, road or path too short.
     """
-    car = as_car(car)
-    if body not in BODIES:
-        raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
-    if not isinstance(prewarp, (bool, np.bool_)):
-        raise InputError(f"prewarp must be True or False, got {prewarp!r}", key="prewarp")
-    speed = checked_number(speed, "speed", lo=0.0, hi=80.0, lo_closed=True)
-    t_end = checked_number(t_end, "t_end", lo=0.0, hi=3600.0)
-    h = checked_number(h, "h", lo=0.0, hi=5e-3)
-    if h < 1e-5:
-        raise InputError(f"h must be >= 1e-5 s, got {h}", key="h")
-    if output_step is None:
-        output_step = h
-    output_step = checked_number(output_step, "output_step", lo=0.0, hi=1.0)
-    if h > t_end:  # flexpipe#14 (robust): checked here, not by Exudyn
-        raise InputError(f"h = {h:g} s is longer than t_end = {t_end:g} s; choose h <= t_end",
-                         key="h")
-    if inertia_coupling not in ("auto", "constant", "full"):
-        raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: auto, constant, full",
-                         key="inertia_coupling")
-    if max_mode_hz is not None:  # flexpipe#14 (robust)
-        max_mode_hz = checked_number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
-    every = max(1, int(round(output_step / h)))
-    if body in ("full", "flexible") and car.body.mesh is None and car.body.body_file is None:
-        raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
-                         "properties ([body.rigid]); use body='rigid'", file=car.file,
-                         key="body.mesh")
-    if f_max is not None:
-        f_max = checked_number(f_max, "f_max", lo=0.0, hi=5000.0)
-    rates = np.asarray(initial_rates, dtype=float).reshape(-1)
-    if rates.shape != (3,) or not np.all(np.isfinite(rates)):
-        raise InputError(f"initial_rates must be 3 finite numbers, got {initial_rates!r}",
-                         key="initial_rates")
-    start = abs(min(c.wheel_center[0] for c in car.corners)) + START_MARGIN_M
-    travel = speed * t_end
-    needed = start + travel + 10.0
-    road_obj = as_road(road, needed)
-    path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
-        else as_path(path, needed)  # path="road": follow the road's reference line
-    what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
-    road_obj.require_length(needed, what=what, start=road_obj.x[0])
-    path_obj.require_length(travel + 10.0, what=what, start=start)
-    if driver is None:
-        steering = speed_pi = None
-    elif isinstance(driver, (str, Path)):
-        from flexpipe.driver import read_driver
-
-        steering, speed_pi = read_driver(driver)
-    else:
-        try:
-            steering, speed_pi = driver
-        except (TypeError, ValueError):
-            raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file",
-                             key="driver") from None
-
+    a = check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body, h=h,
+                  output_step=output_step, driver=driver, f_max=f_max,
+                  max_mode_hz=max_mode_hz, initial_rates=initial_rates, prewarp=prewarp,
+                  inertia_coupling=inertia_coupling)
+    car, speed, t_end, h, every = a.car, a.speed, a.t_end, a.h, a.every
+    max_mode_hz, f_max, rates, start = a.max_mode_hz, a.f_max, a.rates, a.start
+    road_obj, path_obj, steering, speed_pi = a.road, a.path, a.steering, a.speed_pi
     prep = prepared or prepare(car, body=body, speed=speed, road=road_obj, f_max=f_max,
                                cache=cache, log=log)
     rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]
