@@ -124,3 +124,61 @@ def test_nonlinear_tables_at_a_link_end_bushing_are_refused(tmp_path):
     with pytest.raises(InputError, match=r"key 'suspension.rear.bushings.lateral_link_inner'"
                                          r".*nonlinear tables.*'stiffness' only"):
         load_suspension(p)
+
+
+@pytest.mark.parametrize("old, new, key", [
+    ("force_N = [-6680.0, 0.0, 13360.0]", "force_N = [-6680.0, nan, 13360.0]",
+     "suspension.front.damper.force_N"),
+    ("velocity_m_per_s = [-1.0, 0.0, 1.0]", "velocity_m_per_s = [-1.0, inf, 1.0]",
+     "suspension.front.damper.velocity_m_per_s"),
+    ("force_N = [0.0, 1000.0, 3500.0, 12000.0]", "force_N = [0.0, 1000.0, -inf, 12000.0]",
+     "suspension.front.bump_stop.force_N"),
+    ("deflection_m = [0.0, 0.005, 0.010]\nforce_N = [0.0, 2000.0, 8000.0]",
+     "deflection_m = [0.0, nan, 0.010]\nforce_N = [0.0, 2000.0, 8000.0]",
+     "suspension.front.rebound_stop.deflection_m"),
+    ("rate_N_per_m = 111000.0", "rate_N_per_m = 111000.0\ncompression_m = [0.0, 0.1]\n"
+     "force_N = [0.0, nan]", "suspension.front.spring.force_N"),
+    ("damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]",
+     "damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]\n\n"
+     "[suspension.front.bushings.lower_arm_rear.tables.z]\n"
+     "deflection = [-0.004, 0.0, 0.004]\nforce = [-6000.0, nan, 6000.0]",
+     "suspension.front.bushings.lower_arm_rear.tables.z.force"),
+])
+def test_non_finite_table_entries_are_refused(tmp_path, old, new, key):
+    """A nan or inf in a table used to load and then crash the time run inside Exudyn."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg and "finite" in msg
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("force_N = [-6680.0, 0.0, 13360.0]", "force_N = [6680.0, 0.0, -13360.0]",
+     "suspension.front.damper.force_N", ["negative damping", "must not decrease"]),
+    ("rate_N_per_m = 111000.0", "rate_N_per_m = 111000.0\ncompression_m = [0.0, 0.05, 0.1]\n"
+     "force_N = [0.0, 6000.0, 5000.0]", "suspension.front.spring.force_N",
+     ["spring", "must not decrease"]),
+    ("force_N = [0.0, 1000.0, 3500.0, 12000.0]", "force_N = [0.0, -1000.0, -3500.0, -12000.0]",
+     "suspension.front.bump_stop.force_N", ["must not decrease"]),
+    ("deflection_m = [0.0, 0.005, 0.010]\nforce_N = [0.0, 2000.0, 8000.0]",
+     "deflection_m = [0.0, 0.005, 0.010]\nforce_N = [-100.0, 2000.0, 8000.0]",
+     "suspension.front.rebound_stop.force_N", ["only pushes", ">= 0"]),
+    ("damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]",
+     "damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]\n\n"
+     "[suspension.front.bushings.lower_arm_rear.tables.z]\n"
+     "deflection = [-0.004, 0.0, 0.004]\nforce = [6000.0, 0.0, -6000.0]",
+     "suspension.front.bushings.lower_arm_rear.tables.z.force", ["stiffness >= 0"]),
+    ("damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]", "damping = [400.0, 400.0, -60.0, 0.5, "
+     "0.5, 0.2]", "suspension.front.bushings.lower_arm_rear.damping", [">= 0"]),
+])
+def test_force_tables_with_the_wrong_sign_are_refused(tmp_path, old, new, key, words):
+    """A damper whose force falls with velocity (negative damping) used to run to the end;
+    springs, stops and bushings must not have negative stiffness either."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg
+    for w in words:
+        assert w in msg
