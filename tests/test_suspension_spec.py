@@ -182,3 +182,95 @@ def test_force_tables_with_the_wrong_sign_are_refused(tmp_path, old, new, key, w
     assert str(p) in msg and f"key '{key}'" in msg
     for w in words:
         assert w in msg
+
+
+def _front_hardpoints_mirrored(text):
+    a = text.index("[suspension.front.hardpoints_m]")
+    b = text.index("[suspension.front.parts.lower_arm]")
+    block = re.sub(r"(=\s*\[[^,]+,\s*)([0-9.]+)", r"\1-\2", text[a:b])
+    return text[:a] + block + text[b:]
+
+
+def test_hardpoints_on_the_wrong_side_are_refused(tmp_path):
+    """The file gives the left corner (y > 0); the right one is its mirror image."""
+    p = _write(tmp_path, _front_hardpoints_mirrored(SAMPLE.read_text()))
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"line {_line_of(p, 'wheel_center = [0.000, -0.7979')}" in msg
+    assert "key 'suspension.front.hardpoints_m.wheel_center'" in msg
+    assert "y > 0 is left" in msg and "negate" in msg
+    p = _sample_with(tmp_path, "lower_arm_rear = [-0.200, 0.470, -0.265]",
+                     "lower_arm_rear = [-0.200, -0.470, -0.265]")
+    with pytest.raises(InputError, match=r"key 'suspension.front.hardpoints_m.lower_arm_rear'"
+                                         r".*y = -0.47 m.*right side.*y >= 0"):
+        load_suspension(p)
+    # an inner pivot outboard of the wheel centre (y 0.7979)
+    p = _sample_with(tmp_path, "tie_rod_inner = [-0.257, 0.170, -0.116]",
+                     "tie_rod_inner = [-0.257, 0.850, -0.116]")
+    with pytest.raises(InputError, match=r"key 'suspension.rear.hardpoints_m.tie_rod_inner'"
+                                         r".*outboard of the wheel centre.*inboard"):
+        load_suspension(p)
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("location_m = [0.0, 0.0, 0.418]", "location_m = [0.0, 0.0, 418.0]",
+     "suspension.front.location_m", ["wheel centre z = 417.88 m", "millimetres", "0 < z <= 3"]),
+    ("location_m = [-2.75, 0.0, 0.3013]", "location_m = [-2750.0, 0.0, 301.3]",
+     "suspension.rear.location_m", ["wheel centre x = -2750 m", "millimetres"]),
+    ("wheel_center = [0.000, 0.800, 0.000]", "wheel_center = [0.000, 800.0, 0.000]",
+     "suspension.rear.hardpoints_m.wheel_center", ["wheel centre y = 800 m", "millimetres"]),
+    ("location_m = [0.0, 0.0, 0.418]", "location_m = [0.0, 0.0, 0.0]",
+     "suspension.front.hardpoints_m.wheel_center", ["wheel centre z = -0.1197 m",
+                                                    "location_m"]),
+])
+def test_location_in_millimetres_is_named(tmp_path, old, new, key, words):
+    """location_m in mm used to load and fail later naming corners.fl.hardpoint_m, a key a
+    linkage car does not have."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg and "line " in msg
+    for w in words:
+        assert w in msg
+
+
+def test_off_body_spring_seat_names_the_linkage_key():
+    """A linkage car's corner hardpoint is its spring seat: named as the suspension key."""
+    from flexpipe.vehicle import load_car
+    from flexpipe.vehicle.bodymodel import corner_interfaces
+
+    car = load_car(SAMPLE)
+    with pytest.raises(InputError) as e:
+        corner_interfaces(car, np.zeros((1, 3)))
+    msg = str(e.value)
+    assert str(SAMPLE) in msg and "suspension.front.hardpoints_m.spring_upper" in msg
+    assert "corners.fl" not in msg
+
+
+@pytest.mark.parametrize("old, new, key, other", [
+    ("upper_arm_rear = [-0.250, 0.510, 0.110]", "upper_arm_rear = [-0.100, 0.470, 0.105]",
+     "suspension.front.hardpoints_m.upper_arm_rear", "upper_arm_front"),
+    ("tie_rod_outer = [-0.150, 0.770, -0.120]", "tie_rod_outer = [-0.200, 0.420, -0.120]",
+     "suspension.front.hardpoints_m.tie_rod_outer", "tie_rod_inner"),
+    ("lateral_link_outer = [0.029, 0.692, -0.093]", "lateral_link_outer = [0.036, 0.188, -0.133]",
+     "suspension.rear.hardpoints_m.lateral_link_outer", "lateral_link_inner"),
+    ("spring_lower = [0.181, 0.419, -0.164]", "spring_lower = [0.181, 0.491, 0.110]",
+     "suspension.rear.hardpoints_m.spring_upper", "spring_lower"),
+])
+def test_coincident_points_of_an_axis_or_member_are_named(tmp_path, old, new, key, other):
+    """Two equal pivots of a revolute axis used to give a numpy warning and a NaN residual."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg and other in msg
+    assert "must be distinct" in msg
+
+
+def test_universal_axes_must_be_finite_and_non_zero(tmp_path):
+    p = _sample_with(tmp_path, "universal_axes = [[0.0, 0.0, 1.0], [-0.272, 0.962, 0.0]]",
+                     "universal_axes = [[0.0, 0.0, 0.0], [-0.272, nan, 0.0]]")
+    with pytest.raises(InputError, match=r"key 'suspension.rear.universal_axes'.*non-zero"):
+        load_suspension(p)

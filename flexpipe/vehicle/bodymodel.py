@@ -147,6 +147,11 @@ def corner_interfaces(car: Car, nodes: np.ndarray | None = None):
 
     out = []
     for c in car.corners:
+        key = f"corners.{c.name}.hardpoint_m"
+        if car.suspension is not None:  # a linkage car: the hardpoint is the spring's seat
+            sp = car.suspension.corners()[c.name].spring()
+            key = f"suspension.{c.axle}.hardpoints_m." + (
+                sp.mount[len(c.axle) + 1:-2] if sp is not None else "wheel_center")
         if nodes is not None:
             d = np.linalg.norm(nodes - c.hardpoint, axis=1)
             k = int(d.argmin())
@@ -155,7 +160,7 @@ def corner_interfaces(car: Car, nodes: np.ndarray | None = None):
                     f"hardpoint {tuple(c.hardpoint)} m is off the body: the nearest body node "
                     f"is {d[k]:.3f} m away at {tuple(np.round(nodes[k], 4))}; a hardpoint must "
                     f"lie within {OFF_BODY_TOL} m of the structure", file=car.file,
-                    key=f"corners.{c.name}.hardpoint_m")
+                    key=key)
         out.append(Interface(tuple(c.hardpoint), radius=car.body.interface_radius,
                              name=c.name))
     return out

@@ -13,6 +13,7 @@ import numpy as np
 
 from flexpipe.errors import InputError, ModelError
 from flexpipe.vehicle._toml import Table, parse
+from flexpipe.vehicle.suspension.checks import check_hardpoints
 from flexpipe.vehicle.suspension.model import (
     BUSHING_DOFS,
     AntiRollBar,
@@ -194,8 +195,10 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
         if k not in hpt.data:
             raise hpt.error(None, f"missing hardpoint '{k}' of template {template} "
                                   f"(required: {', '.join(req)})")
-    hp = {k: hpt.vector(k) + loc for k in list(hpt.data)}
+    raw = {k: hpt.vector(k) for k in list(hpt.data)}
     hpt.finish()
+    hp = {k: v + loc for k, v in raw.items()}
+    check_hardpoints(template, hp, raw, loc, t, hpt)
     parts = {}
     pt = t.sub("parts", None)
     if pt is not None:
@@ -229,8 +232,13 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
               file=t.file)
     if template == "multi_link" and t.has("universal_axes"):
         ax = t.raw("universal_axes")
-        if not (isinstance(ax, list) and len(ax) == 2):
-            raise t.error("universal_axes", "expected [[link axis], [body axis]]")
+        ok = isinstance(ax, list) and len(ax) == 2 and all(
+            isinstance(a, list) and len(a) == 3 and all(
+                isinstance(v, int | float) and not isinstance(v, bool) and np.isfinite(v)
+                for v in a) and any(a) for a in ax)
+        if not ok:
+            raise t.error("universal_axes", "expected [[link axis], [body axis]]: two "
+                                            f"non-zero vectors of 3 finite numbers, got {ax!r}")
         kw["universal_axes"] = tuple(np.array(a, float) for a in ax)
     try:
         left = build(template, hp, **kw)
