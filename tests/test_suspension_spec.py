@@ -274,3 +274,37 @@ def test_universal_axes_must_be_finite_and_non_zero(tmp_path):
                      "universal_axes = [[0.0, 0.0, 0.0], [-0.272, nan, 0.0]]")
     with pytest.raises(InputError, match=r"key 'suspension.rear.universal_axes'.*non-zero"):
         load_suspension(p)
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("rate_N_per_m = 111000.0", "rate_N_per_m = 111.0", "suspension.front.spring.rate_N_per_m",
+     ["N/mm", "between 1000 and 1e+07 N/m"]),
+    ("wheel_mass_kg = 22.0", "wheel_mass_kg = 0.022", "corners.fl.wheel_mass_kg",
+     ["tonnes", "between 1 and 2000 kg"]),
+])
+def test_unit_slips_of_the_linkage_car_are_named(tmp_path, old, new, key, words):
+    from flexpipe.vehicle import load_car
+
+    text = SAMPLE.read_text().replace('"../', f'"{SAMPLE.parents[1].as_posix()}/')
+    p = _write(tmp_path, text.replace(old, new, 1))
+    with pytest.raises(InputError) as e:
+        load_car(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg and f"line {_line_of(p, new)}" in msg
+    for w in words:
+        assert w in msg
+
+
+def test_unknown_body_mount_is_refused_at_load(tmp_path):
+    """It used to be refused only by the flexible run; info, kc and the rigid run took it."""
+    from flexpipe.vehicle import load_car
+
+    text = SAMPLE.read_text().replace('"../', f'"{SAMPLE.parents[1].as_posix()}/')
+    p = _write(tmp_path, text.replace("[body.fatigue]", "[body.mounts.front_lower_arm_middle_l]"
+                                      "\nradius_m = 0.02\n\n[body.fatigue]", 1))
+    with pytest.raises(InputError) as e:
+        load_car(p)
+    msg = str(e.value)
+    assert str(p) in msg and "key 'body.mounts.front_lower_arm_middle_l'" in msg
+    assert f"line {_line_of(p, '[body.mounts.front_lower_arm_middle_l]')}" in msg
+    assert "valid: front_lower_arm_front_l" in msg and "rear_arb_bushing_r" in msg

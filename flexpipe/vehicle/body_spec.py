@@ -12,7 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe.errors import InputError
 from flexpipe.fem.material import LIBRARY, Material
+from flexpipe.mesh.units import unit_system
 from flexpipe.vehicle._toml import Table
 
 
@@ -114,6 +116,11 @@ def read_body(doc: Table, base: Path) -> BodySpec:
                                        "'body_file' (a ready reduced body), not both")
     scale = t.number("mesh_scale", 1.0, lo=0, lo_open=True)
     units = t.string("mesh_units", None)
+    if units is not None:  # checked here, not first when the mesh is read (info, run)
+        try:
+            unit_system(units)
+        except InputError as exc:
+            raise t.error("mesh_units", str(exc).split(": ", 1)[-1]) from None
     material = _material(t, "material")
     thick = t.number("shell_thickness_m", None, lo=0, lo_open=True)
     zeta = t.number("damping_ratio", 0.02, lo=0, hi=1.0)
@@ -132,9 +139,17 @@ def read_body(doc: Table, base: Path) -> BodySpec:
     raw = t.raw("mass", [])
     if not isinstance(raw, list):
         raise t.error("mass", "expected an array of tables [[body.mass]]")
+    seen = {}
     for i, item in enumerate(raw):
         m = Table(item, f"body.mass[{i}]", t.file, t.lines)
         name = m.string("name", f"mass{i}")
+        if name in seen:  # overrides (body.mass.<name>.mass_kg) and messages use the name
+            j = seen[name]
+            first = Table(raw[j], f"body.mass[{j}]", t.file, t.lines)._line("name")
+            raise m.error("name", f"'{name}' names two [[body.mass]] entries, body.mass[{j}] "
+                                  f"(line {first}) and body.mass[{i}]; each non-structural "
+                                  "mass needs its own name")
+        seen[name] = i
         masses.append(AddedMass(
             name, m.number("mass_kg", lo=0, doc="non-structural mass"),
             m.vector("position_m"), m.number("spread_radius_m", 0.3, lo=0, lo_open=True)))

@@ -44,13 +44,13 @@ def cache_dir() -> Path:
 
 # --------------------------------------------------------------------------- masses
 def spread_mass(points: np.ndarray, mass: float, position, radius: float, *,
-                name: str = "mass", max_growth: int = 4):
+                name: str = "mass", max_growth: int = 4, file=None):
     """Nodal shares of a mass so that their total and centre of mass are exact.
 
     The candidates are the nodes within ``radius`` of ``position`` (the radius grows by 50 %
     up to ``max_growth`` times when the position is not inside their convex hull); among
     the non-negative shares with the exact total and centre, the ones closest to an even
-    split are taken.
+    split are taken.  ``name`` and ``file`` (the car file) are for the error message.
 
     Returns
     -------
@@ -71,7 +71,8 @@ def spread_mass(points: np.ndarray, mass: float, position, radius: float, *,
     raise InputError(
         f"non-structural mass '{name}' at {tuple(p)} m cannot be spread over the body: its "
         f"position is not surrounded by body nodes even within {r / 1.5:.3g} m; move it "
-        "closer to the structure or increase spread_radius_m", key=f"body.mass.{name}")
+        "closer to the structure or increase spread_radius_m", file=file,
+        key=f"body.mass.{name}")
 
 
 def _nonnegative_shares(R: np.ndarray, mass: float, *, iterations: int = 50):
@@ -119,7 +120,7 @@ def body_mesh(car: Car):
     next_id = max([pm.id for pm in pms] + [0]) + 1
     for am in car.body.added_masses:
         nodes, shares = spread_mass(mesh.points, am.mass, am.position, am.spread_radius,
-                                    name=am.name)
+                                    name=am.name, file=car.file)
         for n, w in zip(nodes, shares, strict=True):
             pms.append(PointMass(int(n), float(w), id=next_id))
             next_id += 1

@@ -51,6 +51,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, parse
 from flexpipe.vehicle.body_spec import (  # noqa: F401  (re-exported)
     AddedMass,
@@ -195,6 +196,21 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
         tire=tire,
     )
     c.finish()
+    dampers = (("damper_N_s_per_m", cj),) if has_lin else (
+        ("damper_jounce_N_s_per_m", cj), ("damper_rebound_N_s_per_m", cr))
+    for key, v, bounds, unit, what, slips in (
+            ("spring_rate_N_per_m", spec.spring_rate, lim.SPRING_RATE_N_PER_M, "N/m",
+             "a suspension spring rate", lim.SPRING_RATE_SLIPS),
+            *((k, v, lim.DAMPING_N_S_PER_M, "N s/m", "a suspension damper", lim.DAMPING_SLIPS)
+              for k, v in dampers),
+            ("bump_stop_rate_N_per_m", spec.bump_stop_rate, lim.STOP_RATE_N_PER_M, "N/m",
+             "a bump stop (0: none)", lim.SPRING_RATE_SLIPS),
+            ("rebound_stop_rate_N_per_m", spec.rebound_stop_rate, lim.STOP_RATE_N_PER_M, "N/m",
+             "a rebound stop (0: none)", lim.SPRING_RATE_SLIPS),
+            ("unsprung_mass_kg", spec.unsprung_mass, lim.WHEEL_MASS_KG, "kg",
+             "the unsprung mass of a wheel", lim.MASS_SLIPS)):
+        if v != 0 or key == "spring_rate_N_per_m":  # 0: no damper / stop
+            c.magnitude(key, v, *bounds, unit=unit, what=what, slips=slips)
     side = 1 if name[1] == "l" else -1
     for key, p in (("hardpoint_m", spec.hardpoint), ("wheel_center_m", spec.wheel_center)):
         if p[1] * side <= 0:
@@ -213,7 +229,10 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
     if not tire.is_file():
         raise c.error("tire", f"tire file {tire} does not exist (paths are relative to the "
                               "car file)")
-    m_wheel = c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass")
+    m_wheel = c.magnitude("wheel_mass_kg",
+                          c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass"),
+                          *lim.WHEEL_MASS_KG, unit="kg", what="a wheel (rim + tyre)",
+                          slips=lim.MASS_SLIPS)
     J_wheel = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
         np.zeros((3, 3))
     spring = linkage.spring()
@@ -231,6 +250,24 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
         tire=tire)
     c.finish()
     return spec
+
+
+def _check_mount_names(body: BodySpec, suspension, path: Path, lines: list[str]) -> None:
+    """Every ``[body.mounts.<name>]`` must name a mount of the car's suspension (else it
+    would be ignored by every run but the flexible one, which refuses it)."""
+    valid = suspension.mounts() if suspension is not None else {}
+    for name in body.mounts or {}:
+        if name in valid:
+            continue
+        if suspension is None:
+            msg = ("[body.mounts] ties the mounts of a linkage suspension ([suspension.*]) to "
+                   "the mesh; this car has prismatic corners, tied at each corners.<c>."
+                   "hardpoint_m within [body] interface_radius_m: remove the table")
+        else:
+            msg = (f"[body.mounts] names '{name}', which is no mount of this car's suspension; "
+                   f"valid: {', '.join(valid)}")
+        line = Table({}, f"body.mounts.{name}", path, lines)._line(None)
+        raise InputError(msg, file=path, line=line, key=f"body.mounts.{name}")
 
 
 def load_car(path, *, overrides=None) -> Car:
@@ -280,6 +317,7 @@ def load_car(path, *, overrides=None) -> Car:
     else:
         corners = tuple(_corner(corners_t, n, base) for n in CORNERS)
     corners_t.finish()
+    _check_mount_names(body, suspension, path, lines)
     x = [c.wheel_center[0] for c in corners]
     if min(x[:2]) <= max(x[2:]):
         raise InputError("front wheel centres must lie ahead (larger x) of the rear ones "

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import InputError, ModelError
+from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, parse
 from flexpipe.vehicle.suspension.checks import check_hardpoints
 from flexpipe.vehicle.suspension.model import (
@@ -147,7 +148,10 @@ def _forces(t: Table) -> dict:
     out = {}
     s = t.sub("spring", None)
     if s is not None:
-        d = {"rate": s.number("rate_N_per_m", lo=0, lo_open=True)}
+        rate = s.number("rate_N_per_m", lo=0, lo_open=True)
+        d = {"rate": s.magnitude("rate_N_per_m", rate, *lim.SPRING_RATE_N_PER_M, unit="N/m",
+                                 what="a suspension spring rate",
+                                 slips=lim.SPRING_RATE_SLIPS)}
         if s.has("free_length_m") and s.has("preload_N"):
             raise s.error("preload_N", "give free_length_m or preload_N, not both")
         d["free_length"] = s.number("free_length_m", None, lo=0, lo_open=True)
