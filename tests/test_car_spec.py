@@ -147,7 +147,8 @@ def test_off_body_mass_error_names_the_car_file(tmp_path):
     with pytest.raises(InputError) as exc:
         body_mesh(load_car(path))
     msg = str(exc.value)
-    assert str(path) in msg and "key 'body.mass.powertrain'" in msg and "spread_radius_m" in msg
+    assert str(path) in msg and "key 'body.mass.powertrain'" in msg
+    assert "spread_radius_m" in msg.replace(str(path), "")
 
 
 def test_unknown_mesh_units_are_named_at_load(tmp_path):
@@ -181,7 +182,7 @@ def test_unit_slips_in_rates_and_masses_are_named(tmp_path, old, new, key, words
     msg = str(exc.value)
     assert str(path) in msg and f"key '{key}'" in msg and re.search(r"line \d+", msg)
     for w in words:
-        assert w in msg
+        assert w in msg.replace(str(path), "")
 
 
 def test_zero_damper_and_stop_rates_still_mean_none(tmp_path):
@@ -197,7 +198,7 @@ def test_duplicate_mass_names_are_refused_naming_both(tmp_path):
     msg = str(exc.value)
     assert str(path) in msg and "'door_fl'" in msg and "key 'body.mass[7].name'" in msg
     assert f"line {_line(path, 'door_fl', 2)}" in msg and f"line {_line(path, 'door_fl')}" in msg
-    assert "body.mass[6]" in msg and "own name" in msg
+    assert "body.mass[6]" in msg and "own name" in msg.replace(str(path), "")
 
 
 def test_mounts_table_of_a_prismatic_car_is_refused(tmp_path):
@@ -206,5 +207,6 @@ def test_mounts_table_of_a_prismatic_car_is_refused(tmp_path):
     with pytest.raises(InputError) as exc:
         load_car(path)
     msg = str(exc.value)
-    assert str(path) in msg and "key 'body.mounts.fl'" in msg and "prismatic" in msg
+    assert str(path) in msg and "key 'body.mounts.fl'" in msg
+    assert "prismatic corners" in msg.replace(str(path), "")
     assert f"line {_line(path, '[body.mounts.fl]')}" in msg

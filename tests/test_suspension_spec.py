@@ -150,7 +150,8 @@ def test_non_finite_table_entries_are_refused(tmp_path, old, new, key):
     with pytest.raises(InputError) as e:
         load_suspension(p)
     msg = str(e.value)
-    assert str(p) in msg and f"key '{key}'" in msg and "finite" in msg
+    assert str(p) in msg and f"key '{key}'" in msg
+    assert "must hold finite numbers" in msg.replace(str(p), "")
 
 
 @pytest.mark.parametrize("old, new, key, words", [
@@ -181,7 +182,7 @@ def test_force_tables_with_the_wrong_sign_are_refused(tmp_path, old, new, key, w
     msg = str(e.value)
     assert str(p) in msg and f"key '{key}'" in msg
     for w in words:
-        assert w in msg
+        assert w in msg.replace(str(p), "")
 
 
 def _front_hardpoints_mirrored(text):
@@ -199,7 +200,7 @@ def test_hardpoints_on_the_wrong_side_are_refused(tmp_path):
     msg = str(e.value)
     assert str(p) in msg and f"line {_line_of(p, 'wheel_center = [0.000, -0.7979')}" in msg
     assert "key 'suspension.front.hardpoints_m.wheel_center'" in msg
-    assert "y > 0 is left" in msg and "negate" in msg
+    assert "y > 0 is left" in msg and "negate" in msg.replace(str(p), "")
     p = _sample_with(tmp_path, "lower_arm_rear = [-0.200, 0.470, -0.265]",
                      "lower_arm_rear = [-0.200, -0.470, -0.265]")
     with pytest.raises(InputError, match=r"key 'suspension.front.hardpoints_m.lower_arm_rear'"
@@ -233,7 +234,7 @@ def test_location_in_millimetres_is_named(tmp_path, old, new, key, words):
     msg = str(e.value)
     assert str(p) in msg and f"key '{key}'" in msg and "line " in msg
     for w in words:
-        assert w in msg
+        assert w in msg.replace(str(p), "")
 
 
 def test_off_body_spring_seat_names_the_linkage_key():
@@ -265,8 +266,8 @@ def test_coincident_points_of_an_axis_or_member_are_named(tmp_path, old, new, ke
     with pytest.raises(InputError) as e:
         load_suspension(p)
     msg = str(e.value)
-    assert str(p) in msg and f"key '{key}'" in msg and other in msg
-    assert "must be distinct" in msg
+    assert str(p) in msg and f"key '{key}'" in msg
+    assert other in msg.replace(str(p), "") and "must be distinct" in msg
 
 
 def test_universal_axes_must_be_finite_and_non_zero(tmp_path):
@@ -292,7 +293,7 @@ def test_unit_slips_of_the_linkage_car_are_named(tmp_path, old, new, key, words)
     msg = str(e.value)
     assert str(p) in msg and f"key '{key}'" in msg and f"line {_line_of(p, new)}" in msg
     for w in words:
-        assert w in msg
+        assert w in msg.replace(str(p), "")
 
 
 def test_unknown_body_mount_is_refused_at_load(tmp_path):
