@@ -309,3 +309,5 @@ def test_unknown_body_mount_is_refused_at_load(tmp_path):
     assert str(p) in msg and "key 'body.mounts.front_lower_arm_middle_l'" in msg
     assert f"line {_line_of(p, '[body.mounts.front_lower_arm_middle_l]')}" in msg
     assert "valid: front_lower_arm_front_l" in msg and "rear_arb_bushing_r" in msg
+    with pytest.raises(InputError, match=r"key 'body.mounts.front_lower_arm_middle_l'.*valid"):
+        load_suspension(p)  # what flexpipe kc reads

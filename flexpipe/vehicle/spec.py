@@ -253,21 +253,16 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
 
 
 def _check_mount_names(body: BodySpec, suspension, path: Path, lines: list[str]) -> None:
-    """Every ``[body.mounts.<name>]`` must name a mount of the car's suspension (else it
-    would be ignored by every run but the flexible one, which refuses it)."""
-    valid = suspension.mounts() if suspension is not None else {}
-    for name in body.mounts or {}:
-        if name in valid:
-            continue
-        if suspension is None:
-            msg = ("[body.mounts] ties the mounts of a linkage suspension ([suspension.*]) to "
-                   "the mesh; this car has prismatic corners, tied at each corners.<c>."
-                   "hardpoint_m within [body] interface_radius_m: remove the table")
-        else:
-            msg = (f"[body.mounts] names '{name}', which is no mount of this car's suspension; "
-                   f"valid: {', '.join(valid)}")
-        line = Table({}, f"body.mounts.{name}", path, lines)._line(None)
-        raise InputError(msg, file=path, line=line, key=f"body.mounts.{name}")
+    """A prismatic-corner car has no suspension mounts for ``[body.mounts]`` (it would be
+    ignored); a linkage car's names are checked by ``load_suspension``."""
+    if suspension is None and body.mounts:
+        name = next(iter(body.mounts))
+        raise InputError("[body.mounts] ties the mounts of a linkage suspension "
+                         "([suspension.*]) to the mesh; this car has prismatic corners, tied "
+                         "at each corners.<c>.hardpoint_m within [body] interface_radius_m: "
+                         "remove the table", file=path,
+                         line=Table({}, f"body.mounts.{name}", path, lines)._line(None),
+                         key=f"body.mounts.{name}")
 
 
 def load_car(path, *, overrides=None) -> Car:

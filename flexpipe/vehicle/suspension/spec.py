@@ -338,7 +338,23 @@ def load_suspension(path) -> Suspension:
             raise InputError(f"the rack is on the {rack_axle} axle, which has no "
                              f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
         axles[rack_axle] = replace(axles[rack_axle], rack=rack)
-    return Suspension(path, axles, rack, mode)
+    susp = Suspension(path, axles, rack, mode)
+    _check_body_mounts(doc, susp, lines)
+    return susp
+
+
+def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
+    """Every ``[body.mounts.<name>]`` must name a mount of ``susp``: checked here, when
+    any tool reads the car (``info``, ``kc``, every run), not only by the flexible run."""
+    body = doc.get("body")
+    mounts = body.get("mounts") if isinstance(body, dict) else None
+    valid = susp.mounts()
+    for name in mounts if isinstance(mounts, dict) else ():  # else read_body names it
+        if name not in valid:
+            raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
+                             f"suspension; valid: {', '.join(valid)}", file=susp.file,
+                             line=Table({}, f"body.mounts.{name}", susp.file, lines)._line(None),
+                             key=f"body.mounts.{name}")
 
 
 __all__ = ["Suspension", "load_suspension", "ModelError"]
