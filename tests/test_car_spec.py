@@ -132,3 +132,81 @@ def test_rigid_only_body_needs_mass_properties(tmp_path):
     path = _variant(tmp_path, lambda s: s.replace('mesh = "', '# mesh = "', 1), "bare.toml")
     with pytest.raises(InputError, match=r"needs a 'mesh'.*\[body.rigid\]"):
         load_car(path)
+
+
+def _line(path, needle, nth=1):
+    hits = [i for i, t in enumerate(path.read_text().splitlines(), 1) if needle in t]
+    return hits[nth - 1]
+
+
+def test_off_body_mass_error_names_the_car_file(tmp_path):
+    from flexpipe.vehicle.bodymodel import body_mesh
+
+    path = _variant(tmp_path, lambda s: s.replace("position_m = [0.10, 0.0, 0.55]",
+                                                  "position_m = [10.0, 0.0, 0.55]", 1))
+    with pytest.raises(InputError) as exc:
+        body_mesh(load_car(path))
+    msg = str(exc.value)
+    assert str(path) in msg and "key 'body.mass.powertrain'" in msg
+    assert "spread_radius_m" in msg.replace(str(path), "")
+
+
+def test_unknown_mesh_units_are_named_at_load(tmp_path):
+    path = _variant(tmp_path, lambda s: s.replace("damping_ratio = 0.02",
+                                                  'mesh_units = "inch"\ndamping_ratio = 0.02', 1))
+    with pytest.raises(InputError) as exc:
+        load_car(path)
+    msg = str(exc.value)
+    assert str(path) in msg and f"line {_line(path, 'mesh_units')}" in msg
+    assert "key 'body.mesh_units'" in msg and "'inch'" in msg and "mm-t-s" in msg
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("spring_rate_N_per_m = 30000.0", "spring_rate_N_per_m = 30.0",
+     "corners.fl.spring_rate_N_per_m", ["N/mm", "between 1000 and 1e+07 N/m"]),
+    ("spring_rate_N_per_m = 26000.0", "spring_rate_N_per_m = 2.6e10",
+     "corners.rl.spring_rate_N_per_m", ["between 1000 and 1e+07 N/m"]),
+    ("damper_rebound_N_s_per_m = 3600.0", "damper_rebound_N_s_per_m = 3.6",
+     "corners.fl.damper_rebound_N_s_per_m", ["N s/mm", "between 10 and"]),
+    ("bump_stop_rate_N_per_m = 200000.0", "bump_stop_rate_N_per_m = 200.0",
+     "corners.fl.bump_stop_rate_N_per_m", ["N/mm"]),
+    ("unsprung_mass_kg = 42.0", "unsprung_mass_kg = 0.042", "corners.fl.unsprung_mass_kg",
+     ["tonnes", "between 1 and 2000 kg"]),
+    ("unsprung_mass_kg = 42.0", "unsprung_mass_kg = 42000.0", "corners.fl.unsprung_mass_kg",
+     ["grams"]),
+])
+def test_unit_slips_in_rates_and_masses_are_named(tmp_path, old, new, key, words):
+    path = _variant(tmp_path, lambda s: s.replace(old, new, 1))
+    with pytest.raises(InputError) as exc:
+        load_car(path)
+    msg = str(exc.value)
+    assert str(path) in msg and f"key '{key}'" in msg and re.search(r"line \d+", msg)
+    for w in words:
+        assert w in msg.replace(str(path), "")
+
+
+def test_zero_damper_and_stop_rates_still_mean_none(tmp_path):
+    path = _variant(tmp_path, lambda s: s.replace("bump_stop_rate_N_per_m = 200000.0",
+                                                  "bump_stop_rate_N_per_m = 0.0", 1))
+    assert load_car(path).corner("fl").bump_stop_rate == 0.0
+
+
+def test_duplicate_mass_names_are_refused_naming_both(tmp_path):
+    path = _variant(tmp_path, lambda s: s.replace('name = "door_fr"', 'name = "door_fl"'))
+    with pytest.raises(InputError) as exc:
+        load_car(path)
+    msg = str(exc.value)
+    assert str(path) in msg and "'door_fl'" in msg and "key 'body.mass[7].name'" in msg
+    assert f"line {_line(path, 'door_fl', 2)}" in msg and f"line {_line(path, 'door_fl')}" in msg
+    assert "body.mass[6]" in msg and "own name" in msg.replace(str(path), "")
+
+
+def test_mounts_table_of_a_prismatic_car_is_refused(tmp_path):
+    """[body.mounts] ties linkage mounts; a prismatic-corner car would ignore it."""
+    path = _variant(tmp_path, lambda s: s + "\n[body.mounts.fl]\nradius_m = 0.02\n")
+    with pytest.raises(InputError) as exc:
+        load_car(path)
+    msg = str(exc.value)
+    assert str(path) in msg and "key 'body.mounts.fl'" in msg
+    assert "prismatic corners" in msg.replace(str(path), "")
+    assert f"line {_line(path, '[body.mounts.fl]')}" in msg

@@ -124,3 +124,190 @@ def test_nonlinear_tables_at_a_link_end_bushing_are_refused(tmp_path):
     with pytest.raises(InputError, match=r"key 'suspension.rear.bushings.lateral_link_inner'"
                                          r".*nonlinear tables.*'stiffness' only"):
         load_suspension(p)
+
+
+@pytest.mark.parametrize("old, new, key", [
+    ("force_N = [-6680.0, 0.0, 13360.0]", "force_N = [-6680.0, nan, 13360.0]",
+     "suspension.front.damper.force_N"),
+    ("velocity_m_per_s = [-1.0, 0.0, 1.0]", "velocity_m_per_s = [-1.0, inf, 1.0]",
+     "suspension.front.damper.velocity_m_per_s"),
+    ("force_N = [0.0, 1000.0, 3500.0, 12000.0]", "force_N = [0.0, 1000.0, -inf, 12000.0]",
+     "suspension.front.bump_stop.force_N"),
+    ("deflection_m = [0.0, 0.005, 0.010]\nforce_N = [0.0, 2000.0, 8000.0]",
+     "deflection_m = [0.0, nan, 0.010]\nforce_N = [0.0, 2000.0, 8000.0]",
+     "suspension.front.rebound_stop.deflection_m"),
+    ("rate_N_per_m = 111000.0", "rate_N_per_m = 111000.0\ncompression_m = [0.0, 0.1]\n"
+     "force_N = [0.0, nan]", "suspension.front.spring.force_N"),
+    ("damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]",
+     "damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]\n\n"
+     "[suspension.front.bushings.lower_arm_rear.tables.z]\n"
+     "deflection = [-0.004, 0.0, 0.004]\nforce = [-6000.0, nan, 6000.0]",
+     "suspension.front.bushings.lower_arm_rear.tables.z.force"),
+])
+def test_non_finite_table_entries_are_refused(tmp_path, old, new, key):
+    """A nan or inf in a table used to load and then crash the time run inside Exudyn."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg
+    assert "must hold finite numbers" in msg.replace(str(p), "")
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("force_N = [-6680.0, 0.0, 13360.0]", "force_N = [6680.0, 0.0, -13360.0]",
+     "suspension.front.damper.force_N", ["negative damping", "must not decrease"]),
+    ("rate_N_per_m = 111000.0", "rate_N_per_m = 111000.0\ncompression_m = [0.0, 0.05, 0.1]\n"
+     "force_N = [0.0, 6000.0, 5000.0]", "suspension.front.spring.force_N",
+     ["spring", "must not decrease"]),
+    ("force_N = [0.0, 1000.0, 3500.0, 12000.0]", "force_N = [0.0, -1000.0, -3500.0, -12000.0]",
+     "suspension.front.bump_stop.force_N", ["must not decrease"]),
+    ("deflection_m = [0.0, 0.005, 0.010]\nforce_N = [0.0, 2000.0, 8000.0]",
+     "deflection_m = [0.0, 0.005, 0.010]\nforce_N = [-100.0, 2000.0, 8000.0]",
+     "suspension.front.rebound_stop.force_N", ["only pushes", ">= 0"]),
+    ("damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]",
+     "damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]\n\n"
+     "[suspension.front.bushings.lower_arm_rear.tables.z]\n"
+     "deflection = [-0.004, 0.0, 0.004]\nforce = [6000.0, 0.0, -6000.0]",
+     "suspension.front.bushings.lower_arm_rear.tables.z.force", ["stiffness >= 0"]),
+    ("damping = [400.0, 400.0, 60.0, 0.5, 0.5, 0.2]", "damping = [400.0, 400.0, -60.0, 0.5, "
+     "0.5, 0.2]", "suspension.front.bushings.lower_arm_rear.damping", [">= 0"]),
+])
+def test_force_tables_with_the_wrong_sign_are_refused(tmp_path, old, new, key, words):
+    """A damper whose force falls with velocity (negative damping) used to run to the end;
+    springs, stops and bushings must not have negative stiffness either."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg
+    for w in words:
+        assert w in msg.replace(str(p), "")
+
+
+def _front_hardpoints_mirrored(text):
+    a = text.index("[suspension.front.hardpoints_m]")
+    b = text.index("[suspension.front.parts.lower_arm]")
+    block = re.sub(r"(=\s*\[[^,]+,\s*)([0-9.]+)", r"\1-\2", text[a:b])
+    return text[:a] + block + text[b:]
+
+
+def test_hardpoints_on_the_wrong_side_are_refused(tmp_path):
+    """The file gives the left corner (y > 0); the right one is its mirror image."""
+    p = _write(tmp_path, _front_hardpoints_mirrored(SAMPLE.read_text()))
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"line {_line_of(p, 'wheel_center = [0.000, -0.7979')}" in msg
+    assert "key 'suspension.front.hardpoints_m.wheel_center'" in msg
+    assert "y > 0 is left" in msg and "negate" in msg.replace(str(p), "")
+    p = _sample_with(tmp_path, "lower_arm_rear = [-0.200, 0.470, -0.265]",
+                     "lower_arm_rear = [-0.200, -0.470, -0.265]")
+    with pytest.raises(InputError, match=r"key 'suspension.front.hardpoints_m.lower_arm_rear'"
+                                         r".*y = -0.47 m.*right side.*y >= 0"):
+        load_suspension(p)
+    # an inner pivot outboard of the wheel centre (y 0.7979)
+    p = _sample_with(tmp_path, "tie_rod_inner = [-0.257, 0.170, -0.116]",
+                     "tie_rod_inner = [-0.257, 0.850, -0.116]")
+    with pytest.raises(InputError, match=r"key 'suspension.rear.hardpoints_m.tie_rod_inner'"
+                                         r".*outboard of the wheel centre.*inboard"):
+        load_suspension(p)
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("location_m = [0.0, 0.0, 0.418]", "location_m = [0.0, 0.0, 418.0]",
+     "suspension.front.location_m", ["wheel centre z = 417.88 m", "millimetres", "0 < z <= 3"]),
+    ("location_m = [-2.75, 0.0, 0.3013]", "location_m = [-2750.0, 0.0, 301.3]",
+     "suspension.rear.location_m", ["wheel centre x = -2750 m", "millimetres"]),
+    ("wheel_center = [0.000, 0.800, 0.000]", "wheel_center = [0.000, 800.0, 0.000]",
+     "suspension.rear.hardpoints_m.wheel_center", ["wheel centre y = 800 m", "millimetres"]),
+    ("location_m = [0.0, 0.0, 0.418]", "location_m = [0.0, 0.0, 0.0]",
+     "suspension.front.hardpoints_m.wheel_center", ["wheel centre z = -0.1197 m",
+                                                    "location_m"]),
+])
+def test_location_in_millimetres_is_named(tmp_path, old, new, key, words):
+    """location_m in mm used to load and fail later naming corners.fl.hardpoint_m, a key a
+    linkage car does not have."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg and "line " in msg
+    for w in words:
+        assert w in msg.replace(str(p), "")
+
+
+def test_off_body_spring_seat_names_the_linkage_key():
+    """A linkage car's corner hardpoint is its spring seat: named as the suspension key."""
+    from flexpipe.vehicle import load_car
+    from flexpipe.vehicle.bodymodel import corner_interfaces
+
+    car = load_car(SAMPLE)
+    with pytest.raises(InputError) as e:
+        corner_interfaces(car, np.zeros((1, 3)))
+    msg = str(e.value)
+    assert str(SAMPLE) in msg and "suspension.front.hardpoints_m.spring_upper" in msg
+    assert "corners.fl" not in msg
+
+
+@pytest.mark.parametrize("old, new, key, other", [
+    ("upper_arm_rear = [-0.250, 0.510, 0.110]", "upper_arm_rear = [-0.100, 0.470, 0.105]",
+     "suspension.front.hardpoints_m.upper_arm_rear", "upper_arm_front"),
+    ("tie_rod_outer = [-0.150, 0.770, -0.120]", "tie_rod_outer = [-0.200, 0.420, -0.120]",
+     "suspension.front.hardpoints_m.tie_rod_outer", "tie_rod_inner"),
+    ("lateral_link_outer = [0.029, 0.692, -0.093]", "lateral_link_outer = [0.036, 0.188, -0.133]",
+     "suspension.rear.hardpoints_m.lateral_link_outer", "lateral_link_inner"),
+    ("spring_lower = [0.181, 0.419, -0.164]", "spring_lower = [0.181, 0.491, 0.110]",
+     "suspension.rear.hardpoints_m.spring_upper", "spring_lower"),
+])
+def test_coincident_points_of_an_axis_or_member_are_named(tmp_path, old, new, key, other):
+    """Two equal pivots of a revolute axis used to give a numpy warning and a NaN residual."""
+    p = _sample_with(tmp_path, old, new)
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg
+    assert other in msg.replace(str(p), "") and "must be distinct" in msg
+
+
+def test_universal_axes_must_be_finite_and_non_zero(tmp_path):
+    p = _sample_with(tmp_path, "universal_axes = [[0.0, 0.0, 1.0], [-0.272, 0.962, 0.0]]",
+                     "universal_axes = [[0.0, 0.0, 0.0], [-0.272, nan, 0.0]]")
+    with pytest.raises(InputError, match=r"key 'suspension.rear.universal_axes'.*non-zero"):
+        load_suspension(p)
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ("rate_N_per_m = 111000.0", "rate_N_per_m = 111.0", "suspension.front.spring.rate_N_per_m",
+     ["N/mm", "between 1000 and 1e+07 N/m"]),
+    ("wheel_mass_kg = 22.0", "wheel_mass_kg = 0.022", "corners.fl.wheel_mass_kg",
+     ["tonnes", "between 1 and 2000 kg"]),
+])
+def test_unit_slips_of_the_linkage_car_are_named(tmp_path, old, new, key, words):
+    from flexpipe.vehicle import load_car
+
+    text = SAMPLE.read_text().replace('"../', f'"{SAMPLE.parents[1].as_posix()}/')
+    p = _write(tmp_path, text.replace(old, new, 1))
+    with pytest.raises(InputError) as e:
+        load_car(p)
+    msg = str(e.value)
+    assert str(p) in msg and f"key '{key}'" in msg and f"line {_line_of(p, new)}" in msg
+    for w in words:
+        assert w in msg.replace(str(p), "")
+
+
+def test_unknown_body_mount_is_refused_at_load(tmp_path):
+    """It used to be refused only by the flexible run; info, kc and the rigid run took it."""
+    from flexpipe.vehicle import load_car
+
+    text = SAMPLE.read_text().replace('"../', f'"{SAMPLE.parents[1].as_posix()}/')
+    p = _write(tmp_path, text.replace("[body.fatigue]", "[body.mounts.front_lower_arm_middle_l]"
+                                      "\nradius_m = 0.02\n\n[body.fatigue]", 1))
+    with pytest.raises(InputError) as e:
+        load_car(p)
+    msg = str(e.value)
+    assert str(p) in msg and "key 'body.mounts.front_lower_arm_middle_l'" in msg
+    assert f"line {_line_of(p, '[body.mounts.front_lower_arm_middle_l]')}" in msg
+    assert "valid: front_lower_arm_front_l" in msg and "rear_arb_bushing_r" in msg
+    with pytest.raises(InputError, match=r"key 'body.mounts.front_lower_arm_middle_l'.*valid"):
+        load_suspension(p)  # what flexpipe kc reads

@@ -75,11 +75,21 @@ class Table:
         """1-based line of ``key`` inside this table's header, or of the header."""
         parts = self.name.split(".") if self.name else []
         header = None
+        item = re.fullmatch(r"(.+)\[(\d+)\]", self.name)  # body.mass[2]: 3rd [[body.mass]]
+        count = -1
         for i, text in enumerate(self.lines):
             s = text.strip()
-            if s.startswith("[") and s.strip("[] ").replace(" ", "") == self.name:
+            if not s.startswith("["):
+                continue
+            name = s.split("#", 1)[0].strip().strip("[] ").replace(" ", "")
+            if item is None and name == self.name:
                 header = i
                 break
+            if item is not None and s.startswith("[[") and name == item.group(1):
+                count += 1
+                if count == int(item.group(2)):
+                    header = i
+                    break
         start = header if header is not None else 0
         if key is None:
             return None if header is None else header + 1
@@ -138,6 +148,38 @@ class Table:
         if hi is not None and v > hi:
             raise self.error(key, f"must be <= {hi:g}, got {v:g}")
         return v
+
+    def magnitude(self, key: str, value: float, lo: float, hi: float, *, unit: str,
+                  what: str, slips=()) -> float:
+        """``value`` of ``key`` when within ``[lo, hi]``, else an error naming the likely
+        unit slip.
+
+        Parameters
+        ----------
+        key : str
+            Key of the value (for the message).
+        value : float
+            The value read, in ``unit``.
+        lo, hi : float
+            Bounds no road vehicle's value lies outside (the caller justifies them).
+        unit : str
+            Unit of the key (``"N/m"``).
+        what : str
+            What the value is (``"a suspension spring rate"``).
+        slips : sequence of (factor, str)
+            Likely slips: ``value * factor`` within the bounds means the value was given in
+            the unit named by the string (``(1e3, "N/mm")``).
+        """
+        if lo <= value <= hi:
+            return value
+        hint = ""
+        for factor, name in slips:
+            if lo <= value * factor <= hi:
+                hint = (f"; it looks like {name} ({value:g} {name} = {value * factor:g} "
+                        f"{unit}), but the key's unit is {unit}")
+                break
+        raise self.error(key, f"{value:g} {unit} is no plausible value for {what}: a road "
+                              f"vehicle's lies between {lo:g} and {hi:g} {unit}{hint}")
 
     def string(self, key: str, default=_MISSING, *, choices=None, doc: str = "") -> str:
         """A string, optionally one of ``choices``."""

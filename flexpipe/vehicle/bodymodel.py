@@ -44,13 +44,13 @@ def cache_dir() -> Path:
 
 # --------------------------------------------------------------------------- masses
 def spread_mass(points: np.ndarray, mass: float, position, radius: float, *,
-                name: str = "mass", max_growth: int = 4):
+                name: str = "mass", max_growth: int = 4, file=None):
     """Nodal shares of a mass so that their total and centre of mass are exact.
 
     The candidates are the nodes within ``radius`` of ``position`` (the radius grows by 50 %
     up to ``max_growth`` times when the position is not inside their convex hull); among
     the non-negative shares with the exact total and centre, the ones closest to an even
-    split are taken.
+    split are taken.  ``name`` and ``file`` (the car file) are for the error message.
 
     Returns
     -------
@@ -71,7 +71,8 @@ def spread_mass(points: np.ndarray, mass: float, position, radius: float, *,
     raise InputError(
         f"non-structural mass '{name}' at {tuple(p)} m cannot be spread over the body: its "
         f"position is not surrounded by body nodes even within {r / 1.5:.3g} m; move it "
-        "closer to the structure or increase spread_radius_m", key=f"body.mass.{name}")
+        "closer to the structure or increase spread_radius_m", file=file,
+        key=f"body.mass.{name}")
 
 
 def _nonnegative_shares(R: np.ndarray, mass: float, *, iterations: int = 50):
@@ -119,7 +120,7 @@ def body_mesh(car: Car):
     next_id = max([pm.id for pm in pms] + [0]) + 1
     for am in car.body.added_masses:
         nodes, shares = spread_mass(mesh.points, am.mass, am.position, am.spread_radius,
-                                    name=am.name)
+                                    name=am.name, file=car.file)
         for n, w in zip(nodes, shares, strict=True):
             pms.append(PointMass(int(n), float(w), id=next_id))
             next_id += 1
@@ -147,6 +148,11 @@ def corner_interfaces(car: Car, nodes: np.ndarray | None = None):
 
     out = []
     for c in car.corners:
+        key = f"corners.{c.name}.hardpoint_m"
+        if car.suspension is not None:  # a linkage car: the hardpoint is the spring's seat
+            sp = car.suspension.corners()[c.name].spring()
+            key = f"suspension.{c.axle}.hardpoints_m." + (
+                sp.mount[len(c.axle) + 1:-2] if sp is not None else "wheel_center")
         if nodes is not None:
             d = np.linalg.norm(nodes - c.hardpoint, axis=1)
             k = int(d.argmin())
@@ -155,7 +161,7 @@ def corner_interfaces(car: Car, nodes: np.ndarray | None = None):
                     f"hardpoint {tuple(c.hardpoint)} m is off the body: the nearest body node "
                     f"is {d[k]:.3f} m away at {tuple(np.round(nodes[k], 4))}; a hardpoint must "
                     f"lie within {OFF_BODY_TOL} m of the structure", file=car.file,
-                    key=f"corners.{c.name}.hardpoint_m")
+                    key=key)
         out.append(Interface(tuple(c.hardpoint), radius=car.body.interface_radius,
                              name=c.name))
     return out

@@ -51,54 +51,19 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import InputError
-from flexpipe.fem.material import LIBRARY, Material
+from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, parse
+from flexpipe.vehicle.body_spec import (  # noqa: F401  (re-exported)
+    AddedMass,
+    BodySpec,
+    RigidProps,
+    read_body,
+    read_inertia,
+)
 
 CORNERS = ("fl", "fr", "rl", "rr")
 AXLE_OF = {"fl": "front", "fr": "front", "rl": "rear", "rr": "rear"}
 DRIVE_LAYOUTS = ("front", "rear", "all")
-
-
-@dataclass(frozen=True)
-class AddedMass:
-    """A non-structural mass spread over the body nodes near ``position``.
-
-    The nodal shares are chosen so that their total is ``mass`` and their centre of mass
-    is ``position`` (see :func:`flexpipe.vehicle.bodymodel.spread_mass`).
-    """
-
-    name: str
-    mass: float
-    position: np.ndarray
-    spread_radius: float
-
-
-@dataclass(frozen=True)
-class RigidProps:
-    """Rigid mass properties: mass (kg), centre of gravity (m), inertia about it (kg m^2)."""
-
-    mass: float
-    cg: np.ndarray
-    inertia: np.ndarray
-
-
-@dataclass(frozen=True)
-class BodySpec:
-    """The car body: a mesh (flexible) and/or rigid mass properties, plus added masses."""
-
-    mesh: Path | None
-    mesh_scale: float
-    mesh_units: str | None
-    material: Material | None
-    shell_thickness: float | None
-    damping_ratio: float
-    interface_radius: float
-    rigid: RigidProps | None
-    added_masses: tuple[AddedMass, ...]
-    points: dict
-    fatigue: object = None  # FatigueMaterial of [body.fatigue] (feat/durability)
-    body_file: Path | None = None  # ready reduced body (.npz from flexpipe reduce)
-    mounts: dict = None  # {mount: {"point", "radius", "dofs", "node_set", "nodes"}} overrides
 
 
 @dataclass(frozen=True)
@@ -194,129 +159,6 @@ class Car:
 
 
 # --------------------------------------------------------------------------- readers
-def _inertia(t: Table, key: str) -> np.ndarray:
-    """3 principal values or 6 [Ixx, Iyy, Izz, Ixy, Ixz, Iyz]; positive semi-definite."""
-    v = t.raw(key)
-    n = len(v) if isinstance(v, list) else 0
-    if n not in (3, 6):
-        raise t.error(key, f"expected [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] in "
-                           f"kg m^2, got {v!r}")
-    a = t.vector(key, n)
-    J = np.diag(a[:3])
-    if n == 6:
-        J[0, 1] = J[1, 0] = a[3]
-        J[0, 2] = J[2, 0] = a[4]
-        J[1, 2] = J[2, 1] = a[5]
-    if np.any(np.linalg.eigvalsh(J) < -1e-12 * max(1.0, abs(J).max())):
-        raise t.error(key, f"inertia tensor {a.tolist()} is not positive semi-definite")
-    return J
-
-
-def _material(t: Table, key: str) -> Material | None:
-    if not t.has(key):
-        return None
-    v = t.raw(key)
-    if isinstance(v, str):
-        if v.lower() not in LIBRARY:
-            raise t.error(key, f"unknown material {v!r}; valid: {sorted(set(LIBRARY))} or a "
-                               "table {E_Pa, nu, rho_kg_per_m3}")
-        return LIBRARY[v.lower()]
-    m = t.sub(key)
-    mat = Material(m.number("E_Pa", lo=0, lo_open=True), m.number("nu", lo=-0.99, hi=0.499),
-                   m.number("rho_kg_per_m3", lo=0), name=m.string("name", ""))
-    m.finish()
-    return mat
-
-
-def _body(doc: Table, base: Path) -> BodySpec:
-    t = doc.sub("body")
-    mesh = None
-    if t.has("mesh"):
-        mesh = (base / t.string("mesh")).resolve()
-        if not mesh.is_file():
-            raise t.error("mesh", f"mesh file {mesh} does not exist (paths are relative to "
-                                  "the car file)")
-    body_file = None
-    if t.has("body_file"):
-        body_file = (base / t.string("body_file", doc="reduced body from flexpipe reduce")
-                     ).resolve()
-        if not body_file.is_file():
-            raise t.error("body_file", f"body file {body_file} does not exist (paths are "
-                                       "relative to the car file)")
-        if mesh is not None:
-            raise t.error("body_file", "give either 'mesh' (reduced for each run's band) or "
-                                       "'body_file' (a ready reduced body), not both")
-    scale = t.number("mesh_scale", 1.0, lo=0, lo_open=True)
-    units = t.string("mesh_units", None)
-    material = _material(t, "material")
-    thick = t.number("shell_thickness_m", None, lo=0, lo_open=True)
-    zeta = t.number("damping_ratio", 0.02, lo=0, hi=1.0)
-    radius = t.number("interface_radius_m", 0.12, lo=0, lo_open=True)
-    rigid = None
-    if t.has("rigid"):
-        r = t.sub("rigid")
-        rigid = RigidProps(r.number("mass_kg", lo=0, lo_open=True, doc="body mass"),
-                           r.vector("cg_m"), _inertia(r, "inertia_kg_m2"))
-        r.finish()
-    if mesh is None and rigid is None and body_file is None:
-        raise t.error(None, "the body needs a 'mesh' (flexible body), a 'body_file' (ready "
-                            "reduced body .npz) or a [body.rigid] table with mass_kg, cg_m, "
-                            "inertia_kg_m2")
-    masses = []
-    raw = t.raw("mass", [])
-    if not isinstance(raw, list):
-        raise t.error("mass", "expected an array of tables [[body.mass]]")
-    for i, item in enumerate(raw):
-        m = Table(item, f"body.mass[{i}]", t.file, t.lines)
-        name = m.string("name", f"mass{i}")
-        masses.append(AddedMass(
-            name, m.number("mass_kg", lo=0, doc="non-structural mass"),
-            m.vector("position_m"), m.number("spread_radius_m", 0.3, lo=0, lo_open=True)))
-        m.finish()
-    points = {}
-    if t.has("points"):
-        p = t.sub("points")
-        for k in list(p.data):
-            points[k] = p.vector(k)
-        p.finish()
-    if body_file is not None and masses:
-        raise t.error("mass", "a ready body file carries its own masses: add the "
-                              "non-structural masses before reducing it (flexpipe reduce), "
-                              "or give the mesh instead of body_file")
-    mounts = {}
-    if t.has("mounts"):  # per-mount ties: point + radius, a node set, or node ids
-        mt = t.sub("mounts")
-        for name in list(mt.data):
-            m = mt.sub(name)
-            d = {"point": m.vector("point_m") if m.has("point_m") else None,
-                 "radius": m.number("radius_m", None, lo=0, lo_open=True),
-                 "dofs": int(m.number("dofs", 0, lo=0, hi=6)) or None,
-                 "node_set": m.string("node_set", None), "nodes": None}
-            if m.has("nodes"):
-                raw_nodes = m.raw("nodes")
-                if not (isinstance(raw_nodes, list) and raw_nodes and all(
-                        isinstance(v, int) and not isinstance(v, bool) and v >= 0
-                        for v in raw_nodes)):
-                    raise m.error("nodes", "expected a list of node indices (integers >= 0, "
-                                           "0-based)")
-                d["nodes"] = tuple(raw_nodes)
-            if d["dofs"] not in (None, 3, 6):
-                raise m.error("dofs", f"must be 3 or 6, got {d['dofs']}")
-            if sum(x is not None for x in (d["radius"], d["node_set"], d["nodes"])) > 1:
-                raise m.error(None, "give one of radius_m, node_set or nodes")
-            m.finish()
-            mounts[name] = d
-        mt.finish()
-    fatigue = None
-    if t.has("fatigue"):  # feat/durability: Basquin S-N data, flexpipe.durability.fatigue
-        from flexpipe.durability.fatigue import read_fatigue_table
-
-        fatigue = read_fatigue_table(t.sub("fatigue"))
-    t.finish()
-    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
-                    fatigue, body_file, mounts)
-
-
 def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
     c = corners.sub(name)
     has_lin = c.has("damper_N_s_per_m")
@@ -348,12 +190,27 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
         rebound_stop_clearance=c.number("rebound_stop_clearance_m", 0.10, lo=0, lo_open=True),
         rebound_stop_rate=c.number("rebound_stop_rate_N_per_m", 2e5, lo=0),
         unsprung_mass=c.number("unsprung_mass_kg", lo=0, lo_open=True),
-        unsprung_inertia=_inertia(c, "unsprung_inertia_kg_m2"),
+        unsprung_inertia=read_inertia(c, "unsprung_inertia_kg_m2"),
         wheel_radius=c.number("wheel_radius_m", lo=0, lo_open=True),
         spin_inertia=c.number("wheel_spin_inertia_kg_m2", lo=0, lo_open=True),
         tire=tire,
     )
     c.finish()
+    dampers = (("damper_N_s_per_m", cj),) if has_lin else (
+        ("damper_jounce_N_s_per_m", cj), ("damper_rebound_N_s_per_m", cr))
+    for key, v, bounds, unit, what, slips in (
+            ("spring_rate_N_per_m", spec.spring_rate, lim.SPRING_RATE_N_PER_M, "N/m",
+             "a suspension spring rate", lim.SPRING_RATE_SLIPS),
+            *((k, v, lim.DAMPING_N_S_PER_M, "N s/m", "a suspension damper", lim.DAMPING_SLIPS)
+              for k, v in dampers),
+            ("bump_stop_rate_N_per_m", spec.bump_stop_rate, lim.STOP_RATE_N_PER_M, "N/m",
+             "a bump stop (0: none)", lim.SPRING_RATE_SLIPS),
+            ("rebound_stop_rate_N_per_m", spec.rebound_stop_rate, lim.STOP_RATE_N_PER_M, "N/m",
+             "a rebound stop (0: none)", lim.SPRING_RATE_SLIPS),
+            ("unsprung_mass_kg", spec.unsprung_mass, lim.WHEEL_MASS_KG, "kg",
+             "the unsprung mass of a wheel", lim.MASS_SLIPS)):
+        if v != 0 or key == "spring_rate_N_per_m":  # 0: no damper / stop
+            c.magnitude(key, v, *bounds, unit=unit, what=what, slips=slips)
     side = 1 if name[1] == "l" else -1
     for key, p in (("hardpoint_m", spec.hardpoint), ("wheel_center_m", spec.wheel_center)):
         if p[1] * side <= 0:
@@ -372,8 +229,11 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
     if not tire.is_file():
         raise c.error("tire", f"tire file {tire} does not exist (paths are relative to the "
                               "car file)")
-    m_wheel = c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass")
-    J_wheel = _inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
+    m_wheel = c.magnitude("wheel_mass_kg",
+                          c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass"),
+                          *lim.WHEEL_MASS_KG, unit="kg", what="a wheel (rim + tyre)",
+                          slips=lim.MASS_SLIPS)
+    J_wheel = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
         np.zeros((3, 3))
     spring = linkage.spring()
     spec = CornerSpec(
@@ -390,6 +250,19 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
         tire=tire)
     c.finish()
     return spec
+
+
+def _check_mount_names(body: BodySpec, suspension, path: Path, lines: list[str]) -> None:
+    """A prismatic-corner car has no suspension mounts for ``[body.mounts]`` (it would be
+    ignored); a linkage car's names are checked by ``load_suspension``."""
+    if suspension is None and body.mounts:
+        name = next(iter(body.mounts))
+        raise InputError("[body.mounts] ties the mounts of a linkage suspension "
+                         "([suspension.*]) to the mesh; this car has prismatic corners, tied "
+                         "at each corners.<c>.hardpoint_m within [body] interface_radius_m: "
+                         "remove the table", file=path,
+                         line=Table({}, f"body.mounts.{name}", path, lines)._line(None),
+                         key=f"body.mounts.{name}")
 
 
 def load_car(path, *, overrides=None) -> Car:
@@ -426,7 +299,7 @@ def load_car(path, *, overrides=None) -> Car:
     ct = doc.sub("car")
     name = ct.string("name", path.stem)
     ct.finish()
-    body = _body(doc, base)
+    body = read_body(doc, base)
     corners_t = doc.sub("corners")
     suspension = None
     if doc.has("suspension"):
@@ -439,6 +312,7 @@ def load_car(path, *, overrides=None) -> Car:
     else:
         corners = tuple(_corner(corners_t, n, base) for n in CORNERS)
     corners_t.finish()
+    _check_mount_names(body, suspension, path, lines)
     x = [c.wheel_center[0] for c in corners]
     if min(x[:2]) <= max(x[2:]):
         raise InputError("front wheel centres must lie ahead (larger x) of the rear ones "

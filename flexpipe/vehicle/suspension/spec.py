@@ -12,7 +12,9 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import InputError, ModelError
+from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, parse
+from flexpipe.vehicle.suspension.checks import check_hardpoints
 from flexpipe.vehicle.suspension.model import (
     BUSHING_DOFS,
     AntiRollBar,
@@ -75,7 +77,13 @@ class Suspension:
         return out
 
 
-def _table_xy(t: Table, xkey: str, ykey: str, *, increasing=True):
+def _table_xy(t: Table, xkey: str, ykey: str, *, rising: str | None = None,
+              pushing: bool = False):
+    """Table ``xkey`` -> ``ykey``: equal-length lists of finite numbers, ``xkey`` strictly
+    increasing.  ``rising`` (what the element is) rejects a force that falls as ``xkey``
+    grows: a passive damper, spring, stop or bushing has no negative slope (negative
+    damping feeds energy into the car, negative stiffness is unstable).  ``pushing``
+    rejects negative forces (a stop only pushes)."""
     x, y = t.raw(xkey), t.raw(ykey)
     ok = (isinstance(x, list) and isinstance(y, list) and len(x) == len(y) >= 2
           and all(isinstance(v, int | float) and not isinstance(v, bool) for v in x + y))
@@ -83,8 +91,21 @@ def _table_xy(t: Table, xkey: str, ykey: str, *, increasing=True):
         raise t.error(xkey, f"'{xkey}' and '{ykey}' must be lists of numbers of equal "
                             "length >= 2")
     x, y = np.array(x, float), np.array(y, float)
-    if increasing and np.any(np.diff(x) <= 0):
+    for key, v in ((xkey, x), (ykey, y)):
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise t.error(key, f"entry {bad[0]} is {v[bad[0]]}; '{key}' must hold finite "
+                               f"numbers, got {v.tolist()}")
+    if np.any(np.diff(x) <= 0):
         raise t.error(xkey, f"'{xkey}' must increase strictly, got {x.tolist()}")
+    fall = np.flatnonzero(np.diff(y) < 0)
+    if rising is not None and fall.size:
+        i = fall[0]
+        raise t.error(ykey, f"the force falls from {y[i]:g} to {y[i + 1]:g} between {xkey} "
+                            f"{x[i]:g} and {x[i + 1]:g}; {rising}, so '{ykey}' must not "
+                            f"decrease as '{xkey}' increases, got {y.tolist()}")
+    if pushing and y.min() < 0:
+        raise t.error(ykey, f"a stop only pushes: '{ykey}' must be >= 0, got {y.tolist()}")
     return x, y
 
 
@@ -92,8 +113,9 @@ def _bushing(t: Table) -> Bushing:
     dofs = t.string("dofs", "all", choices=("all", "translational"))
     k = t.vector("stiffness", 6, doc="kx ky kz [N/m] krx kry krz [N m/rad]")
     c = t.vector("damping", 6, np.zeros(6))
-    if np.any(k < 0) or np.any(c < 0):
-        raise t.error("stiffness", "stiffness and damping must be >= 0")
+    for key, v in (("stiffness", k), ("damping", c)):
+        if np.any(v < 0):  # a passive bushing stores or dissipates energy, never gives it
+            raise t.error(key, f"every '{key}' value must be >= 0, got {v.tolist()}")
     if dofs == "translational":
         k, c = k.copy(), c.copy()
         k[3:] = c[3:] = 0.0
@@ -113,7 +135,9 @@ def _bushing(t: Table) -> Bushing:
             if dof not in BUSHING_DOFS:
                 raise tt.error(dof, f"unknown bushing direction; valid: {', '.join(BUSHING_DOFS)}")
             d = tt.sub(dof)
-            tables[dof] = _table_xy(d, "deflection", "force")
+            tables[dof] = _table_xy(d, "deflection", "force",
+                                    rising="a bushing's force rises with its deflection "
+                                           "(stiffness >= 0)")
             d.finish()
         tt.finish()
     t.finish()
@@ -124,19 +148,27 @@ def _forces(t: Table) -> dict:
     out = {}
     s = t.sub("spring", None)
     if s is not None:
-        d = {"rate": s.number("rate_N_per_m", lo=0, lo_open=True)}
+        rate = s.number("rate_N_per_m", lo=0, lo_open=True)
+        d = {"rate": s.magnitude("rate_N_per_m", rate, *lim.SPRING_RATE_N_PER_M, unit="N/m",
+                                 what="a suspension spring rate",
+                                 slips=lim.SPRING_RATE_SLIPS)}
         if s.has("free_length_m") and s.has("preload_N"):
             raise s.error("preload_N", "give free_length_m or preload_N, not both")
         d["free_length"] = s.number("free_length_m", None, lo=0, lo_open=True)
         if s.has("compression_m"):
-            d["table"] = _table_xy(s, "compression_m", "force_N")
+            d["table"] = _table_xy(s, "compression_m", "force_N",
+                                   rising="a spring's force rises with its compression "
+                                          "(stiffness >= 0)")
         out["spring"] = d
         out["_preload"] = s.number("preload_N", None)
         s.finish()
     dm = t.sub("damper", None)
     if dm is not None:
         if dm.has("velocity_m_per_s"):
-            out["damper"] = {"table": _table_xy(dm, "velocity_m_per_s", "force_N")}
+            out["damper"] = {"table": _table_xy(
+                dm, "velocity_m_per_s", "force_N",
+                rising="a passive damper's force rises with the extension velocity (a "
+                       "falling force is negative damping, which feeds energy into the car)")}
         else:
             cb = dm.number("bump_N_s_per_m", lo=0, doc="compression damping (dual rate)")
             cr = dm.number("rebound_N_s_per_m", lo=0, doc="extension damping")
@@ -146,7 +178,9 @@ def _forces(t: Table) -> dict:
         st = t.sub(kind, None)
         if st is not None:
             out[kind] = {"clearance": st.number("clearance_m", lo=0),
-                         "table": _table_xy(st, "deflection_m", "force_N")}
+                         "table": _table_xy(st, "deflection_m", "force_N", pushing=True,
+                                            rising="a stop's force rises with its "
+                                                   "deflection")}
             st.finish()
     return out
 
@@ -165,8 +199,10 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
         if k not in hpt.data:
             raise hpt.error(None, f"missing hardpoint '{k}' of template {template} "
                                   f"(required: {', '.join(req)})")
-    hp = {k: hpt.vector(k) + loc for k in list(hpt.data)}
+    raw = {k: hpt.vector(k) for k in list(hpt.data)}
     hpt.finish()
+    hp = {k: v + loc for k, v in raw.items()}
+    check_hardpoints(template, hp, raw, loc, t, hpt)
     parts = {}
     pt = t.sub("parts", None)
     if pt is not None:
@@ -200,8 +236,13 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
               file=t.file)
     if template == "multi_link" and t.has("universal_axes"):
         ax = t.raw("universal_axes")
-        if not (isinstance(ax, list) and len(ax) == 2):
-            raise t.error("universal_axes", "expected [[link axis], [body axis]]")
+        ok = isinstance(ax, list) and len(ax) == 2 and all(
+            isinstance(a, list) and len(a) == 3 and all(
+                isinstance(v, int | float) and not isinstance(v, bool) and np.isfinite(v)
+                for v in a) and any(a) for a in ax)
+        if not ok:
+            raise t.error("universal_axes", "expected [[link axis], [body axis]]: two "
+                                            f"non-zero vectors of 3 finite numbers, got {ax!r}")
         kw["universal_axes"] = tuple(np.array(a, float) for a in ax)
     try:
         left = build(template, hp, **kw)
@@ -297,7 +338,23 @@ def load_suspension(path) -> Suspension:
             raise InputError(f"the rack is on the {rack_axle} axle, which has no "
                              f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
         axles[rack_axle] = replace(axles[rack_axle], rack=rack)
-    return Suspension(path, axles, rack, mode)
+    susp = Suspension(path, axles, rack, mode)
+    _check_body_mounts(doc, susp, lines)
+    return susp
+
+
+def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
+    """Every ``[body.mounts.<name>]`` must name a mount of ``susp``: checked here, when
+    any tool reads the car (``info``, ``kc``, every run), not only by the flexible run."""
+    body = doc.get("body")
+    mounts = body.get("mounts") if isinstance(body, dict) else None
+    valid = susp.mounts()
+    for name in mounts if isinstance(mounts, dict) else ():  # else read_body names it
+        if name not in valid:
+            raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
+                             f"suspension; valid: {', '.join(valid)}", file=susp.file,
+                             line=Table({}, f"body.mounts.{name}", susp.file, lines)._line(None),
+                             key=f"body.mounts.{name}")
 
 
 __all__ = ["Suspension", "load_suspension", "ModelError"]

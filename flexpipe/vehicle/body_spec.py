@@ -1,0 +1,200 @@
+"""The ``[body]`` table of the car file: mesh or rigid mass properties, non-structural
+masses, output points and per-mount ties (see :mod:`flexpipe.vehicle.spec` and
+``docs/car-file.md``).
+
+Every error is an :class:`~flexpipe.errors.InputError` naming the file, line and key.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe.errors import InputError
+from flexpipe.fem.material import LIBRARY, Material
+from flexpipe.mesh.units import unit_system
+from flexpipe.vehicle._toml import Table
+
+
+@dataclass(frozen=True)
+class AddedMass:
+    """A non-structural mass spread over the body nodes near ``position``.
+
+    The nodal shares are chosen so that their total is ``mass`` and their centre of mass
+    is ``position`` (see :func:`flexpipe.vehicle.bodymodel.spread_mass`).
+    """
+
+    name: str
+    mass: float
+    position: np.ndarray
+    spread_radius: float
+
+
+@dataclass(frozen=True)
+class RigidProps:
+    """Rigid mass properties: mass (kg), centre of gravity (m), inertia about it (kg m^2)."""
+
+    mass: float
+    cg: np.ndarray
+    inertia: np.ndarray
+
+
+@dataclass(frozen=True)
+class BodySpec:
+    """The car body: a mesh (flexible) and/or rigid mass properties, plus added masses."""
+
+    mesh: Path | None
+    mesh_scale: float
+    mesh_units: str | None
+    material: Material | None
+    shell_thickness: float | None
+    damping_ratio: float
+    interface_radius: float
+    rigid: RigidProps | None
+    added_masses: tuple[AddedMass, ...]
+    points: dict
+    fatigue: object = None  # FatigueMaterial of [body.fatigue] (feat/durability)
+    body_file: Path | None = None  # ready reduced body (.npz from flexpipe reduce)
+    mounts: dict = None  # {mount: {"point", "radius", "dofs", "node_set", "nodes"}} overrides
+
+
+# --------------------------------------------------------------------------- readers
+def read_inertia(t: Table, key: str) -> np.ndarray:
+    """3 principal values or 6 [Ixx, Iyy, Izz, Ixy, Ixz, Iyz]; positive semi-definite."""
+    v = t.raw(key)
+    n = len(v) if isinstance(v, list) else 0
+    if n not in (3, 6):
+        raise t.error(key, f"expected [Ixx, Iyy, Izz] or [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] in "
+                           f"kg m^2, got {v!r}")
+    a = t.vector(key, n)
+    J = np.diag(a[:3])
+    if n == 6:
+        J[0, 1] = J[1, 0] = a[3]
+        J[0, 2] = J[2, 0] = a[4]
+        J[1, 2] = J[2, 1] = a[5]
+    if np.any(np.linalg.eigvalsh(J) < -1e-12 * max(1.0, abs(J).max())):
+        raise t.error(key, f"inertia tensor {a.tolist()} is not positive semi-definite")
+    return J
+
+
+def _material(t: Table, key: str) -> Material | None:
+    if not t.has(key):
+        return None
+    v = t.raw(key)
+    if isinstance(v, str):
+        if v.lower() not in LIBRARY:
+            raise t.error(key, f"unknown material {v!r}; valid: {sorted(set(LIBRARY))} or a "
+                               "table {E_Pa, nu, rho_kg_per_m3}")
+        return LIBRARY[v.lower()]
+    m = t.sub(key)
+    mat = Material(m.number("E_Pa", lo=0, lo_open=True), m.number("nu", lo=-0.99, hi=0.499),
+                   m.number("rho_kg_per_m3", lo=0), name=m.string("name", ""))
+    m.finish()
+    return mat
+
+
+def read_body(doc: Table, base: Path) -> BodySpec:
+    """The ``[body]`` table of ``doc``; paths relative to ``base`` (the car file's folder)."""
+    t = doc.sub("body")
+    mesh = None
+    if t.has("mesh"):
+        mesh = (base / t.string("mesh")).resolve()
+        if not mesh.is_file():
+            raise t.error("mesh", f"mesh file {mesh} does not exist (paths are relative to "
+                                  "the car file)")
+    body_file = None
+    if t.has("body_file"):
+        body_file = (base / t.string("body_file", doc="reduced body from flexpipe reduce")
+                     ).resolve()
+        if not body_file.is_file():
+            raise t.error("body_file", f"body file {body_file} does not exist (paths are "
+                                       "relative to the car file)")
+        if mesh is not None:
+            raise t.error("body_file", "give either 'mesh' (reduced for each run's band) or "
+                                       "'body_file' (a ready reduced body), not both")
+    scale = t.number("mesh_scale", 1.0, lo=0, lo_open=True)
+    units = t.string("mesh_units", None)
+    if units is not None:  # checked here, not first when the mesh is read (info, run)
+        try:
+            unit_system(units)
+        except InputError as exc:
+            raise t.error("mesh_units", str(exc).split(": ", 1)[-1]) from None
+    material = _material(t, "material")
+    thick = t.number("shell_thickness_m", None, lo=0, lo_open=True)
+    zeta = t.number("damping_ratio", 0.02, lo=0, hi=1.0)
+    radius = t.number("interface_radius_m", 0.12, lo=0, lo_open=True)
+    rigid = None
+    if t.has("rigid"):
+        r = t.sub("rigid")
+        rigid = RigidProps(r.number("mass_kg", lo=0, lo_open=True, doc="body mass"),
+                           r.vector("cg_m"), read_inertia(r, "inertia_kg_m2"))
+        r.finish()
+    if mesh is None and rigid is None and body_file is None:
+        raise t.error(None, "the body needs a 'mesh' (flexible body), a 'body_file' (ready "
+                            "reduced body .npz) or a [body.rigid] table with mass_kg, cg_m, "
+                            "inertia_kg_m2")
+    masses = []
+    raw = t.raw("mass", [])
+    if not isinstance(raw, list):
+        raise t.error("mass", "expected an array of tables [[body.mass]]")
+    seen = {}
+    for i, item in enumerate(raw):
+        m = Table(item, f"body.mass[{i}]", t.file, t.lines)
+        name = m.string("name", f"mass{i}")
+        if name in seen:  # overrides (body.mass.<name>.mass_kg) and messages use the name
+            j = seen[name]
+            first = Table(raw[j], f"body.mass[{j}]", t.file, t.lines)._line("name")
+            raise m.error("name", f"'{name}' names two [[body.mass]] entries, body.mass[{j}] "
+                                  f"(line {first}) and body.mass[{i}]; each non-structural "
+                                  "mass needs its own name")
+        seen[name] = i
+        masses.append(AddedMass(
+            name, m.number("mass_kg", lo=0, doc="non-structural mass"),
+            m.vector("position_m"), m.number("spread_radius_m", 0.3, lo=0, lo_open=True)))
+        m.finish()
+    points = {}
+    if t.has("points"):
+        p = t.sub("points")
+        for k in list(p.data):
+            points[k] = p.vector(k)
+        p.finish()
+    if body_file is not None and masses:
+        raise t.error("mass", "a ready body file carries its own masses: add the "
+                              "non-structural masses before reducing it (flexpipe reduce), "
+                              "or give the mesh instead of body_file")
+    mounts = {}
+    if t.has("mounts"):  # per-mount ties: point + radius, a node set, or node ids
+        mt = t.sub("mounts")
+        for name in list(mt.data):
+            m = mt.sub(name)
+            d = {"point": m.vector("point_m") if m.has("point_m") else None,
+                 "radius": m.number("radius_m", None, lo=0, lo_open=True),
+                 "dofs": int(m.number("dofs", 0, lo=0, hi=6)) or None,
+                 "node_set": m.string("node_set", None), "nodes": None}
+            if m.has("nodes"):
+                raw_nodes = m.raw("nodes")
+                if not (isinstance(raw_nodes, list) and raw_nodes and all(
+                        isinstance(v, int) and not isinstance(v, bool) and v >= 0
+                        for v in raw_nodes)):
+                    raise m.error("nodes", "expected a list of node indices (integers >= 0, "
+                                           "0-based)")
+                d["nodes"] = tuple(raw_nodes)
+            if d["dofs"] not in (None, 3, 6):
+                raise m.error("dofs", f"must be 3 or 6, got {d['dofs']}")
+            if sum(x is not None for x in (d["radius"], d["node_set"], d["nodes"])) > 1:
+                raise m.error(None, "give one of radius_m, node_set or nodes")
+            m.finish()
+            mounts[name] = d
+        mt.finish()
+    fatigue = None
+    if t.has("fatigue"):  # feat/durability: Basquin S-N data, flexpipe.durability.fatigue
+        from flexpipe.durability.fatigue import read_fatigue_table
+
+        fatigue = read_fatigue_table(t.sub("fatigue"))
+    t.finish()
+    return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
+                    fatigue, body_file, mounts)
+
+

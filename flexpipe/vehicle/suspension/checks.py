@@ -1,0 +1,135 @@
+"""Checks of a linkage corner's hardpoints that need no kinematics: scale, side, distinct
+points.
+
+Run by :func:`flexpipe.vehicle.suspension.spec.load_suspension` on the left corner as the
+car file gives it (after ``location_m``, before mirroring), so that a slip is named by its
+key instead of surfacing as a NaN residual or a mount off the body.  Only what is certainly
+wrong is refused.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flexpipe.vehicle._toml import Table
+
+#: two hardpoints closer than this (m) are one point: arm pivots, link ends and spring
+#: seats lie tens to hundreds of millimetres apart and are given to 0.1 mm, so points this
+#: close are a copied line, and the axis or member they define is undefined
+MIN_SEPARATION_M = 1e-3
+#: envelope of a wheel centre in body coordinates (m; origin on the ground, x = 0 at an
+#: axle).  z: a wheel centre sits one loaded tyre radius above the ground, 0.2-0.6 m for
+#: cars and trucks and about 1 m for the largest agricultural tyres (710/70 R42), so
+#: 0 < z <= 3 m.  |y|: half the track, at most 1.3 m for vehicles within the 2.6 m width
+#: limit (EU, US), so |y| <= 3 m.  |x|: from the axle at x = 0; the longest rigid road
+#: vehicles are about 15 m, so |x| <= 100 m.  A value in millimetres is 1000 times larger.
+WHEEL_CENTER_BOX_M = {0: (-100.0, 100.0), 1: (-3.0, 3.0), 2: (0.0, 3.0)}
+#: points carried by the knuckle (the wheel side): y > 0 on a left corner
+WHEEL_SIDE = ("wheel_center", "lower_arm_outer", "upper_arm_outer", "tie_rod_outer",
+              "strut_lower", "lateral_link_outer", "trailing_link_outer")
+#: body-side ends of the arms and links that run across to the knuckle: inboard of the
+#: wheel centre (an arm from a pivot outboard of the wheel centre would pass through the
+#: wheel to reach the knuckle inside the rim)
+INNER_PIVOTS = ("lower_arm_front", "lower_arm_rear", "upper_arm_front", "upper_arm_rear",
+                "lateral_link_inner", "tie_rod_inner")
+#: pairs of hardpoints that define an axis or a member, per template, with what they define
+_COMMON = (("tie_rod_inner", "tie_rod_outer", "the tie rod (a link of zero length)"),
+           ("spring_lower", "spring_upper", "the spring's line of action"),
+           ("damper_lower", "damper_upper", "the damper's line of action"),
+           ("arb_bushing", "arb_arm_end", "the anti-roll bar's arm"),
+           ("arb_arm_end", "drop_link_lower", "the anti-roll bar's drop link"))
+AXIS_PAIRS = {
+    "double_wishbone": (
+        ("lower_arm_front", "lower_arm_rear", "the lower arm's pivot axis (revolute joint)"),
+        ("upper_arm_front", "upper_arm_rear", "the upper arm's pivot axis (revolute joint)"),
+        ("lower_arm_outer", "upper_arm_outer", "the kingpin axis")) + _COMMON,
+    "macpherson": (
+        ("lower_arm_front", "lower_arm_rear", "the lower arm's pivot axis (revolute joint)"),
+        ("strut_lower", "strut_top", "the strut axis"),
+        ("lower_arm_outer", "strut_top", "the kingpin axis")) + _COMMON,
+    "multi_link": (
+        ("upper_arm_front", "upper_arm_rear", "the upper arm's pivot axis (revolute joint)"),
+        ("lateral_link_inner", "lateral_link_outer", "the lateral link (a link of zero "
+                                                     "length)"),
+        ("trailing_link_front", "trailing_link_outer", "the trailing link"),
+        ("trailing_link_outer", "upper_arm_outer", "the kingpin axis")) + _COMMON,
+}
+
+
+def _source(name: str, i: int, raw: dict, loc: np.ndarray) -> str:
+    """How coordinate ``i`` of hardpoint ``name`` came about, for the message."""
+    if loc[i] == 0:
+        return f"hardpoints_m.{name}"
+    return f"hardpoints_m.{name} {raw[name][i]:g} + location_m {loc[i]:g}"
+
+
+def check_hardpoints(template: str, hp: dict, raw: dict, loc: np.ndarray, t: Table,
+                     hpt: Table) -> None:
+    """Refuse hardpoints that are certainly wrong; name the key at fault.
+
+    Parameters
+    ----------
+    template : str
+        Template name (keys of :data:`AXIS_PAIRS`).
+    hp : dict
+        Left-corner hardpoints in body coordinates (``raw`` + ``loc``), m.
+    raw : dict
+        The hardpoints as the file gives them, m.
+    loc : (3,) array
+        ``location_m`` of the axle, m.
+    t, hpt : Table
+        The axle table ``[suspension.<axle>]`` and its ``hardpoints_m``, for the messages.
+
+    Raises
+    ------
+    InputError
+        A wheel centre outside any road vehicle's envelope (often millimetres), a left
+        corner's point on the right side, an inner pivot outboard of the wheel centre, two
+        points that define an axis or member but coincide.
+    """
+    wc = hp["wheel_center"]
+    for i, (lo, hi) in WHEEL_CENTER_BOX_M.items():
+        if lo < wc[i] <= hi:
+            continue
+        axis = "xyz"[i]
+        why = (f"wheel centre {axis} = {wc[i]:g} m ({_source('wheel_center', i, raw, loc)}) "
+               f"is outside any road vehicle ({lo:g} < {axis} <= {hi:g} m in body "
+               "coordinates: z = 0 the ground, x = 0 at an axle)")
+        if lo < wc[i] / 1e3 <= hi:
+            why += "; the values look like millimetres, but the file's unit is metres"
+        elif i == 2 and wc[2] <= 0:
+            why += ("; hardpoints given relative to a suspension location need that "
+                    "location in location_m")
+        # name the key that put it there: the larger of the two contributions
+        if abs(loc[i]) > abs(raw["wheel_center"][i]):
+            raise t.error("location_m", why)
+        raise hpt.error("wheel_center", why)
+    right = [k for k, p in hp.items() if p[1] < 0]
+    mirrored = (f"; all {len(hp)} hardpoints have y < 0, as the right corner's would: negate "
+                "their y") if len(right) == len(hp) else ""
+    for name in sorted(hp, key=lambda k: k != "wheel_center"):  # the wheel centre first
+        p, wheel = hp[name], name in WHEEL_SIDE
+        if p[1] > 0 or (p[1] == 0 and not wheel):
+            continue
+        where = "on the centre line" if p[1] == 0 else "on the right side"
+        raise hpt.error(name, f"y = {p[1]:g} m ({_source(name, 1, raw, loc)}) puts this "
+                              f"point of the left corner {where}; the file gives the left "
+                              "corner (ISO 8855 body axes: y > 0 is left; the right corner is "
+                              f"its mirror image), so '{name}' needs y "
+                              f"{'> 0' if wheel else '>= 0'}{mirrored}")
+    for name in INNER_PIVOTS:
+        if name in hp and hp[name][1] >= wc[1]:
+            raise hpt.error(name, f"the body-side pivot '{name}' at y = {hp[name][1]:g} m lies "
+                                  f"outboard of the wheel centre (y = {wc[1]:g} m); the body "
+                                  "end of an arm or link must be inboard (smaller y) of the "
+                                  "wheel it carries")
+    for a, b, what in AXIS_PAIRS[template]:
+        if a in hp and b in hp and np.linalg.norm(hp[a] - hp[b]) < MIN_SEPARATION_M:
+            d = np.linalg.norm(hp[a] - hp[b])
+            raise hpt.error(b, f"'{b}' coincides with '{a}' ({d * 1e3:.3g} mm apart): the two "
+                               f"define {what}, so they must be distinct points (at least "
+                               f"{MIN_SEPARATION_M * 1e3:g} mm apart)")
+    if "arb_bushing" in hp and 2 * hp["arb_bushing"][1] < MIN_SEPARATION_M:
+        raise hpt.error("arb_bushing", f"y = {hp['arb_bushing'][1]:g} m: the left bar bushing "
+                                       "and its mirror image (the right one) coincide, so "
+                                       "they define no bar axis; give y > 0")
