@@ -274,8 +274,11 @@ def load_car(path, *, overrides=None) -> Car:
         TOML car file (see :mod:`flexpipe.vehicle.spec` for the keys).
     overrides : dict, optional
         Dotted key to value, set on the parsed file before validation (e.g.
-        ``{"corners.fl.spring_rate_N_per_m": 35000.0}``; see
-        :func:`flexpipe.sweeps.overrides.apply_overrides`).
+        ``{"corners.fl.spring_rate_N_per_m": 35000.0}`` or, for a linkage car,
+        ``{"suspension.front.spring.rate_N_per_m": 1.2e5}``; see
+        :func:`flexpipe.sweeps.overrides.apply_overrides`).  Every section, the suspension
+        included, is read from the overridden document; a key its schema does not know is
+        refused like one written in the file, the message naming the override.
 
     Returns
     -------
@@ -290,12 +293,35 @@ def load_car(path, *, overrides=None) -> Car:
     if path.suffix.lower() != ".toml":
         raise InputError(f"expected a .toml car file, got '{path.suffix}'", file=path)
     data, lines = parse(path)
-    if overrides:  # --- sweep (issue 12): dotted-key overrides before validation
-        from flexpipe.sweeps.overrides import apply_overrides
+    if not overrides:
+        return _read_car(Table(data, "", path, lines))
+    # --- sweep (issue 12): dotted-key overrides before validation; every section, the
+    # suspension included, is read from this one overridden document
+    from flexpipe.sweeps.overrides import apply_overrides
 
-        data = apply_overrides(data, overrides, file=path, origin="car override")
+    data = apply_overrides(data, overrides, file=path, origin="car override")
+    try:
+        return _read_car(Table(data, "", path, lines))
+    except InputError as exc:
+        raise _from_override(exc, overrides) from None
+
+
+def _from_override(exc: InputError, overrides: dict) -> InputError:
+    """``exc`` saying so when its key (or a table above it) was set by an override: the
+    value or key is then not in the file at the line named."""
+    key = exc.key or ""
+    hit = next((k for k in overrides if key == k or key.startswith(f"{k}.")), None)
+    if hit is None:
+        return exc
+    return InputError(f"{exc.message} (from the car override '{hit}' = "
+                      f"{overrides[hit]!r}, not from the file)", file=exc.file, line=exc.line,
+                      key=exc.key)
+
+
+def _read_car(doc: Table) -> Car:
+    """The car of the parsed (and possibly overridden) top-level table ``doc``."""
+    path, lines = doc.file, doc.lines
     base = path.resolve().parent
-    doc = Table(data, "", path, lines)
     ct = doc.sub("car")
     name = ct.string("name", path.stem)
     ct.finish()
@@ -303,10 +329,9 @@ def load_car(path, *, overrides=None) -> Car:
     corners_t = doc.sub("corners")
     suspension = None
     if doc.has("suspension"):
-        from flexpipe.vehicle.suspension import load_suspension
+        from flexpipe.vehicle.suspension.spec import read_suspension
 
-        doc.raw("suspension")
-        suspension = load_suspension(path)
+        suspension = read_suspension(doc)
         links = suspension.corners()
         corners = tuple(_wheel_corner(corners_t, n, base, links[n]) for n in CORNERS)
     else:
@@ -325,7 +350,7 @@ def load_car(path, *, overrides=None) -> Car:
         np.radians(st.number("max_wheel_angle_deg", 35.0, lo=0, lo_open=True, hi=80)),
         np.radians(st.number("max_rate_deg_per_s", 60.0, lo=0, lo_open=True)))
     if suspension is not None and st.has("rack"):
-        st.raw("rack")  # read by flexpipe.vehicle.suspension.load_suspension
+        st.raw("rack")  # read by flexpipe.vehicle.suspension.spec.read_suspension
     st.finish()
     arbs = {}
     if doc.has("anti_roll_bar"):

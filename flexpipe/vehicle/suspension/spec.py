@@ -293,8 +293,16 @@ def _check_assembles(corner, t: Table, hpt: Table) -> None:
     raise hpt.error(joint if joint in hpt.data else None, msg)
 
 
-def load_suspension(path) -> Suspension:
+def load_suspension(path, *, overrides=None) -> Suspension:
     """Read the suspension of the car file ``path`` (``[suspension.*]``, ``[steering.rack]``).
+
+    Parameters
+    ----------
+    path : str or Path
+        Car file.
+    overrides : dict, optional
+        Dotted key to value set on the parsed file first, as
+        :func:`flexpipe.vehicle.spec.load_car` takes them.
 
     Raises
     ------
@@ -304,7 +312,22 @@ def load_suspension(path) -> Suspension:
     """
     path = Path(path)
     doc, lines = parse(path)
-    top = Table(doc, "", path, lines)
+    if overrides:
+        from flexpipe.sweeps.overrides import apply_overrides
+
+        doc = apply_overrides(doc, overrides, file=path, origin="car override")
+    return read_suspension(Table(doc, "", path, lines))
+
+
+def read_suspension(top: Table) -> Suspension:
+    """The suspension of the parsed car document ``top`` (its top-level table).
+
+    :func:`flexpipe.vehicle.spec.load_car` passes the document it reads every other section
+    from, so overrides set on it reach the suspension too.  Unknown keys of
+    ``[suspension.*]`` and ``[steering.rack]`` are refused here; ``top`` itself and
+    ``[steering]`` are left for the caller to finish.
+    """
+    path, lines = top.file, top.lines
     st = top.sub("suspension", None)
     if st is None:
         raise InputError("no [suspension.front] / [suspension.rear] tables; see "
@@ -330,7 +353,8 @@ def load_suspension(path) -> Suspension:
         if name == "mode":
             continue
         if name not in AXLES:
-            raise st.error(name, f"unknown axle; valid: {', '.join(AXLES)}")
+            raise st.error(name, "unknown key; valid keys in [suspension]: mode, and the axle "
+                                 f"tables {', '.join(AXLES)}")
         axles[name] = _axle(st, name, rack_axle)
     st.finish()
     if rack is not None:
@@ -339,7 +363,7 @@ def load_suspension(path) -> Suspension:
                              f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
         axles[rack_axle] = replace(axles[rack_axle], rack=rack)
     susp = Suspension(path, axles, rack, mode)
-    _check_body_mounts(doc, susp, lines)
+    _check_body_mounts(top.data, susp, lines)
     return susp
 
 
@@ -357,4 +381,4 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
                              key=f"body.mounts.{name}")
 
 
-__all__ = ["Suspension", "load_suspension", "ModelError"]
+__all__ = ["Suspension", "load_suspension", "read_suspension", "ModelError"]
