@@ -222,19 +222,17 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
     return spec
 
 
-def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
-    """A corner of a car with linkage suspension: wheel, tyre and the linkage's masses."""
+def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> CornerSpec:
+    """A corner of a car with linkage suspension: wheel, tyre and the linkage's masses
+    (``wheel``: rim + tyre mass and inertia, from ``Suspension.wheels``)."""
     c = corners.sub(name)
     tire = (base / c.string("tire", doc="tire property file (.tir)")).resolve()
     if not tire.is_file():
         raise c.error("tire", f"tire file {tire} does not exist (paths are relative to the "
                               "car file)")
-    m_wheel = c.magnitude("wheel_mass_kg",
-                          c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass"),
-                          *lim.WHEEL_MASS_KG, unit="kg", what="a wheel (rim + tyre)",
-                          slips=lim.MASS_SLIPS)
-    J_wheel = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
-        np.zeros((3, 3))
+    c.raw("wheel_mass_kg", doc="rim + tyre mass")  # required; read with the suspension
+    c.has("wheel_inertia_kg_m2")
+    m_wheel, J_wheel = wheel
     spring = linkage.spring()
     spec = CornerSpec(
         name=name, hardpoint=np.array(spring.body_point if spring is not None
@@ -333,7 +331,8 @@ def _read_car(doc: Table) -> Car:
 
         suspension = read_suspension(doc)
         links = suspension.corners()
-        corners = tuple(_wheel_corner(corners_t, n, base, links[n]) for n in CORNERS)
+        corners = tuple(_wheel_corner(corners_t, n, base, links[n],
+                                      suspension.wheels.get(n)) for n in CORNERS)
     else:
         corners = tuple(_corner(corners_t, n, base) for n in CORNERS)
     corners_t.finish()

@@ -6,7 +6,7 @@ Every error is an :class:`~flexpipe.errors.InputError` naming the file, line and
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -32,12 +32,18 @@ MODES = ("compliant", "kinematic")
 
 @dataclass(frozen=True)
 class Suspension:
-    """The car's suspension: ``axles`` ``{"front": Axle, "rear": Axle}`` and the rack."""
+    """The car's suspension: ``axles`` ``{"front": Axle, "rear": Axle}`` and the rack.
+
+    ``wheels`` is ``{"fl": (mass_kg, inertia 3x3 about the wheel centre), ...}``: the rim
+    and tyre of every corner whose ``[corners.<c>]`` table gives ``wheel_mass_kg`` (the
+    knuckle carries it; :func:`flexpipe.vehicle.suspension.statics.with_wheels`).
+    """
 
     file: Path
     axles: dict
     rack: Rack | None = None
     mode: str = "compliant"
+    wheels: dict = field(default_factory=dict)
 
     def corners(self) -> dict:
         """``{"fl": CornerLinkage, "fr": ..., "rl": ..., "rr": ...}``."""
@@ -227,7 +233,14 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
         bt.finish()
     forces = _forces(t)
     preload = forces.pop("_preload", None)
-    wheel_load = t.number("wheel_load_N", None, lo=0, lo_open=True)
+    wheel_load = t.number("wheel_load_N", None, lo=0, lo_open=True,
+                          doc="the K&C rig's design tyre load")
+    if wheel_load is not None and (preload is not None or forces.get("spring", {}).get(
+            "free_length") is not None):
+        raise t.error("wheel_load_N", "the spring's preload_N / free_length_m already sets "
+                                      "the K&C rig's spring preload, which wheel_load_N would "
+                                      f"set too (it would be ignored): give one of them in "
+                                      f"[{t.name}] or [{t.name}.spring]")
     kw = dict(axle=axle, corner=axle[0] + "l", camber_deg=t.number("camber_deg", 0.0),
               toe_deg=t.number("toe_deg", 0.0),
               wheel_radius=t.number("wheel_radius_m", float(hp["wheel_center"][2]),
@@ -362,9 +375,33 @@ def read_suspension(top: Table) -> Suspension:
             raise InputError(f"the rack is on the {rack_axle} axle, which has no "
                              f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
         axles[rack_axle] = replace(axles[rack_axle], rack=rack)
-    susp = Suspension(path, axles, rack, mode)
+    susp = Suspension(path, axles, rack, mode, _wheels(top))
     _check_body_mounts(top.data, susp, lines)
     return susp
+
+
+def _wheels(top: Table) -> dict:
+    """``{corner: (mass, inertia)}`` of the ``[corners.<c>]`` tables that give
+    ``wheel_mass_kg`` (rim + tyre; ``wheel_inertia_kg_m2`` about x and z [0]).  A car file
+    needs all four (``load_car`` names a missing one); a suspension-only file for the K&C
+    rig may give none."""
+    from flexpipe.vehicle.body_spec import read_inertia
+
+    ct = top.sub("corners", None)
+    out = {}
+    for name in ("fl", "fr", "rl", "rr"):
+        if ct is None or not isinstance(ct.data.get(name), dict) \
+                or "wheel_mass_kg" not in ct.data[name]:
+            continue
+        c = ct.sub(name)
+        m = c.magnitude("wheel_mass_kg",
+                        c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass"),
+                        *lim.WHEEL_MASS_KG, unit="kg", what="a wheel (rim + tyre)",
+                        slips=lim.MASS_SLIPS)
+        J = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
+            np.zeros((3, 3))
+        out[name] = (m, J)
+    return out
 
 
 def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
