@@ -37,6 +37,7 @@ class InputError(FlexpipeError, ValueError):
             where.append(f"key '{key}'")
         prefix = (", ".join(where) + ": ") if where else ""
         super().__init__(prefix + message)
+        self.message = message  # without the "file, line N, key 'k': " prefix
         self.file = file
         self.line = line
         self.key = key

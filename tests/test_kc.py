@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -10,6 +11,7 @@ import pytest
 
 import flexpipe as fp
 from flexpipe.cli import main
+from flexpipe.vehicle.spec import CORNERS
 from flexpipe.vehicle.suspension.kc import opposite_travel, parallel_travel, static_steer
 from flexpipe.vehicle.suspension.kinematics import Linkage, solve_kinematics, travel_velocity
 from flexpipe.vehicle.suspension.spec import load_suspension
@@ -100,3 +102,87 @@ def test_right_corner_compliance_mirrors_the_left():
             ch = characteristics(lk, solve_compliance(lk, 0.0, patch_force=(300.0, fy, 0.0)))
             out.append((ch["toe"], ch["camber"]))
         assert out[1] == pytest.approx(out[0], abs=1e-9)
+
+
+def _info_figures(text: str) -> dict:
+    """``{axle: {"kinematic": N/m, "static": (load, preload, rate), "rig": (...)}}`` from
+    the text of ``flexpipe info``."""
+    out, axle = {}, None
+    num = r"([-\d.e+]+)"
+    for line in text.splitlines():
+        m = re.match(r"    (front|rear): ", line)
+        if m:
+            axle = out.setdefault(m.group(1), {})
+            continue
+        m = re.search(rf"kinematic wheel rate \(spring rate x motion ratio\^2\) {num} N/m",
+                      line)
+        if m and axle is not None:
+            axle["kinematic"] = float(m.group(1))
+        m = re.search(rf"(at the static tyre load|on the K&C rig, wheel_load_N) {num} N "
+                      rf"\((?:time runs|flexpipe kc)\): spring preload {num} N, wheel rate "
+                      rf"incl\. compliance {num} N/m", line)
+        if m and axle is not None:
+            key = "static" if m.group(1).startswith("at") else "rig"
+            axle[key] = tuple(float(v) for v in m.group(2, 3, 4))
+    return out
+
+
+def test_info_and_kc_give_the_same_spring_figures_at_the_same_load(capsys):
+    """``flexpipe info`` prints the spring preload and wheel rate at the time runs' static
+    tyre load and on the K&C rig (``wheel_load_N``); ``flexpipe kc`` at either load gives
+    the same.  Independent checks on kc's tables: kinematic wheel rate = k (dL/ds)^2 from
+    the spring-length column, the rate incl. compliance = slope of the rig-force column."""
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.linkage_setup import linkage_statics
+
+    assert main(["info", str(SAMPLE)]) == 0
+    info = _info_figures(capsys.readouterr().out)
+    assert set(info) == {"front", "rear"}
+    car = fp.load_car(SAMPLE)
+    _, N = linkage_statics(car, bodymodel.rigid_properties(car))
+    rig = fp.kc(SAMPLE, n=3, travel=0.001)
+    for axle, figs in info.items():
+        k = car.suspension.axles[axle].left.spring().rate
+        s = rig.summary[axle]
+        load, preload, rate = figs["rig"]
+        assert load == car.suspension.axles[axle].wheel_load == s["wheel load [N]"]
+        assert preload == pytest.approx(s["spring preload [N]"], abs=0.5)
+        assert rate == pytest.approx(s["wheel rate incl. compliance [N/m]"], abs=0.5)
+        assert figs["kinematic"] == pytest.approx(s["kinematic wheel rate [N/m]"], abs=0.5)
+        par = rig.tables[f"{axle}_parallel_travel"]
+        ds = np.diff(par["wheel travel [mm]"][[0, 2]])[0]
+        dL = np.diff(par["spring length [mm]"][[0, 2]])[0]
+        assert figs["kinematic"] == pytest.approx(k * (dL / ds) ** 2, rel=1e-4)
+        dF = np.diff(par["rig force [N]"][[0, 2]])[0]
+        assert rate == pytest.approx(dF / ds * 1e3, rel=2e-3)
+        # kc with its wheel load set to the time runs' static load gives info's figures
+        load = N[CORNERS.index(car.suspension.axles[axle].left.corner)]
+        assert figs["static"][0] == pytest.approx(load, abs=0.5)
+        at_static = fp.kc(load_suspension(SAMPLE, overrides={
+            f"suspension.{axle}.wheel_load_N": float(load)}), n=3, travel=0.001,
+            axles=[axle]).summary[axle]
+        assert figs["static"][1] == pytest.approx(at_static["spring preload [N]"], abs=0.5)
+        assert figs["static"][2] == pytest.approx(
+            at_static["wheel rate incl. compliance [N/m]"], abs=0.5)
+
+
+def test_rig_preload_allows_for_the_wheel_weight():
+    """The rig's preload for wheel_load_N (a tyre load) is the one the time runs' statics
+    give at that load: the wheel of [corners.<c>] hangs on the knuckle in both."""
+    from flexpipe.vehicle.suspension.statics import preloaded, spring_preload, with_wheels
+
+    car = fp.load_car(SAMPLE)
+    wheels = {c: (22.0, np.diag([0.45, 1.0, 0.45])) for c in car.suspension.corners()}
+    loads = {c: car.suspension.axles[a].wheel_load for a in ("front", "rear")
+             for c in (a[0] + "l", a[0] + "r")}
+    runs = preloaded(with_wheels(car.suspension, wheels), loads)
+    rig = fp.kc(SAMPLE, n=3, travel=0.001).summary
+    for axle in ("front", "rear"):
+        sp = runs.axles[axle].left.spring()
+        assert rig[axle]["spring preload [N]"] == pytest.approx(
+            sp.static_force(sp.design_length), rel=1e-9)
+        assert rig[axle]["wheel mass [kg]"] == 22.0
+        # without the wheel the spring would carry its weight too: preload differs by
+        # m g dz_wheel/ds / MR, about 22 * 9.81 / 0.52 = 415 N at the front
+        bare = spring_preload(car.suspension.axles[axle].left, loads[axle[0] + "l"])
+        assert bare - rig[axle]["spring preload [N]"] > 200.0

@@ -311,3 +311,33 @@ def test_unknown_body_mount_is_refused_at_load(tmp_path):
     assert "valid: front_lower_arm_front_l" in msg and "rear_arb_bushing_r" in msg
     with pytest.raises(InputError, match=r"key 'body.mounts.front_lower_arm_middle_l'.*valid"):
         load_suspension(p)  # what flexpipe kc reads
+
+
+@pytest.mark.parametrize("spring", ["preload_N = 8000.0", "free_length_m = 0.45"])
+def test_wheel_load_with_a_given_spring_preload_is_refused(tmp_path, spring):
+    """Both would set the K&C rig's preload; the rig used the spring's and kc printed the
+    preload of wheel_load_N."""
+    p = _sample_with(tmp_path, "rate_N_per_m = 111000.0", f"rate_N_per_m = 111000.0\n{spring}")
+    with pytest.raises(InputError) as e:
+        load_suspension(p)
+    msg = str(e.value).replace(str(p), "<car>")
+    assert str(p) in str(e.value) and "key 'suspension.front.wheel_load_N'" in msg
+    assert f"line {_line_of(p, 'wheel_load_N = 4220.0')}" in msg
+    assert "preload_N / free_length_m" in msg and "give one" in msg
+
+
+def test_kc_of_a_suspension_only_file_has_no_wheel(tmp_path):
+    """A file with [suspension.*] and no [corners.*]: the rig preloads the bare linkage."""
+    text = SAMPLE.read_text()
+    start, end = text.index("[corners.fl]"), text.index("# ----", text.index("[corners.rr]"))
+    p = _write(tmp_path, text[:start] + text[end:])
+    from flexpipe.vehicle.suspension.kc import kc
+    from flexpipe.vehicle.suspension.statics import spring_preload
+
+    susp = load_suspension(p)
+    assert susp.wheels == {}
+    assert load_suspension(SAMPLE).wheels["rl"][0] == 22.0
+    s = kc(susp, n=3, travel=0.001, axles=["front"]).summary["front"]
+    assert s["wheel mass [kg]"] == 0.0
+    assert s["spring preload [N]"] == pytest.approx(
+        spring_preload(susp.axles["front"].left, 4220.0), rel=1e-12)

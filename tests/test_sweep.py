@@ -269,3 +269,68 @@ def test_sample_sweep_passes_the_checks():
     check_runs(spec, runs, cars)
     check_plot_metrics(spec, cars)
     assert len(runs) == 18
+
+
+LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
+FRONT_RATE = "car.suspension.front.spring.rate_N_per_m"
+
+
+def test_a_sweep_over_a_linkage_spring_runs_different_cars(client, tmp_path):
+    """Each run's car has its own front spring: the kinematic wheel rate k MR^2 of the K&C
+    rig scales with k (MR is geometry), the static load and hence the preload that holds
+    the design position do not, so the static spring deflection preload / k does; the time
+    runs start at rest at the design ride height and differ on the road."""
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.execute import _cars
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.linkage_setup import linkage_statics
+
+    rates = [111000.0, 222000.0]
+    spec = {"sweep": {"car": str(LINKAGE), "road": str(ROAD), "body": "rigid",
+                      "t_end_s": 0.4, "speed_kmh": 60.0},
+            "parameters": {FRONT_RATE: rates}}
+    runs = load_sweep(spec).runs()
+    got = {}
+    for run, car in zip(runs, _cars(runs), strict=True):  # the cars the sweep runs
+        k = run.params[FRONT_RATE]
+        kc = fp.kc(car.suspension, n=3, travel=0.002, axles=["front"]).summary["front"]
+        susp, N = linkage_statics(car, bodymodel.rigid_properties(car))
+        sp = susp.axles["front"].left.spring()
+        assert sp.rate == k
+        preload = sp.static_force(sp.design_length)
+        assert sp.free_length - sp.design_length == pytest.approx(preload / k, rel=1e-12)
+        got[k] = (kc["kinematic wheel rate [N/m]"], kc["spring motion ratio [-]"], preload,
+                  N[0], sp.free_length - sp.design_length)
+    (w1, mr1, p1, n1, d1), (w2, mr2, p2, n2, d2) = got[rates[0]], got[rates[1]]
+    assert mr2 == pytest.approx(mr1, rel=1e-12)
+    assert w1 == pytest.approx(rates[0] * mr1**2, rel=1e-9)
+    assert w2 / w1 == pytest.approx(2.0, rel=1e-9)
+    assert (n2, p2) == pytest.approx((n1, p1), rel=1e-9)
+    assert d2 / d1 == pytest.approx(0.5, rel=1e-9)
+    res = fp.sweep(spec, out=tmp_path / "out", scheduler=client, progress=False)
+    assert res.n_runs == 2 and list(res.table["status"]) == [0, 0], res.table["message"]
+    ch = pd.read_parquet(tmp_path / "out" / "channels")
+    first = {}
+    for _, row in res.table.iterrows():
+        mine = ch[ch["run"].astype(str) == row["key"]].sort_values("t")
+        assert abs(mine["travel_fl"].iloc[0]) < 1e-4  # at rest at the design ride height
+        first[row[FRONT_RATE]] = mine["hub_fl_z"].to_numpy()
+    assert np.abs(first[rates[0]] - first[rates[1]]).max() > 10.0  # N: different cars
+
+
+def test_runs_moving_a_suspension_mount_get_their_own_body():
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.execute import _cars
+    from flexpipe.sweeps.tasks import body_keys, road_of
+
+    mount = "car.suspension.front.hardpoints_m.upper_arm_front"
+    spec = load_sweep({"sweep": {"car": str(LINKAGE), "road": str(ROAD), "body": "flexible",
+                                 "t_end_s": 1.0, "speed_kmh": 60.0},
+                       "parameters": {mount: [[-0.100, 0.470, 0.105], [-0.080, 0.470, 0.105]],
+                                      FRONT_RATE: [111000.0, 120000.0]}})
+    runs = spec.runs()
+    keys = [body_keys(car, r, road_of(r)) for r, car in zip(runs, _cars(runs), strict=True)]
+    # the reduced body has an interface at every mount: one body per mount position, the
+    # same for both springs
+    assert len(runs) == 4 and len({k[1] for k in keys}) == 2
+    assert keys[0][1] == keys[1][1] and keys[0][1] != keys[2][1]

@@ -32,7 +32,8 @@ def body_keys(car, run, road=None):
 
     Returns ``(mass_key, body_key, band)``: ``mass_key`` names the body's mass properties
     (None for a car given by rigid properties), ``body_key`` the reduced body (None for a
-    rigid run) and ``band`` its band (Hz).
+    rigid run; for a linkage car it includes every suspension mount, so runs that move a
+    mount get their own reduction) and ``band`` its band (Hz).
     """
     from flexpipe.vehicle import bodymodel
     from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ
@@ -45,6 +46,11 @@ def body_keys(car, run, road=None):
     band = bodymodel.choose_band(run.speed, road)
     cutoff = FULL_CUTOFF_HZ if run.body == "full" else bodymodel.CB_RATIO * band
     key = {"cutoff": round(cutoff, 6), "m": bodymodel.DEFAULT_METHOD}
+    if car.suspension is not None:  # every suspension mount is an interface of the body
+        from flexpipe.vehicle.linkage_setup import body_mounts
+
+        key["mounts"] = [[m.name, m.point, m.radius, m.dofs, m.node_set, m.nodes]
+                         for m in body_mounts(car)]
     return mass_key, "body-" + bodymodel._digest(car, key), band
 
 

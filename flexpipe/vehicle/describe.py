@@ -2,8 +2,14 @@
 
 Used by ``flexpipe info CAR.toml``.  Every figure is computed from the file (no run): the
 rigid mass properties of the trimmed body, the static wheel loads of the whole car at rest,
-for linkage suspensions the spring preloads (virtual work) and the kinematic wheel rate at
-the design position, and every body-side mount with its interface DOF.
+and for linkage suspensions, per axle at the design position, the spring's motion ratio and
+kinematic wheel rate (spring rate x motion ratio^2), the spring preload (virtual work) and
+the wheel rate including compliance (bushings, preloaded spring) at two loads: the static
+tyre load the time runs preload for, and the K&C rig's (``flexpipe kc``: the axle's
+``wheel_load_N`` or the spring's ``preload_N`` / ``free_length_m``) where the file gives
+one; then every body-side mount with its interface DOF.  The figures are the K&C rig's
+(:func:`flexpipe.vehicle.suspension.statics.corner_figures`), so ``info`` and ``kc`` agree
+at the same load.
 """
 
 from __future__ import annotations
@@ -34,24 +40,12 @@ def car_text(car: Car) -> str:
         lines.append("  suspension: prismatic corners (hardpoint_m, spring/damper along body z)")
     else:
         from flexpipe.vehicle.linkage_setup import linkage_statics
-        from flexpipe.vehicle.suspension.statics import point_masses, wheel_rate
+        from flexpipe.vehicle.suspension.statics import point_masses
 
         susp, N = linkage_statics(car, rb)
         lines.append(f"  suspension: linkage templates, time runs in {susp.mode} mode")
         for name, axle in susp.axles.items():
-            c = axle.left
-            sp = c.spring()
-            extra = []
-            if axle.rack is not None:
-                extra.append(f"steering rack ({axle.rack.travel_per_rev * 1e3:.1f} mm/rev)")
-            if axle.anti_roll_bar is not None:
-                extra.append(f"anti-roll bar {axle.anti_roll_bar.torsion_rate:g} N m/rad")
-            lines.append(f"    {name}: {c.template}, parts {', '.join(p.name for p in c.parts)}"
-                         + (f"; {'; '.join(extra)}" if extra else ""))
-            if sp is not None:
-                pre = sp.static_force(sp.design_length)
-                lines.append(f"      spring {sp.rate:g} N/m, preload {pre:.0f} N at the design "
-                             f"position; wheel rate {wheel_rate(c):.0f} N/m")
+            lines += _axle_lines(car, name, axle, N[CORNERS.index(axle.left.corner)])
         dofs = susp.mount_dofs()
         mounts = susp.mounts()
         lines.append(f"  body mounts ({len(mounts)}; interface DOF 3 = forces, 6 = forces "
@@ -68,3 +62,39 @@ def car_text(car: Car) -> str:
                  f"steering ratio {car.steering.ratio:g} on the {car.steering.axle} axle; "
                  f"{car.drive.layout}-wheel drive")
     return "\n".join(lines)
+
+
+def _axle_lines(car: Car, name: str, axle, load: float) -> list[str]:
+    """Lines of one linkage axle: template, parts, rack and bar, then the spring figures
+    of its left corner at the time runs' static tyre ``load`` (N) and at the K&C rig's."""
+    from flexpipe.vehicle.suspension.statics import corner_figures, rig_corner, rig_suspension
+
+    c = axle.left
+    extra = []
+    if axle.rack is not None:
+        extra.append(f"steering rack ({axle.rack.travel_per_rev * 1e3:.1f} mm/rev)")
+    if axle.anti_roll_bar is not None:
+        extra.append(f"anti-roll bar {axle.anti_roll_bar.torsion_rate:g} N m/rad")
+    out = [f"    {name}: {c.template}, parts {', '.join(p.name for p in c.parts)}"
+           + (f"; {'; '.join(extra)}" if extra else "")]
+    if c.spring() is None:
+        return out
+    fig = corner_figures(c)  # preloaded for the static load (linkage_statics)
+    out.append(f"      spring {c.spring().rate:g} N/m, motion ratio "
+               f"{fig['spring motion ratio [-]']:.4g}; kinematic wheel rate (spring rate x "
+               f"motion ratio^2) {fig['kinematic wheel rate [N/m]']:.0f} N/m")
+
+    def at(label, f):
+        return (f"      {label}: spring preload {f['spring preload [N]']:.0f} N, wheel rate "
+                f"incl. compliance {f['wheel rate incl. compliance [N/m]']:.0f} N/m")
+
+    out.append(at(f"at the static tyre load {load:.0f} N (time runs)", fig))
+    given = car.suspension.axles[name]
+    spring = given.left.spring()
+    if given.wheel_load is not None or spring.free_length is not None:
+        rig = rig_suspension(car.suspension).axles[name]
+        src = (f"wheel_load_N {given.wheel_load:.0f} N" if given.wheel_load is not None
+               else "the spring's preload_N / free_length_m")
+        out.append(at(f"on the K&C rig, {src} (flexpipe kc)",
+                      corner_figures(rig_corner(rig, rig.left))))
+    return out

@@ -222,19 +222,17 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
     return spec
 
 
-def _wheel_corner(corners: Table, name: str, base: Path, linkage) -> CornerSpec:
-    """A corner of a car with linkage suspension: wheel, tyre and the linkage's masses."""
+def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> CornerSpec:
+    """A corner of a car with linkage suspension: wheel, tyre and the linkage's masses
+    (``wheel``: rim + tyre mass and inertia, from ``Suspension.wheels``)."""
     c = corners.sub(name)
     tire = (base / c.string("tire", doc="tire property file (.tir)")).resolve()
     if not tire.is_file():
         raise c.error("tire", f"tire file {tire} does not exist (paths are relative to the "
                               "car file)")
-    m_wheel = c.magnitude("wheel_mass_kg",
-                          c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass"),
-                          *lim.WHEEL_MASS_KG, unit="kg", what="a wheel (rim + tyre)",
-                          slips=lim.MASS_SLIPS)
-    J_wheel = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
-        np.zeros((3, 3))
+    c.raw("wheel_mass_kg", doc="rim + tyre mass")  # required; read with the suspension
+    c.has("wheel_inertia_kg_m2")
+    m_wheel, J_wheel = wheel
     spring = linkage.spring()
     spec = CornerSpec(
         name=name, hardpoint=np.array(spring.body_point if spring is not None
@@ -274,8 +272,11 @@ def load_car(path, *, overrides=None) -> Car:
         TOML car file (see :mod:`flexpipe.vehicle.spec` for the keys).
     overrides : dict, optional
         Dotted key to value, set on the parsed file before validation (e.g.
-        ``{"corners.fl.spring_rate_N_per_m": 35000.0}``; see
-        :func:`flexpipe.sweeps.overrides.apply_overrides`).
+        ``{"corners.fl.spring_rate_N_per_m": 35000.0}`` or, for a linkage car,
+        ``{"suspension.front.spring.rate_N_per_m": 1.2e5}``; see
+        :func:`flexpipe.sweeps.overrides.apply_overrides`).  Every section, the suspension
+        included, is read from the overridden document; a key its schema does not know is
+        refused like one written in the file, the message naming the override.
 
     Returns
     -------
@@ -290,12 +291,35 @@ def load_car(path, *, overrides=None) -> Car:
     if path.suffix.lower() != ".toml":
         raise InputError(f"expected a .toml car file, got '{path.suffix}'", file=path)
     data, lines = parse(path)
-    if overrides:  # --- sweep (issue 12): dotted-key overrides before validation
-        from flexpipe.sweeps.overrides import apply_overrides
+    if not overrides:
+        return _read_car(Table(data, "", path, lines))
+    # --- sweep (issue 12): dotted-key overrides before validation; every section, the
+    # suspension included, is read from this one overridden document
+    from flexpipe.sweeps.overrides import apply_overrides
 
-        data = apply_overrides(data, overrides, file=path, origin="car override")
+    data = apply_overrides(data, overrides, file=path, origin="car override")
+    try:
+        return _read_car(Table(data, "", path, lines))
+    except InputError as exc:
+        raise _from_override(exc, overrides) from None
+
+
+def _from_override(exc: InputError, overrides: dict) -> InputError:
+    """``exc`` saying so when its key (or a table above it) was set by an override: the
+    value or key is then not in the file at the line named."""
+    key = exc.key or ""
+    hit = next((k for k in overrides if key == k or key.startswith(f"{k}.")), None)
+    if hit is None:
+        return exc
+    return InputError(f"{exc.message} (from the car override '{hit}' = "
+                      f"{overrides[hit]!r}, not from the file)", file=exc.file, line=exc.line,
+                      key=exc.key)
+
+
+def _read_car(doc: Table) -> Car:
+    """The car of the parsed (and possibly overridden) top-level table ``doc``."""
+    path, lines = doc.file, doc.lines
     base = path.resolve().parent
-    doc = Table(data, "", path, lines)
     ct = doc.sub("car")
     name = ct.string("name", path.stem)
     ct.finish()
@@ -303,12 +327,12 @@ def load_car(path, *, overrides=None) -> Car:
     corners_t = doc.sub("corners")
     suspension = None
     if doc.has("suspension"):
-        from flexpipe.vehicle.suspension import load_suspension
+        from flexpipe.vehicle.suspension.spec import read_suspension
 
-        doc.raw("suspension")
-        suspension = load_suspension(path)
+        suspension = read_suspension(doc)
         links = suspension.corners()
-        corners = tuple(_wheel_corner(corners_t, n, base, links[n]) for n in CORNERS)
+        corners = tuple(_wheel_corner(corners_t, n, base, links[n],
+                                      suspension.wheels.get(n)) for n in CORNERS)
     else:
         corners = tuple(_corner(corners_t, n, base) for n in CORNERS)
     corners_t.finish()
@@ -325,7 +349,7 @@ def load_car(path, *, overrides=None) -> Car:
         np.radians(st.number("max_wheel_angle_deg", 35.0, lo=0, lo_open=True, hi=80)),
         np.radians(st.number("max_rate_deg_per_s", 60.0, lo=0, lo_open=True)))
     if suspension is not None and st.has("rack"):
-        st.raw("rack")  # read by flexpipe.vehicle.suspension.load_suspension
+        st.raw("rack")  # read by flexpipe.vehicle.suspension.spec.read_suspension
     st.finish()
     arbs = {}
     if doc.has("anti_roll_bar"):

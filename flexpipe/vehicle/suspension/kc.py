@@ -4,7 +4,15 @@ Per axle: parallel wheel travel, opposite wheel travel, static steer, and longit
 lateral force compliance at the contact patch.  The body is fixed; wheel travel is the
 wheel-centre height change (m) from the design position.  Kinematic quantities come from
 the joint/link solution; the wheel rate and the rig force from compliance solves with
-bushings (see :mod:`flexpipe.vehicle.suspension.kinematics`).
+bushings (see :mod:`flexpipe.vehicle.suspension.kinematics`): the ``kinematic wheel rate``
+is spring rate x motion ratio^2, the ``wheel rate`` (summary: ``wheel rate incl.
+compliance``) the slope of the rig force with bushings and the preloaded spring.
+
+The rig's spring preload is the file's (``free_length_m`` / ``preload_N``) or holds the
+design position under the axle's ``wheel_load_N``, a tyre load, with the wheel of
+``[corners.<c>]`` on the knuckle (:func:`~flexpipe.vehicle.suspension.statics.rig_corner`);
+time runs preload for the static loads of the car's mass distribution instead (``flexpipe
+info`` prints both).
 
 The steering rack, shared by both corners, enters a single-corner compliance solve as a
 spring of half the rack stiffness under lateral forces (both wheels push it the same way)
@@ -22,7 +30,7 @@ from tqdm import tqdm
 from flexpipe.vehicle.suspension.kinematics import Linkage, solve_compliance, solve_kinematics
 from flexpipe.vehicle.suspension.metrics import MIRROR, characteristics, rates, roll_centre
 from flexpipe.vehicle.suspension.model import Axle
-from flexpipe.vehicle.suspension.statics import spring_preload, wheel_rate, with_preload
+from flexpipe.vehicle.suspension.statics import corner_figures, rig_corner, rig_suspension
 
 
 @dataclass
@@ -67,16 +75,9 @@ def _arb_angle(lk: Linkage, pose, arb, phi0=0.0):
     return phi, (2 * (a - d) @ v) / dg
 
 
-def _wheel_load_preload(axle: Axle, corner):
-    spring = corner.spring()
-    if spring is None or spring.free_length is not None or axle.wheel_load is None:
-        return corner
-    return with_preload(corner, spring_preload(corner, axle.wheel_load))
-
-
 def parallel_travel(axle: Axle, travel) -> Table:
     """Parallel wheel travel: geometry, motion ratios, wheel rate, roll centre, bump steer."""
-    c = _wheel_load_preload(axle, axle.left)
+    c = rig_corner(axle, axle.left)
     lk, lkc = Linkage(c), Linkage(c)
     rows, pose, cpose = [], None, None
     for s in tqdm(travel, desc=f"{axle.name} parallel travel", leave=False):
@@ -161,7 +162,7 @@ def static_steer(axle: Axle, rack_travel) -> Table:
 def force_compliance(axle: Axle, direction: int, forces) -> Table:
     """Toe, camber and wheel-centre motion under a contact-patch force (N, both wheels the
     same way: +x forward, +y left), wheel centre height held."""
-    c = _wheel_load_preload(axle, axle.left)
+    c = rig_corner(axle, axle.left)
     lk = Linkage(c)
     k_rack = None
     if direction == 1 and axle.rack is not None and axle.rack.axial_stiffness is not None:
@@ -186,7 +187,8 @@ def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float =
     Parameters
     ----------
     car : str, Path or Suspension
-        Car file with ``[suspension.*]`` tables, or its parsed suspension.
+        Car file with ``[suspension.*]`` tables, or its parsed suspension; the wheels its
+        ``[corners.<c>]`` tables give (``wheel_mass_kg``) hang on the knuckles.
     out : str or Path, optional
         Folder for CSV tables, ``kc_summary.json`` and PNG plots.
     travel : float
@@ -206,7 +208,8 @@ def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float =
     """
     from flexpipe.vehicle.suspension.spec import Suspension, load_suspension
 
-    susp = car if isinstance(car, Suspension) else load_suspension(car)
+    given = car if isinstance(car, Suspension) else load_suspension(car)
+    susp = rig_suspension(given)  # the wheels of [corners.<c>] on the knuckles
     res = KCResult()
     s = np.linspace(-travel, travel, n)
     for name, axle in susp.axles.items():
@@ -222,7 +225,7 @@ def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float =
         res.tables[f"{name}_longitudinal_force"] = lon = force_compliance(axle, 0, fs)
         res.tables[f"{name}_lateral_force"] = lat = force_compliance(axle, 1, fs)
         res.summary[name] = _summary(axle, par, opp, lon, lat, res.tables.get(
-            f"{name}_static_steer"))
+            f"{name}_static_steer"), wheel_mass=given.wheels.get(axle.left.corner, (0.0,))[0])
     if out is not None:
         from flexpipe.vehicle.suspension.kc_output import write
 
@@ -230,7 +233,7 @@ def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float =
     return res
 
 
-def _summary(axle, par, opp, lon, lat, steer) -> dict:
+def _summary(axle, par, opp, lon, lat, steer, *, wheel_mass: float = 0.0) -> dict:
     i = int(np.argmin(np.abs(par["wheel travel [mm]"])))
     c = axle.left
     out = {"template": c.template, "camber [deg]": par["camber [deg]"][i],
@@ -242,12 +245,15 @@ def _summary(axle, par, opp, lon, lat, steer) -> dict:
            "spring motion ratio [-]": par["spring motion ratio [-]"][i],
            "anti-dive/anti-squat angle [deg]": par["side view angle [deg]"][i],
            "kinematic wheel rate [N/m]": par["kinematic wheel rate [N/m]"][i],
-           "wheel rate [N/m]": wheel_rate(_wheel_load_preload(axle, c)),
            "roll stiffness [N m/deg]": opp["roll stiffness [N m/deg]"][
                int(np.argmin(np.abs(opp["wheel travel [mm]"])))]}
-    if axle.wheel_load is not None and c.spring() is not None:
-        out["wheel load [N]"] = axle.wheel_load
-        out["spring preload [N]"] = spring_preload(c, axle.wheel_load)
+    if c.spring() is not None:  # at the rig's preload (rig_corner), wheel on the knuckle
+        fig = corner_figures(rig_corner(axle, c))
+        if axle.wheel_load is not None:
+            out["wheel load [N]"] = axle.wheel_load
+        out["wheel mass [kg]"] = wheel_mass
+        out["spring preload [N]"] = fig["spring preload [N]"]
+        out["wheel rate incl. compliance [N/m]"] = fig["wheel rate incl. compliance [N/m]"]
     f = lon["force [N]"]
     out["longitudinal toe compliance [deg/kN]"] = np.polyfit(f, lon["toe [deg]"], 1)[0] * 1e3
     out["longitudinal wheel centre compliance [mm/kN]"] = np.polyfit(

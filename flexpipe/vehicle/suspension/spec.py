@@ -6,7 +6,7 @@ Every error is an :class:`~flexpipe.errors.InputError` naming the file, line and
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -32,12 +32,18 @@ MODES = ("compliant", "kinematic")
 
 @dataclass(frozen=True)
 class Suspension:
-    """The car's suspension: ``axles`` ``{"front": Axle, "rear": Axle}`` and the rack."""
+    """The car's suspension: ``axles`` ``{"front": Axle, "rear": Axle}`` and the rack.
+
+    ``wheels`` is ``{"fl": (mass_kg, inertia 3x3 about the wheel centre), ...}``: the rim
+    and tyre of every corner whose ``[corners.<c>]`` table gives ``wheel_mass_kg`` (the
+    knuckle carries it; :func:`flexpipe.vehicle.suspension.statics.with_wheels`).
+    """
 
     file: Path
     axles: dict
     rack: Rack | None = None
     mode: str = "compliant"
+    wheels: dict = field(default_factory=dict)
 
     def corners(self) -> dict:
         """``{"fl": CornerLinkage, "fr": ..., "rl": ..., "rr": ...}``."""
@@ -227,7 +233,14 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
         bt.finish()
     forces = _forces(t)
     preload = forces.pop("_preload", None)
-    wheel_load = t.number("wheel_load_N", None, lo=0, lo_open=True)
+    wheel_load = t.number("wheel_load_N", None, lo=0, lo_open=True,
+                          doc="the K&C rig's design tyre load")
+    if wheel_load is not None and (preload is not None or forces.get("spring", {}).get(
+            "free_length") is not None):
+        raise t.error("wheel_load_N", "the spring's preload_N / free_length_m already sets "
+                                      "the K&C rig's spring preload, which wheel_load_N would "
+                                      f"set too (it would be ignored): give one of them in "
+                                      f"[{t.name}] or [{t.name}.spring]")
     kw = dict(axle=axle, corner=axle[0] + "l", camber_deg=t.number("camber_deg", 0.0),
               toe_deg=t.number("toe_deg", 0.0),
               wheel_radius=t.number("wheel_radius_m", float(hp["wheel_center"][2]),
@@ -293,8 +306,16 @@ def _check_assembles(corner, t: Table, hpt: Table) -> None:
     raise hpt.error(joint if joint in hpt.data else None, msg)
 
 
-def load_suspension(path) -> Suspension:
+def load_suspension(path, *, overrides=None) -> Suspension:
     """Read the suspension of the car file ``path`` (``[suspension.*]``, ``[steering.rack]``).
+
+    Parameters
+    ----------
+    path : str or Path
+        Car file.
+    overrides : dict, optional
+        Dotted key to value set on the parsed file first, as
+        :func:`flexpipe.vehicle.spec.load_car` takes them.
 
     Raises
     ------
@@ -304,7 +325,22 @@ def load_suspension(path) -> Suspension:
     """
     path = Path(path)
     doc, lines = parse(path)
-    top = Table(doc, "", path, lines)
+    if overrides:
+        from flexpipe.sweeps.overrides import apply_overrides
+
+        doc = apply_overrides(doc, overrides, file=path, origin="car override")
+    return read_suspension(Table(doc, "", path, lines))
+
+
+def read_suspension(top: Table) -> Suspension:
+    """The suspension of the parsed car document ``top`` (its top-level table).
+
+    :func:`flexpipe.vehicle.spec.load_car` passes the document it reads every other section
+    from, so overrides set on it reach the suspension too.  Unknown keys of
+    ``[suspension.*]`` and ``[steering.rack]`` are refused here; ``top`` itself and
+    ``[steering]`` are left for the caller to finish.
+    """
+    path, lines = top.file, top.lines
     st = top.sub("suspension", None)
     if st is None:
         raise InputError("no [suspension.front] / [suspension.rear] tables; see "
@@ -330,7 +366,8 @@ def load_suspension(path) -> Suspension:
         if name == "mode":
             continue
         if name not in AXLES:
-            raise st.error(name, f"unknown axle; valid: {', '.join(AXLES)}")
+            raise st.error(name, "unknown key; valid keys in [suspension]: mode, and the axle "
+                                 f"tables {', '.join(AXLES)}")
         axles[name] = _axle(st, name, rack_axle)
     st.finish()
     if rack is not None:
@@ -338,9 +375,33 @@ def load_suspension(path) -> Suspension:
             raise InputError(f"the rack is on the {rack_axle} axle, which has no "
                              f"[suspension.{rack_axle}]", file=path, key="steering.rack.axle")
         axles[rack_axle] = replace(axles[rack_axle], rack=rack)
-    susp = Suspension(path, axles, rack, mode)
-    _check_body_mounts(doc, susp, lines)
+    susp = Suspension(path, axles, rack, mode, _wheels(top))
+    _check_body_mounts(top.data, susp, lines)
     return susp
+
+
+def _wheels(top: Table) -> dict:
+    """``{corner: (mass, inertia)}`` of the ``[corners.<c>]`` tables that give
+    ``wheel_mass_kg`` (rim + tyre; ``wheel_inertia_kg_m2`` about x and z [0]).  A car file
+    needs all four (``load_car`` names a missing one); a suspension-only file for the K&C
+    rig may give none."""
+    from flexpipe.vehicle.body_spec import read_inertia
+
+    ct = top.sub("corners", None)
+    out = {}
+    for name in ("fl", "fr", "rl", "rr"):
+        if ct is None or not isinstance(ct.data.get(name), dict) \
+                or "wheel_mass_kg" not in ct.data[name]:
+            continue
+        c = ct.sub(name)
+        m = c.magnitude("wheel_mass_kg",
+                        c.number("wheel_mass_kg", lo=0, lo_open=True, doc="rim + tyre mass"),
+                        *lim.WHEEL_MASS_KG, unit="kg", what="a wheel (rim + tyre)",
+                        slips=lim.MASS_SLIPS)
+        J = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
+            np.zeros((3, 3))
+        out[name] = (m, J)
+    return out
 
 
 def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
@@ -357,4 +418,4 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
                              key=f"body.mounts.{name}")
 
 
-__all__ = ["Suspension", "load_suspension", "ModelError"]
+__all__ = ["Suspension", "load_suspension", "read_suspension", "ModelError"]

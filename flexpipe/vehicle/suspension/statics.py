@@ -1,10 +1,17 @@
-"""Static corner quantities: spring preload for a wheel load and wheel rate.
+"""Static corner quantities: spring preload for a wheel load and wheel rates.
 
 The preload follows from virtual work at the design position: with s the wheel-centre
 travel, MR = -dL/ds of the spring and dz_i/ds of every part's centre of mass,
 ``preload * MR = wheel_load * dz_patch/ds - sum(m_i g dz_i/ds)``.
-The wheel rate is d(rig force)/ds from compliance solves (bushings, compliant links,
-spring, stops), so bushing torsion and compliance enter as they do on a K&C rig.
+The wheel rate including compliance is d(rig force)/ds from compliance solves (bushings,
+compliant links, spring, stops), so bushing torsion and compliance enter as they do on a
+K&C rig; the kinematic wheel rate is spring rate x motion ratio^2 (joints rigid).
+
+Two loads set a spring's preload: time runs (and ``flexpipe info``'s "static" figures)
+preload every spring for the static tyre load of the car's mass distribution
+(:func:`preloaded`), so the car rests at its design position; the K&C rig (``flexpipe
+kc``) uses the file's spring ``free_length_m`` / ``preload_N`` or the axle's
+``wheel_load_N`` (:func:`rig_corner`).
 Force compliance at the contact patch is in :mod:`flexpipe.vehicle.suspension.kc`.
 """
 
@@ -58,11 +65,56 @@ def with_preload(corner: CornerLinkage, preload: float) -> CornerLinkage:
 
 
 def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4) -> float:
-    """Vertical wheel-centre rate (N/m) at ``travel``: central difference of the rig force
-    from compliance solves (bushings, compliant links, spring, stops)."""
+    """Vertical wheel-centre rate (N/m) at ``travel``, including compliance: central
+    difference of the rig force from compliance solves (bushings, compliant links, spring
+    with its preload, stops)."""
     lk = Linkage(corner)
     f = [solve_compliance(lk, s).force for s in (travel - h, travel + h)]
     return (f[1] - f[0]) / (2 * h)
+
+
+def corner_figures(corner: CornerLinkage) -> dict:
+    """Spring figures of ``corner`` as preloaded, at the design position.
+
+    Returns
+    -------
+    dict
+        ``"spring preload [N]"`` (spring force, compression > 0), ``"spring motion ratio
+        [-]"``, ``"kinematic wheel rate [N/m]"`` (spring rate x motion ratio^2, joints
+        rigid: the K&C rig's column of that name) and ``"wheel rate incl. compliance
+        [N/m]"`` (:func:`wheel_rate`: bushings, the preloaded spring's geometric stiffness
+        and stops included; the K&C rig's wheel rate).
+    """
+    sp = corner.spring()
+    if sp is None:
+        raise InputError(f"corner {corner.corner} has no spring")
+    lk = Linkage(corner)
+    mr = rates(lk, solve_kinematics(lk, 0.0))["spring_mr"]
+    return {"spring preload [N]": sp.static_force(sp.design_length),
+            "spring motion ratio [-]": float(mr),
+            "kinematic wheel rate [N/m]": float(sp.rate * mr**2),
+            "wheel rate incl. compliance [N/m]": wheel_rate(corner)}
+
+
+def rig_corner(axle, corner: CornerLinkage) -> CornerLinkage:
+    """``corner`` of ``axle`` as the K&C rig (``flexpipe kc``) holds it: the spring keeps
+    the free length the file gives (``free_length_m`` or ``preload_N``), else is preloaded
+    (virtual work) for the axle's ``wheel_load_N``, else is unloaded at the design
+    position.  Time runs ignore all three: :func:`preloaded` holds the design position
+    under the static loads of the car's mass distribution."""
+    spring = corner.spring()
+    if spring is None or spring.free_length is not None or axle.wheel_load is None:
+        return corner
+    return with_preload(corner, spring_preload(corner, axle.wheel_load))
+
+
+def rig_suspension(suspension):
+    """``suspension`` with the wheels the car file gives (``Suspension.wheels``) in the
+    knuckles, as on the K&C rig: the rig's preload for ``wheel_load_N`` (a tyre load)
+    then allows for the wheel's weight as a time run's preload does."""
+    none = (0.0, np.zeros((3, 3)))
+    return with_wheels(suspension, {c: suspension.wheels.get(c, none)
+                                    for c in suspension.corners()})
 
 
 def preloaded(suspension, wheel_loads: dict, *, g: float = G):
