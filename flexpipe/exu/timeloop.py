@@ -41,6 +41,7 @@ class RunOutcome(NamedTuple):
     message: str
     python_step_cpu_s: float
     stats: dict
+    python_step_wall_s: float = 0.0
 
 
 def solver_stats(mbs, *, timers: bool) -> dict:
@@ -58,13 +59,15 @@ def solver_stats(mbs, *, timers: bool) -> dict:
     return out
 
 
-def solver_info(stats: dict, python_s: float) -> dict:
+def solver_info(stats: dict, python_s: float, *, cpu_s: float) -> dict:
     """Newton iterations per step and, when timed, Exudyn's timers in ms per step (the
-    ``Result.info`` entries of a run from :attr:`RunOutcome.stats` and the Python step's
-    CPU seconds).
+    ``Result.info`` entries of a run from :attr:`RunOutcome.stats`, the Python step's CPU
+    seconds ``python_s`` and the run's CPU seconds ``cpu_s``).
 
-    Exudyn's fast module (:mod:`flexpipe.exu`) keeps only its total timer: the profile is
-    then ``python_step`` (flexpipe's own timing), ``exudyn`` (the rest) and ``total``.
+    Exudyn's timers measure wall-clock time (on a loaded machine they include the time
+    the process waited for a core).  Its fast module (:mod:`flexpipe.exu`) keeps only its
+    total timer: the profile is then CPU time throughout, ``python_step`` (flexpipe's own
+    timing), ``exudyn`` (the rest of the run) and ``total`` (the run's CPU time).
     """
     n = stats.get("steps", 0)
     if not n:
@@ -73,8 +76,7 @@ def solver_info(stats: dict, python_s: float) -> dict:
     if "timers_s" in stats:
         timers = stats["timers_s"]
         if compiled_module() == MODULES["fast"]:  # no part timers in that module
-            timers = {"python_step": python_s, "exudyn": timers["total"] - python_s,
-                      "total": timers["total"]}
+            timers = {"python_step": python_s, "exudyn": cpu_s - python_s, "total": cpu_s}
         out["profile_ms_per_step"] = {k: round(1e3 * v / n, 4) for k, v in timers.items()}
     return out
 
@@ -98,7 +100,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     if loads is None:
         return RunOutcome(False, 0.0, 0.0, 0.0, "stopped at the initial state", 0.0, {})
     system.apply(loads, st.mount_R, st)
-    last = {"t": 0.0, "n": 0, "cpu": 0.0}  # "cpu": seconds in the Python step (profile)
+    last = {"t": 0.0, "n": 0, "cpu": 0.0, "wall": 0.0}  # the Python step's CPU and wall s
 
     def prestep(mbs_, t):
         t0 = t - h  # the state is at the start of the step
@@ -107,7 +109,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
             if refresh is not None:
                 refresh()
             return True
-        c0 = time.thread_time()
+        c0, w0 = time.thread_time(), time.perf_counter()
         st = system.state(t0)
         loads = step(st)
         last["t"] = t0
@@ -118,6 +120,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
             return False
         system.apply(loads, st.mount_R, st)
         last["cpu"] += time.thread_time() - c0
+        last["wall"] += time.perf_counter() - w0
         return True
 
     def guarded(mbs_, t):  # flexpipe#14: Ctrl-C/SIGTERM stop the run, re-raised below
@@ -178,4 +181,5 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     cpu = time.thread_time() - cpu0
     wall = time.perf_counter() - wall0
     completed = ok and last["t"] >= t_end - 1.5 * h
-    return RunOutcome(completed, last["t"], cpu, wall, message, last["cpu"], stats)
+    return RunOutcome(completed, last["t"], cpu, wall, message, last["cpu"], stats,
+                      last["wall"])

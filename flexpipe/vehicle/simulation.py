@@ -372,7 +372,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         bar = tqdm(total=int(round(t_end / h)), desc=f"{car.name} {body}", unit="step",
                    leave=True, mininterval=0.5)
     try:
-        completed, t_reached, cpu, wall, solver_msg, python_cpu, stats = system.run(
+        completed, t_reached, cpu, wall, solver_msg, python_cpu, stats, python_wall = system.run(
             ctrl, t_end=t_end, h=h, spectral_radius=SPECTRAL_RADIUS,
             progress=bar.update if bar is not None else None, output_step=every * h,
             timers=bool(profile))
@@ -402,14 +402,14 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
         "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
-        "cpu_python_step_s": float(python_cpu),
+        "cpu_python_step_s": float(python_cpu), "wall_python_step_s": float(python_wall),
         "cpu_settle_s": float(start[2]) if start is not None else 0.0,
         "modal_prewarp": build.modal_prewarp is not None,
         "inertia_coupling": build.inertia_coupling if fb is not None else None,
         "exudyn_module": compiled_module(),
         "suspension": "prismatic" if car.suspension is None else
         f"linkage ({car.suspension.mode} mode)",
-        **solver_info(stats, python_cpu),
+        **solver_info(stats, python_cpu, cpu_s=cpu),
     }
     if fb is not None:
         used = fb.n_elastic if n_modes is None else n_modes
