@@ -22,3 +22,25 @@ def test_readme_python_example_runs(tmp_path, monkeypatch):
     assert np.all(ns["f_hz"][:6] < 1e-2 * ns["f_hz"][6])          # six rigid-body modes
     assert ns["body"].mass == pytest.approx(7850.0 * 1.0 * 0.1 * 0.1, rel=1e-9)
     assert ns["res"].status == 0
+
+
+@pytest.mark.slow
+def test_readme_sample_body_figures_are_what_the_check_prints():
+    """The sample body's mass and first torsion / bending figures in the README are what
+    ``python meshes/make_sedan_biw.py --check --car cars/sedan.toml`` computes."""
+    from flexpipe.fem import assemble
+    from flexpipe.mesh import read_mesh
+    from flexpipe.vehicle.bodymodel import body_fe, global_modes
+    from flexpipe.vehicle.spec import load_car
+
+    text = " ".join((REPO / "README.md").read_text().split())
+    m = re.search(r"--check --car cars/sedan\.toml`, re-run [0-9-]+\): BIW ([\d.]+) kg, torsion "
+                  r"([\d.]+) Hz, bending ([\d.]+) Hz; trimmed ([\d.]+) kg, torsion ([\d.]+) Hz, "
+                  r"bending ([\d.]+) Hz", text)
+    assert m, "the README's sample-body figures (BIW and trimmed) are not where expected"
+    fe = assemble(read_mesh(REPO / "meshes" / "sedan_biw.bdf"))
+    fe_t = body_fe(load_car(REPO / "cars" / "sedan.toml"))
+    g, gt = global_modes(fe, 20), global_modes(fe_t, 20)
+    got = [fe.total_mass, g["torsion_hz"], g["bending_hz"],
+           fe_t.total_mass, gt["torsion_hz"], gt["bending_hz"]]
+    assert list(m.groups()) == [f"{v:.1f}" for v in got]
