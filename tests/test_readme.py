@@ -22,6 +22,12 @@ def test_readme_python_example_runs(tmp_path, monkeypatch):
     assert np.all(ns["f_hz"][:6] < 1e-2 * ns["f_hz"][6])          # six rigid-body modes
     assert ns["body"].mass == pytest.approx(7850.0 * 1.0 * 0.1 * 0.1, rel=1e-9)
     assert ns["res"].status == 0
+    # roads load from the top-level API, as load_car does
+    from flexpipe.roads import Road, load_road
+
+    assert ns["fp"].load_road is load_road and "load_road" in dir(ns["fp"])
+    assert isinstance(ns["road"], Road) and ns["z"] == pytest.approx(0.04, abs=1e-12)  # bump top
+    assert ns["path"].x[0] == 0.0 and ns["path"].x[-1] == pytest.approx(20.0)  # the 20 m line
 
 
 @pytest.mark.slow
