@@ -25,6 +25,7 @@ _EXPORTS = {
     "FlexBody": "flexpipe.reduction",
     "load_body": "flexpipe.reduction",
     "load_car": "flexpipe.vehicle",
+    "load_road": "flexpipe.roads",
     "simulate": "flexpipe.vehicle",
     "compare": "flexpipe.vehicle",
     "Result": "flexpipe.vehicle",
