@@ -194,3 +194,27 @@ def test_unknown_format_is_rejected_before_the_solver(tmp_path):
                  log=lambda *a: pytest.fail("simulated before checking the format"))
     assert info.value.key == "format"
     assert not (tmp_path / "r").exists()
+
+
+@pytest.mark.parametrize("car_name", ["sedan.toml", "sedan_linkage.toml"])
+def test_summary_static_wheel_loads_sum_to_the_car_weight(tmp_path, car_name):
+    """summary.json's static wheel loads are the car's ground reactions at rest (those of
+    ``flexpipe info``): they sum to the weight m g of every mass of the car, the rack and
+    anti-roll-bar arms of a linkage car included (not the prismatic formula preload +
+    m_unsprung g, which misses them)."""
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.corners import GRAVITY
+    from flexpipe.vehicle.spec import load_car
+    from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, RACK_MASS
+
+    car = load_car(ROOT / "cars" / car_name)
+    mass = bodymodel.rigid_properties(car).mass + sum(c.unsprung_mass for c in car.corners)
+    if car.suspension is not None:
+        n_arb = sum(a.anti_roll_bar is not None for a in car.suspension.axles.values())
+        mass += RACK_MASS * (car.suspension.rack is not None) + 2 * n_arb * ARB_ARM_MASS
+    out = tmp_path / "run"
+    assert main(["run", str(car.file), "--speed", "20", "--t-end", "0.02", "--body", "rigid",
+                 "--out", str(out), "-q"]) == 0
+    loads = json.loads((out / "summary.json").read_text())["static_wheel_load_N"]
+    assert len(loads) == 4 and min(loads) > 0
+    assert sum(loads) == pytest.approx(mass * GRAVITY, rel=1e-6)

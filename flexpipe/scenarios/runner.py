@@ -240,7 +240,7 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         summary["flexible_body"] = {k: info.get(k) for k in (
             "n_elastic_modes", "band_hz", "highest_mode_hz", "reduction_s", "reduction_cached",
             "modal_prewarp", "inertia_coupling")}
-    summary["static_wheel_load_N"] = [round(v, 2) for v in
+    summary["static_wheel_load_N"] = [round(v, 3) for v in
                                       next(iter(results.values())).info["static_wheel_load_N"]]
     if path is not None:
         summary["lateral_error_max_m"] = {

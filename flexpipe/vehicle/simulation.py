@@ -274,15 +274,19 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     Pw = np.array([x0, y0, 0.0]) + W @ R0.T
     z0 = float(np.mean(road_obj.height_xy(Pw[:, 0], Pw[:, 1])))
     susp = None
-    if car.suspension is not None:
+    if car.suspension is None:  # ground reactions at rest, as flexpipe info gives them
+        from flexpipe.vehicle.corners import static_wheel_loads
+
+        static_N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY)
+    else:
         # springs preloaded for the static wheel loads of the true mass distribution; the
         # body in its design attitude on tyres carrying those loads: heave and pitch by the
         # tyres' static loaded radius minus the design wheel-centre height
         from flexpipe.vehicle.corners import static_loaded_radius
 
-        susp, N = linkage_statics(car, rb)
-        dz = np.array([static_loaded_radius(t, n) for t, n in zip(tires, N, strict=True)]) \
-            - W[:, 2]
+        susp, static_N = linkage_statics(car, rb)
+        dz = np.array([static_loaded_radius(t, n) for t, n in zip(tires, static_N,
+                                                                 strict=True)]) - W[:, 2]
         xf, xr = W[:2, 0].mean(), W[2:, 0].mean()
         slope = (dz[:2].mean() - dz[2:].mean()) / (xf - xr)
         theta = -math.atan(slope)  # rotation about the body y axis
@@ -401,7 +405,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
-        "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
+        # the car's ground reactions at rest (every mass: body, wheels, a linkage's parts,
+        # rack and anti-roll-bar arms), the loads flexpipe info prints; they sum to m g
+        "static_wheel_load_N": np.asarray(static_N, dtype=float).tolist(),
         "cpu_python_step_s": float(python_cpu),
         "cpu_settle_s": float(start[2]) if start is not None else 0.0,
         "modal_prewarp": build.modal_prewarp is not None,
