@@ -218,3 +218,14 @@ def test_summary_static_wheel_loads_sum_to_the_car_weight(tmp_path, car_name):
     loads = json.loads((out / "summary.json").read_text())["static_wheel_load_N"]
     assert len(loads) == 4 and min(loads) > 0
     assert sum(loads) == pytest.approx(mass * GRAVITY, rel=1e-6)
+
+
+def test_summary_stores_the_absolute_car_file(tmp_path, monkeypatch):
+    """A car given by a relative path is stored absolute in summary.json, so that
+    ``flexpipe stress OUT`` / ``animate OUT`` find it from any folder."""
+    monkeypatch.chdir(ROOT)
+    out = tmp_path / "run"
+    assert main(["run", "cars/sedan.toml", "--speed", "20", "--t-end", "0.02", "--body",
+                 "rigid", "--out", str(out), "-q"]) == 0
+    car_file = json.loads((out / "summary.json").read_text())["car_file"]
+    assert Path(car_file).is_absolute() and Path(car_file) == SEDAN

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import write_text_atomic
+from flexpipe._io import absolute, write_text_atomic
 from flexpipe.errors import FlexpipeError, InputError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -137,7 +137,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
                   prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
     stage = stage_directory(out)
     results, files, output_errors = {}, [], []
-    base = {"scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
+    base = {"scenario": name, "title": title, "car": car.name, "car_file": absolute(car.file),
             "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
     try:

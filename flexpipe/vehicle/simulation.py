@@ -25,6 +25,7 @@ import math
 
 import numpy as np
 
+from flexpipe._io import absolute
 from flexpipe.errors import InputError
 from flexpipe.flexbody.invariants import MAX_MEAN_AXIS_COSINE, mean_axis_cosine
 from flexpipe.vehicle import bodymodel
@@ -400,7 +401,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         message = explain(message, car=car, body_mass=rb.mass, body_cg=rb.center_of_mass,
                           t=ctrl.rec.t[: ctrl.rec.rows], channels=ch)
     info = {
-        "car": car.name, "car_file": str(car.file), "body": body, "h": h,
+        "car": car.name, "car_file": absolute(car.file), "body": body, "h": h,
         "output_step": every * h, "speed": speed, "t_end": t_end,
         "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
