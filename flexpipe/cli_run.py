@@ -45,8 +45,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--road", default=None,
                         help="road file (.toml spec, .crg, .csv); default: flat")
     parser.add_argument("--path", default=None,
-                        help="path file (.csv x,y or .toml [path]), or 'road' to follow the "
-                             "road's reference line; default: straight along x")
+                        help="path file (.csv x,y or .toml [path], e.g. "
+                             "paths/slalom_18m.toml) or a keyword: 'straight' (straight "
+                             "along x, the default) or 'road' (follow the road's reference "
+                             "line)")
     parser.add_argument("--speed", type=float, required=True,
                         help="constant target speed in km/h")
     parser.add_argument("--t-end", type=float, default=10.0, help="simulated time, s (10)")

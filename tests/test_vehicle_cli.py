@@ -229,3 +229,18 @@ def test_summary_stores_the_absolute_car_file(tmp_path, monkeypatch):
                  "rigid", "--out", str(out), "-q"]) == 0
     car_file = json.loads((out / "summary.json").read_text())["car_file"]
     assert Path(car_file).is_absolute() and Path(car_file) == SEDAN
+
+
+def test_path_keywords_in_help_and_errors(tmp_path, capsys):
+    """--help names the path keywords; an unknown bare name is 'no such path file' with
+    the file types and the keywords, reported before the output folder is created."""
+    assert main(["run", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "'straight'" in text and "'road'" in text
+    out = tmp_path / "o"
+    assert main(["run", str(SEDAN), "--speed", "30", "--path", "slalom", "--out", str(out),
+                 "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("flexpipe run: error: slalom: no such path file") and "\n" not in err
+    assert "'straight'" in err and "'road'" in err and ".toml" in err
+    assert not out.exists()
