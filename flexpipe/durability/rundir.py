@@ -145,6 +145,10 @@ def run_car_file(summary: dict, out) -> Path:
 
 def _why_no_motion(summary: dict, body: str) -> str:
     """Why a run folder has no recorded motion of ``body``, and what to do."""
+    if summary.get("scenario") == "check_step":
+        return ("the folder holds a step-convergence study (flexpipe run --check-step: "
+                "step_check.csv), not a run; stress recovery and animation need the folder "
+                "of a run (flexpipe run without --check-step)")
     if summary.get("state") in ("error", "interrupted"):
         return (f"the run ended with state '{summary['state']}' before writing it "
                 f"({summary.get('message', 'see summary.json')}): rerun the scenario")

@@ -111,7 +111,6 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     from flexpipe.vehicle.spec import Car, load_car
 
     fmt = check_format(format)  # before minutes of simulation
-    out = check_run_folder(out)
     car = car if isinstance(car, Car) else load_car(car)
     if isinstance(road, (str, Path)):
         from flexpipe.roads import load_road
@@ -135,6 +134,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     for body in bodies:  # every argument checked before the output folder is touched
         check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                   prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
+    out = check_run_folder(out)  # after the arguments, so their errors come first
     stage = stage_directory(out)
     results, files, output_errors = {}, [], []
     base = {"scenario": name, "title": title, "car": car.name, "car_file": absolute(car.file),
