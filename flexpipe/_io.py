@@ -47,6 +47,12 @@ def _umask() -> int:
     return mask
 
 
+def absolute(path) -> str | None:
+    """``path`` as an absolute, normalised path string (None stays None): what a run's
+    ``summary.json`` stores, so that it is found from any working folder."""
+    return None if path is None else os.path.abspath(os.fspath(path))
+
+
 def write_text_atomic(path, text: str) -> None:
     """Write ``text`` to ``path`` atomically."""
     with atomic_path(path) as tmp:

@@ -27,7 +27,7 @@ import warnings
 #: (name, module, help) of every subcommand; modules that are not installed are hidden
 COMMANDS = (
     ("modes", "flexpipe.cli_modes", "natural frequencies and mode shapes of a mesh (.vtu)"),
-    ("info", "flexpipe.cli_info", "summary of a mesh, body or car model file"),
+    ("info", "flexpipe.cli_info", "summary of a mesh, body, car, road or path file"),
     ("reduce", "flexpipe.cli_reduce", "component mode synthesis of a mesh into a flexible body"),
     ("run", "flexpipe.cli_run", "simulate a car scenario"),
     ("kc", "flexpipe.cli_kc", "kinematics and compliance rig of a car's suspension"),

@@ -1,10 +1,15 @@
-"""``flexpipe info FILE``: summary of a FlexBody (.npz), a car file (.toml) or a mesh file.
+"""``flexpipe info FILE``: summary of a FlexBody (.npz), a car, road or path file (.toml,
+a road also .crg) or a mesh file.
 
 For a FlexBody it prints the reduced-vs-full frequency table, the MAC matrix and mass
 properties (see :func:`flexpipe.cli_reduce.info_text`) and can write the mode shapes as
 .vtu; for a mesh it lists nodes, element blocks, named sets, carried properties, constraints,
 the solution set-up of a solver deck, and what the reader read, converted (e.g. CQUAD8
-into CQUAD4) and dropped (loads, output requests, unknown cards).
+into CQUAD4) and dropped (loads, output requests, unknown cards).  A TOML file is told by
+its tables (:func:`toml_kind`): a car (``[car]``) is described by
+:func:`flexpipe.vehicle.describe.car_text`, a road (``[road]``) and a path (``[path]``)
+by their length, samples and extent; any other TOML file (a sweep, a driver, the
+half-car parameters) is a one-line error saying what it is and what ``info`` takes.
 """
 
 from __future__ import annotations
@@ -16,10 +21,120 @@ def add_arguments(p) -> None:
     """Options of ``flexpipe info``."""
     from flexpipe.cli_reduce import add_info_arguments
 
-    add_info_arguments(p)
+    add_info_arguments(p, what=f"file to describe: {TAKES}")
     p.add_argument("--scale", type=float, default=1.0, help="mesh length scale (mesh files)")
     p.add_argument("--units", help="unit system of a solver deck, e.g. mm-t-s (mesh files; "
                    "converts lengths, E, rho and masses)")
+
+
+#: what ``flexpipe info`` describes (for --help and errors)
+TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [car] "
+         "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg) or path "
+         "(.toml with a [path] table) file, or a mesh (.bdf, .inp, .msh, .vtu, ...)")
+
+#: TOML files info does not describe: (tables that tell them, what they are, their use)
+_OTHER_TOML = (
+    (("sweep", "parameters"), "sweep", "run it with flexpipe sweep FILE"),
+    (("table1",), "half-car parameter", "read by flexpipe.halfcar.params.load_params for "
+                                        "make paper"),
+    (("steering", "speed"), "driver", "read by simulate(..., driver=FILE)"),
+)
+
+
+def toml_kind(doc: dict) -> str:
+    """What a parsed TOML file is, from its top-level tables: ``"car"``, ``"road"``,
+    ``"path"``, ``"sweep"``, ``"half-car parameter"``, ``"driver"`` or ``""``
+    (unknown)."""
+    if "car" in doc:
+        return "car"
+    for tables, kind, _ in _OTHER_TOML:
+        if all(t in doc for t in tables):
+            return kind
+    if "road" in doc:  # load_road names any other table beside it
+        return "road"
+    if "path" in doc:
+        return "path"
+    return ""
+
+
+def toml_text(path) -> str:
+    """The summary of a TOML car, road or path file (see :func:`toml_kind`).
+
+    Raises
+    ------
+    InputError
+        Any other TOML file, saying what it is and what ``flexpipe info`` takes.
+    """
+    from flexpipe.errors import InputError
+    from flexpipe.roads._tables import read_toml
+
+    path = Path(path)
+    doc = read_toml(path)
+    kind = toml_kind(doc)
+    if kind == "car":
+        from flexpipe.vehicle.describe import car_text
+        from flexpipe.vehicle.spec import load_car
+
+        return car_text(load_car(path))
+    if kind == "road":
+        from flexpipe.roads import load_road
+
+        return road_text(load_road(path), file=path, table=doc["road"])
+    if kind == "path":
+        from flexpipe.driver import read_path
+
+        return path_text(read_path(path), file=path, table=doc["path"])
+    use = next((u for _, k, u in _OTHER_TOML if k == kind), None)
+    what = (f"is a {kind} file, not a car, mesh or body file ({use})" if kind else
+            f"is not a car, road or path file: it has no [car], [road] or [path] table "
+            f"(top-level keys: {sorted(doc) or 'none'})")
+    raise InputError(f"{what}; flexpipe info takes {TAKES}", file=path)
+
+
+def _spec_line(table: dict) -> str:
+    return "  spec: " + ", ".join(f"{k} = {v!r}" for k, v in table.items())
+
+
+def road_text(road, *, file=None, table: dict | None = None) -> str:
+    """Human-readable summary of a :class:`~flexpipe.roads.Road` read from ``file``
+    (``table``: its ``[road]`` spec, when it came from a TOML file)."""
+    import numpy as np
+
+    lines = [f"{file or road.source or road.name}: road {road.source or road.name}",
+             f"  {road.length:.6g} m long "
+             f"(x {road.x[0]:.6g} .. {road.x[-1]:.6g} m), {road.x.size} samples every "
+             f"{road.dx:.4g} m, track width {road.track_width:.4g} m"]
+    for side, z in (("left", road.left), ("right", road.right)):
+        lines.append(f"  {side} track height (mm): min {1e3 * z.min():.2f}, max "
+                     f"{1e3 * z.max():.2f}, RMS about the mean "
+                     f"{1e3 * np.std(z):.2f}")
+    if road.y is not None:
+        lines.append(f"  height grid: {road.y.size} lateral samples, y {road.y[0]:.4g} .. "
+                     f"{road.y[-1]:.4g} m")
+    lines.append("  reference line: " + ("curved or placed (OpenCRG plan); --path road "
+                                         "follows it" if road.plan is not None else
+                                         "straight along x"))
+    if table:
+        lines.append(_spec_line(table))
+    return "\n".join(lines)
+
+
+def path_text(path, *, file=None, table: dict | None = None) -> str:
+    """Human-readable summary of a driver :class:`~flexpipe.driver.Path` read from
+    ``file`` (``table``: its ``[path]`` spec)."""
+    import numpy as np
+
+    k = float(np.max(np.abs(path.curvature)))
+    radius = f"smallest radius {1 / k:.4g} m" if k > 0 else "no curvature"
+    lines = [f"{file or path.source or path.name}: path {path.source or path.name}, "
+             f"{path.s[-1]:.6g} m long, {path.x.size} points",
+             f"  from ({path.x[0]:.4g}, {path.y[0]:.4g}) m to ({path.x[-1]:.4g}, "
+             f"{path.y[-1]:.4g}) m; y {path.y.min():.4g} .. {path.y.max():.4g} m; "
+             f"heading change {np.degrees(path.heading[-1] - path.heading[0]):.4g} deg; "
+             f"{radius}"]
+    if table:
+        lines.append(_spec_line(table))
+    return "\n".join(lines)
 
 
 def mesh_text(mesh) -> str:
@@ -71,10 +186,12 @@ def run(args) -> int:
 
         return run_info(args)
     if path.suffix.lower() == ".toml":
-        from flexpipe.vehicle.describe import car_text
-        from flexpipe.vehicle.spec import load_car
+        print(toml_text(path))
+        return 0
+    if path.suffix.lower() == ".crg":
+        from flexpipe.roads import load_road
 
-        print(car_text(load_car(path)))
+        print(road_text(load_road(path), file=path))
         return 0
     from flexpipe.mesh import read_mesh
 

@@ -56,9 +56,10 @@ def add_arguments(p) -> None:
     p.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
 
 
-def add_info_arguments(p) -> None:
-    """Options of ``flexpipe info BODY.npz``."""
-    p.add_argument("body", help="FlexBody file written by flexpipe reduce (.npz)")
+def add_info_arguments(p, *, what: str = "FlexBody file written by flexpipe reduce (.npz)"
+                       ) -> None:
+    """Options of ``flexpipe info BODY.npz``; ``what`` is the help of the file argument."""
+    p.add_argument("body", metavar="FILE", help=what)
     p.add_argument("--vtu", help="write the mode shapes to this .vtu file")
     p.add_argument("--mac-size", type=int, default=12, help="rows/columns of MAC printed")
 

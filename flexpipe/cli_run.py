@@ -34,7 +34,9 @@ fails or is interrupted leaves DIR as it was (an earlier run's results stay) and
 its own summary.json ("state": "stopped early", "error" or "interrupted", with the
 message) and the files of the body runs that finished in DIR.failed, next to DIR.
 Exit code 0 when every run reached --t-end, 1 when one stopped early, 2 on an error,
-130/143 on Ctrl-C/SIGTERM."""
+130/143 on Ctrl-C/SIGTERM.  --check-step is a transaction too: its DIR (default
+out/<car>-<road>-<speed>kmh-check-step) receives step_check.csv and summary.json
+("scenario": "check_step"); --t-from and every refined step are checked first."""
 
 
 def add_arguments(parser) -> None:
@@ -45,8 +47,10 @@ def add_arguments(parser) -> None:
     parser.add_argument("--road", default=None,
                         help="road file (.toml spec, .crg, .csv); default: flat")
     parser.add_argument("--path", default=None,
-                        help="path file (.csv x,y or .toml [path]), or 'road' to follow the "
-                             "road's reference line; default: straight along x")
+                        help="path file (.csv x,y or .toml [path], e.g. "
+                             "paths/slalom_18m.toml) or a keyword: 'straight' (straight "
+                             "along x, the default) or 'road' (follow the road's reference "
+                             "line)")
     parser.add_argument("--speed", type=float, required=True,
                         help="constant target speed in km/h")
     parser.add_argument("--t-end", type=float, default=10.0, help="simulated time, s (10)")
@@ -60,8 +64,15 @@ def add_arguments(parser) -> None:
     parser.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
     parser.add_argument("--check-step", action="store_true",
                         help="step-convergence study instead of a run: the first body model "
-                             "at h, h/2 and h/4; prints the RMS hub-force differences and "
-                             "writes step_check.csv")
+                             "at h, h/2 and h/4; prints the RMS hub-force differences (N, "
+                             "and in percent of the finest run's fluctuation where that is "
+                             "above a floor) and writes step_check.csv and summary.json "
+                             "into --out (default out/<car>-<road>-<speed>kmh-check-step; "
+                             "a run folder, replaced as a run's)")
+    parser.add_argument("--t-from", type=float, default=None,
+                        help="with --check-step: start of the comparison window, s "
+                             "(default 0.5, skipping the start transient); at most "
+                             "--t-end - --h")
     parser.add_argument("--no-prewarp", action="store_true",
                         help="integrate the flexible body's modes as they are instead of "
                              "pre-warped to the step (see README, step convergence)")
@@ -101,11 +112,10 @@ def run(args) -> int:
     if out is None:
         tag = Path(args.road).stem if args.road else (Path(args.path).stem if args.path
                                                       else "flat")
-        out = Path("out") / f"{Path(args.car).stem}-{tag}-{args.speed:g}kmh"
+        out = Path("out") / (f"{Path(args.car).stem}-{tag}-{args.speed:g}kmh"
+                             + ("-check-step" if args.check_step else ""))
     if args.check_step:
-        from flexpipe._io import check_output_folder
-
-        return _check_step(args, bodies[0], check_output_folder(out))
+        return _check_step(args, bodies[0], Path(out))
     title = (f"{Path(args.road).name if args.road else 'flat road'}, "
              f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
     summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed / 3.6,
@@ -159,7 +169,35 @@ def check_arguments(args) -> tuple[str, ...]:
     if h > t_end:
         raise InputError(f"--h {h:g} s is longer than --t-end {t_end:g} s; choose --h <= "
                          "--t-end", key="h")
+    _check_step_arguments(args, h=h, t_end=t_end)
     return bodies
+
+
+def _check_step_arguments(args, *, h: float, t_end: float) -> None:
+    """``--t-from`` (only with ``--check-step``) and, for ``--check-step``, the window
+    ``--t-from`` .. ``--t-end`` and the finest step h/4, in the options' terms."""
+    from flexpipe.errors import InputError
+    from flexpipe.vehicle.convergence import DEFAULT_T_FROM
+    from flexpipe.vehicle.run_inputs import H_MIN, T_END_MAX, checked_number
+
+    if not getattr(args, "check_step", False):
+        if getattr(args, "t_from", None) is not None:
+            raise InputError("--t-from is the start of --check-step's comparison window; "
+                             "give it with --check-step (a run compares rigid and flexible "
+                             "after 0.5 s)", key="t_from")
+        return
+    t_from = DEFAULT_T_FROM if args.t_from is None else checked_number(
+        args.t_from, "--t-from", lo=0.0, hi=T_END_MAX, lo_closed=True, unit="s", key="t_from")
+    if t_from > t_end - h:
+        default = " (the default)" if args.t_from is None else ""
+        raise InputError(
+            f"--t-from {t_from:g} s{default} leaves no comparison window before --t-end "
+            f"{t_end:g} s: --check-step compares the runs from --t-from to --t-end; give "
+            f"--t-from <= {t_end - h:g} s (--t-end - --h), e.g. --t-from {t_end / 2:g}, or a "
+            f"longer --t-end", key="t_from")
+    if h / 4 < H_MIN:
+        raise InputError(f"--check-step also runs h/2 and h/4 = {h / 4:g} s, below the "
+                         f"smallest step {H_MIN:g} s; give --h >= {4 * H_MIN:g} s", key="h")
 
 
 def _print_profile(summary: dict) -> None:
@@ -179,28 +217,18 @@ def _print_profile(summary: dict) -> None:
 
 
 def _check_step(args, body: str, out: Path) -> int:
-    """``--check-step``: h, h/2, h/4 for one body model; table to stdout and CSV."""
-    import csv
-    import io
-
-    from flexpipe._io import write_text_atomic
-    from flexpipe.vehicle.convergence import check_step
+    """``--check-step``: h, h/2, h/4 for one body model; the table to stdout, the study
+    into the run folder ``out`` (:func:`~flexpipe.scenarios.step_study.run_step_check`);
+    ``-q`` leaves only the table."""
+    from flexpipe.scenarios.step_study import run_step_check
 
     path = None if args.path in (None, "straight") else args.path
-    chk = check_step(args.car, h=args.h, refinements=(2, 4), road=args.road, path=path,
-                     speed=args.speed / 3.6, t_end=args.t_end, body=body,
-                     cache=not args.no_cache, progress=True, prewarp=not args.no_prewarp,
-                     inertia_coupling=args.inertia_coupling)
-    print(chk.table())
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["channel", "std_reference [N]"]
-               + [f"rms_diff h={x:g} s [N]" for x in chk.steps[:-1]]
-               + [f"rel_dynamic h={x:g} s [-]" for x in chk.steps[:-1]])
-    for j, c in enumerate(chk.channels):
-        w.writerow([c, f"{chk.std_ref[j]:.6g}"] + [f"{v:.6g}" for v in chk.rms_diff[:, j]]
-                   + [f"{v:.6g}" for v in chk.rel_dynamic[:, j]])
-    out.mkdir(parents=True, exist_ok=True)
-    write_text_atomic(out / "step_check.csv", buf.getvalue())
-    print(f"wrote {out / 'step_check.csv'}")
+    title = (f"{Path(args.road).name if args.road else 'flat road'}, "
+             f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
+    run_step_check(args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
+                   t_end=args.t_end, body=body, h=args.h, refinements=(2, 4),
+                   t_from=args.t_from, cache=not args.no_cache, prewarp=not args.no_prewarp,
+                   inertia_coupling=args.inertia_coupling, title=title,
+                   log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
+                   report=print)
     return 0

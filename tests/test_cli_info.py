@@ -3,6 +3,8 @@
 import re
 from pathlib import Path
 
+import pytest
+
 from flexpipe.cli import main
 
 BRACKET = Path(__file__).resolve().parents[1] / "meshes" / "bracket.bdf"
@@ -62,3 +64,51 @@ def test_info_reads_a_deck_in_its_units(capsys, tmp_path):
     assert "units='mm-t-s'" in capsys.readouterr().err
     assert main(["info", str(mm), "--units", "mm-t-s"]) in (0, None)
     assert "rho=7850" in capsys.readouterr().out
+
+
+ROOT = BRACKET.parents[1]
+
+
+def test_info_describes_a_road_file(capsys):
+    """``flexpipe info roads/iso_c_200m.toml``: a road, with its length, samples, track
+    width and track heights (those of the road the runs load), not a car error."""
+    import numpy as np
+
+    from flexpipe.roads import load_road
+
+    road = load_road(ROOT / "roads" / "iso_c_200m.toml")
+    assert main(["info", str(ROOT / "roads" / "iso_c_200m.toml")]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith(f"{ROOT / 'roads' / 'iso_c_200m.toml'}: road iso8608")
+    assert f"{road.length:.6g} m long" in out and f"{road.x.size} samples every 0.05 m" in out
+    assert "track width 1.5 m" in out and "road_class = 'C'" in out
+    assert f"RMS about the mean {1e3 * np.std(road.left):.2f}" in out
+
+
+def test_info_describes_a_path_file(capsys):
+    from flexpipe.driver import read_path
+
+    path = read_path(ROOT / "paths" / "slalom_18m.toml")
+    assert main(["info", str(ROOT / "paths" / "slalom_18m.toml")]) == 0
+    out = capsys.readouterr().out
+    assert ": path slalom(" in out and f"{path.s[-1]:.6g} m long" in out
+    assert f"y {path.y.min():.4g} .. {path.y.max():.4g} m" in out
+
+
+@pytest.mark.parametrize("name, words", [
+    ("sweeps/sample.toml", ["is a sweep file", "flexpipe sweep"]),
+    ("paths/driver.toml", ["is a driver file"]),
+    ("cars/halfcar_paper.toml", ["is a half-car parameter file"]),
+    ("other.toml", ["not a car, road or path file", "['x']"]),
+])
+def test_info_on_another_toml_file_says_what_it_is(capsys, tmp_path, name, words):
+    """A TOML file info does not describe is a one-line error naming the file, what it
+    is and what info takes, not "missing required key 'car'"."""
+    (tmp_path / "other.toml").write_text("x = 1\n")
+    path = tmp_path / name if name == "other.toml" else ROOT / name
+    assert main(["info", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"flexpipe info: error: {path}: ") and "\n" not in err
+    for w in [*words, "flexpipe info takes", ".npz", "[car]", "[road]", "[path]", ".bdf"]:
+        assert w in err, err
+    assert "missing required key" not in err

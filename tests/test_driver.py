@@ -177,6 +177,25 @@ def test_path_csv_bad_input_names_file_and_line(tmp_path, content, line, what):
     assert "bad_path.csv" in str(info.value) and f"line {line}" in str(info.value)
 
 
+@pytest.mark.parametrize(("name", "words"), [
+    ("slalom", ["no such path file", "'straight'", "'road'", ".csv", ".toml"]),
+    ("slalom_18m", ["no such path file", "slalom_18m.toml", "'straight'", "'road'"]),
+    ("track.txt", ["unknown path file type '.txt'", "'straight'", "'road'", ".csv"]),
+])
+def test_path_name_that_is_no_file_lists_the_file_types_and_keywords(tmp_path, monkeypatch,
+                                                                     name, words):
+    """``--path slalom``: not a file and not a keyword; the error says there is no such
+    file (with the sample it probably meant) and lists the file types and the keywords."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "slalom_18m.toml").write_text((REPO / "paths" / "slalom_18m.toml").read_text())
+    (tmp_path / "track.txt").write_text("0,0\n1,0\n")
+    with pytest.raises(InputError) as info:
+        read_path(name)
+    assert info.value.file is not None and str(info.value.file) == name
+    for w in words:
+        assert w in str(info.value), str(info.value)
+
+
 def test_sample_path_csv_is_the_described_arc():
     path = read_path(REPO / "paths" / "sample_xy.csv")
     # 30 m straight + quarter circle of radius 50 m + 30 m straight (chords shorten the arc)

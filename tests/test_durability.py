@@ -400,3 +400,30 @@ def test_stress_and_animate_of_a_rigid_only_run_say_so(short_runs, capsys):
         err = capsys.readouterr().err
         assert str(out) in err and "motion_flexible.npz" in err
         assert "rigid body model" in err and "--body flexible" in err
+
+
+def test_stress_and_animate_find_the_car_from_any_folder_and_name_a_moved_one(
+        straight, tmp_path, monkeypatch, capsys):
+    """summary.json names the car file by its absolute path: ``stress`` works from
+    another folder; a car file that has moved (or an earlier run's relative path looked
+    up from another folder) is a one-line error naming summary.json, 'car_file', the path
+    and what to do, before any work."""
+    out = _copy_run(straight[0], tmp_path / "run")
+    summary = json.loads((out / "summary.json").read_text())
+    assert Path(summary["car_file"]).is_absolute() and Path(summary["car_file"]).is_file()
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    assert main(["stress", str(out), "--top", "2", "--no-fatigue"]) == 0
+    capsys.readouterr()
+    for car_file, words in ((str(tmp_path / "moved" / "car.toml"), ["moved or deleted"]),
+                            ("cars/sedan_linkage.toml", ["relative", str(elsewhere)])):
+        summary["car_file"] = car_file
+        (out / "summary.json").write_text(json.dumps(summary))
+        for cmd in ("stress", "animate"):
+            assert main([cmd, str(out)]) == 2
+            err = capsys.readouterr().err.strip()
+            assert err.startswith(f"flexpipe {cmd}: error:") and "\n" not in err
+            for w in [str(out / "summary.json"), "'car_file'", car_file, *words]:
+                assert w in err, err
+        assert not (out / "animation.failed").exists()

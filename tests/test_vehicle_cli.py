@@ -194,3 +194,192 @@ def test_unknown_format_is_rejected_before_the_solver(tmp_path):
                  log=lambda *a: pytest.fail("simulated before checking the format"))
     assert info.value.key == "format"
     assert not (tmp_path / "r").exists()
+
+
+@pytest.mark.parametrize("car_name", ["sedan.toml", "sedan_linkage.toml"])
+def test_summary_static_wheel_loads_sum_to_the_car_weight(tmp_path, car_name):
+    """summary.json's static wheel loads are the car's ground reactions at rest (those of
+    ``flexpipe info``): they sum to the weight m g of every mass of the car, the rack and
+    anti-roll-bar arms of a linkage car included (not the prismatic formula preload +
+    m_unsprung g, which misses them)."""
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.corners import GRAVITY
+    from flexpipe.vehicle.spec import load_car
+    from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, RACK_MASS
+
+    car = load_car(ROOT / "cars" / car_name)
+    mass = bodymodel.rigid_properties(car).mass + sum(c.unsprung_mass for c in car.corners)
+    if car.suspension is not None:
+        n_arb = sum(a.anti_roll_bar is not None for a in car.suspension.axles.values())
+        mass += RACK_MASS * (car.suspension.rack is not None) + 2 * n_arb * ARB_ARM_MASS
+    out = tmp_path / "run"
+    assert main(["run", str(car.file), "--speed", "20", "--t-end", "0.02", "--body", "rigid",
+                 "--out", str(out), "-q"]) == 0
+    loads = json.loads((out / "summary.json").read_text())["static_wheel_load_N"]
+    assert len(loads) == 4 and min(loads) > 0
+    assert sum(loads) == pytest.approx(mass * GRAVITY, rel=1e-6)
+
+
+def test_summary_stores_the_absolute_car_file(tmp_path, monkeypatch):
+    """A car given by a relative path is stored absolute in summary.json, so that
+    ``flexpipe stress OUT`` / ``animate OUT`` find it from any folder."""
+    monkeypatch.chdir(ROOT)
+    out = tmp_path / "run"
+    assert main(["run", "cars/sedan.toml", "--speed", "20", "--t-end", "0.02", "--body",
+                 "rigid", "--out", str(out), "-q"]) == 0
+    car_file = json.loads((out / "summary.json").read_text())["car_file"]
+    assert Path(car_file).is_absolute() and Path(car_file) == SEDAN
+
+
+def test_path_keywords_in_help_and_errors(tmp_path, capsys):
+    """--help names the path keywords; an unknown bare name is 'no such path file' with
+    the file types and the keywords, reported before the output folder is created."""
+    assert main(["run", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "'straight'" in text and "'road'" in text
+    out = tmp_path / "o"
+    assert main(["run", str(SEDAN), "--speed", "30", "--path", "slalom", "--out", str(out),
+                 "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("flexpipe run: error: slalom: no such path file") and "\n" not in err
+    assert "'straight'" in err and "'road'" in err and ".toml" in err
+    assert not out.exists()
+
+
+# ----------------------------------------------------------------------- --check-step
+def _no_simulation(*a, **k):
+    raise AssertionError("a run started before the arguments were checked")
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--check-step", "--t-end", "0.3"], ["--t-from 0.5 s (the default)", "--t-end 0.3 s",
+                                          "--t-from <= 0.299 s"]),
+    (["--check-step", "--t-end", "1", "--t-from", "1"], ["--t-from 1 s", "<= 0.999 s"]),
+    (["--check-step", "--t-from", "-1"], ["--t-from", "[0, 3600] s"]),
+    (["--check-step", "--h", "2e-5"], ["--h", "h/4 = 5e-06 s", "1e-05 s", "4e-05 s"]),
+    (["--t-from", "0.2"], ["--t-from", "--check-step"]),
+    (["--check-step", "--t-end", "-1"], ["--t-end", "(0, 3600] s"]),
+])
+def test_check_step_arguments_are_checked_before_any_run(tmp_path, capsys, monkeypatch,
+                                                         args, words):
+    """The comparison window and the finest step are checked up front, in the options'
+    terms, before any run and before the output folder (even a folder of other files,
+    which a study refuses like a run)."""
+    monkeypatch.setattr("flexpipe.vehicle.simulation.simulate", _no_simulation)
+    foreign = tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("keep")
+    assert main(["run", str(SEDAN), "--speed", "70", "--body", "rigid", "--out",
+                 str(foreign), "-q", *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("flexpipe run: error:") and "\n" not in err
+    for w in words:
+        assert w in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cache", "foreign"] or \
+        sorted(p.name for p in tmp_path.iterdir()) == ["foreign"]
+    assert [p.name for p in foreign.iterdir()] == ["notes.txt"]
+
+
+def test_check_step_library_checks_window_and_steps_before_running(monkeypatch):
+    from flexpipe.errors import InputError
+    from flexpipe.vehicle.convergence import check_step
+
+    monkeypatch.setattr("flexpipe.vehicle.simulation.simulate", _no_simulation)
+    with pytest.raises(InputError, match=r"t_from = 0.5 s .* t_end = 0.3 s") as info:
+        check_step(SEDAN, speed=10.0, t_end=0.3, body="rigid")
+    assert info.value.key == "t_from"
+    with pytest.raises(InputError, match=r"h/4 = 5e-06 s.*1e-05") as info:
+        check_step(SEDAN, h=2e-5, speed=10.0, t_end=1.0, body="rigid")
+    assert info.value.key == "h"
+
+
+def test_check_step_table_marks_negligible_fluctuations():
+    """A channel whose fluctuation is below the floor (1 N for forces, or 1e-6 of its
+    mean) gets its absolute difference and 'n/a' instead of a percentage, and the
+    footnote says why; the header line states h, refinements, t_end and t_from; the CSV
+    keeps the absolute and relative columns with units and a meaningful flag."""
+    import csv
+    import io
+
+    from flexpipe.vehicle.convergence import StepCheck
+
+    chk = StepCheck(steps=(1e-3, 5e-4, 2.5e-4), channels=("hub_fl_z", "hub_rl_y", "travel_fl"),
+                    rms_diff=np.array([[20.0, 4.27e-6, 1e-5], [5.0, 4.37e-6, 2e-6]]),
+                    rel_dynamic=np.array([[0.04, 1.018, 0.01], [0.01, 1.042, 0.002]]),
+                    std_ref=np.array([500.0, 4.19e-6, 1e-3]), cpu_time=(1.0, 2.0, 4.0),
+                    units=("N", "N", "m"), mean_abs_ref=np.array([3500.0, 3e-6, 0.01]),
+                    floor=np.array([1.0, 1.0, 1e-6]), t_from=0.5, t_end=3.0)
+    assert chk.meaningful.tolist() == [True, False, True]
+    text = chk.table()
+    head = text.splitlines()[0]
+    for w in ("h = 0.001 s", "refinements 2, 4", "t_end = 3 s", "t_from = 0.5 s"):
+        assert w in head, head
+    row = next(ln for ln in text.splitlines() if ln.startswith("hub_rl_y"))
+    assert row.split()[1] == "N" and "4.27e-06" in row and "n/a" in row
+    assert "%" not in row and "n/a: fluctuation 4.19e-06 N below floor 1 N" in row
+    row = next(ln for ln in text.splitlines() if ln.startswith("hub_fl_z"))
+    assert "(  4.0 %)" in row and "n/a" not in row
+    assert next(ln for ln in text.splitlines() if ln.startswith("travel_fl")).split()[1] == "m"
+    assert "n/a: the fluctuation is below the floor (1 N, 1e-06 m; or 1e-06" in text
+    rows = list(csv.DictReader(io.StringIO(chk.csv_text())))
+    assert rows[1]["channel"] == "hub_rl_y" and rows[1]["relative_meaningful [-]"] == "0"
+    assert float(rows[1]["rms_diff h=0.001 s [unit column]"]) == pytest.approx(4.27e-6)
+    assert float(rows[1]["rel_dynamic h=0.001 s [-]"]) == pytest.approx(1.018)
+    assert rows[0]["unit"] == "N" and rows[0]["relative_meaningful [-]"] == "1"
+    assert chk.worst() == pytest.approx(0.04)  # the n/a channel is not the worst
+
+
+def test_check_step_writes_a_run_folder_and_respects_quiet(tmp_path, capsys):
+    """--check-step -q: only the table on stdout (no progress bars, no log lines); the
+    folder holds step_check.csv (units in the header) and a summary.json describing the
+    study; the same command without --check-step then accepts the folder (argument
+    errors reported first) and replaces it with its run."""
+    out = tmp_path / "study"
+    argv = ["run", str(SEDAN), "--speed", "70", "--t-end", "0.3", "--t-from", "0.1",
+            "--body", "rigid", "--out", str(out)]
+    assert main([*argv, "--check-step", "-q"]) == 0
+    cap = capsys.readouterr()
+    assert cap.err == ""
+    lines = cap.out.splitlines()
+    assert lines[0].startswith("step convergence: h = 0.001 s") and "t_from = 0.1 s" in lines[0]
+    assert lines[-1].startswith("CPU s per run") and not any("wrote" in ln for ln in lines)
+    assert any(ln.startswith("hub_rl_y") and "n/a" in ln for ln in lines)  # flat road
+    assert sorted(p.name for p in out.iterdir()) == ["step_check.csv", "summary.json"]
+    header = (out / "step_check.csv").read_text().splitlines()[0]
+    assert "std_reference [N]" in header and "rms_diff h=0.001 s [N]" in header
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["scenario"] == "check_step" and summary["state"] == "completed"
+    assert summary["t_from_s"] == 0.1 and summary["t_end_s"] == pytest.approx(0.3)
+    assert summary["steps_s"] == [1e-3, 5e-4, 2.5e-4] and summary["refinements"] == [2, 4]
+    assert summary["files"] == ["step_check.csv", "summary.json"]
+    assert set(summary["file_descriptions"]) == {"step_check.csv", "summary.json"}
+    assert summary["channels"]["hub_rl_y"]["relative_meaningful"] is False
+    assert summary["channels"]["hub_fl_z"]["unit"] == "N"
+    assert Path(summary["car_file"]).is_absolute()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+    assert main(["run", str(SEDAN), "--speed", "70", "--t-end", "-1", "--out",
+                 str(out)]) == 2
+    assert "--t-end" in capsys.readouterr().err
+    assert main(["run", str(SEDAN), "--speed", "70", "--t-end", "0.05", "--body", "rigid",
+                 "--out", str(out), "-q"]) == 0
+    assert json.loads((out / "summary.json").read_text())["scenario"] == "run"
+
+
+def test_failed_check_step_keeps_the_folder_and_writes_its_summary(tmp_path, capsys,
+                                                                   monkeypatch):
+    from flexpipe.errors import SolverError
+
+    def diverging(*a, **k):
+        raise SolverError("diverged", time=0.1)
+
+    out = tmp_path / "study"
+    before = _earlier_run(out)
+    monkeypatch.setattr("flexpipe.vehicle.simulation.simulate", diverging)
+    assert main(["run", str(SEDAN), "--speed", "70", "--t-end", "1", "--body", "rigid",
+                 "--check-step", "--out", str(out), "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "diverged" in err and "study.failed" in err and "\n" not in err
+    assert _files(out) == before
+    summary = json.loads((tmp_path / "study.failed" / "summary.json").read_text())
+    assert summary["scenario"] == "check_step" and summary["state"] == "error"
+    assert "diverged" in summary["message"]

@@ -256,14 +256,36 @@ def path_from_spec(table: dict, *, file=None, name: str = "path") -> Path:
     return p
 
 
+#: words a run takes in place of a path file (``simulate(path=...)``, ``flexpipe run --path``)
+PATH_KEYWORDS = {"straight": "straight along x", "road": "the road's reference line"}
+_VALID = ("a .csv file of x, y points, a .toml file with a [path] table, or a keyword: "
+          + ", ".join(f"'{k}' ({v})" for k, v in PATH_KEYWORDS.items()))
+
+
 def read_path(path) -> Path:
-    """Read a path from a ``.csv`` (x, y points) or a ``.toml`` file with a ``[path]`` table."""
+    """Read a path from a ``.csv`` (x, y points) or a ``.toml`` file with a ``[path]`` table.
+
+    The keywords of :data:`PATH_KEYWORDS` are not files: :func:`flexpipe.vehicle.simulate`
+    takes them in place of a path.
+
+    Raises
+    ------
+    InputError
+        No such file (a name without suffix that is not a keyword), an unknown suffix, or
+        a bad file; the message lists the file types and the keywords.
+    """
     path = pathlib.Path(path)
     suffix = path.suffix.lower()
     if suffix == ".csv":
         return read_path_csv(path)
     if suffix != ".toml":
-        raise InputError(f"unknown path file type {path.suffix!r}; valid: .csv, .toml",
+        if not path.exists():
+            near = [p.name for p in (path.with_suffix(".toml"), path.with_suffix(".csv"))
+                    if p.is_file()] if path.name else []
+            hint = f" (did you mean {near[0]}?)" if near else ""
+            raise InputError(f"no such path file, and not a path keyword{hint}; a path is "
+                             f"{_VALID}", file=path)
+        raise InputError(f"unknown path file type {path.suffix!r}; a path is {_VALID}",
                          file=path)
     doc = read_toml(path)
     if "path" not in doc:

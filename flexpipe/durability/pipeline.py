@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import write_matrix_csv, write_text_atomic
+from flexpipe._io import absolute, write_matrix_csv, write_text_atomic
 from flexpipe.durability.rundir import MOTION_FILE, RunData, load_run, road_strip
 
 #: time between animation frames written by a scenario run, s
@@ -171,7 +171,7 @@ def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=prin
                   band_hz=np.array(band), road_x=X, road_y=Y, road_z=Z)
     write_hardpoints(out / "hardpoints.csv", body, r.motion)
     files.update({k: DESCRIPTIONS[k] for k in ("motion_flexible.npz", "hardpoints.csv")})
-    run = RunData(out, {"car_file": str(car.file), "title": title}, r.t, r.channels, r.motion,
+    run = RunData(out, {"car_file": absolute(car.file), "title": title}, r.t, r.channels, r.motion,
                   Path(info["path"]), band, (X, Y, Z))
     if body.stress is not None:
         files.update(stress_outputs(out, log=log, run=run, body=body, progress=progress,

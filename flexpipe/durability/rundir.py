@@ -94,7 +94,7 @@ class RunData:
         """The car of the run (from ``summary.json``)."""
         from flexpipe.vehicle.spec import load_car
 
-        return load_car(self.summary["car_file"])
+        return load_car(run_car_file(self.summary, self.out))
 
     def body(self, *, log=None):
         """The reduced body of the run: its cached file, or reduced again with stresses."""
@@ -113,8 +113,42 @@ class RunData:
         return body
 
 
+def run_car_file(summary: dict, out) -> Path:
+    """The car file a run used: ``summary.json``'s ``car_file``, an absolute path (runs
+    of earlier flexpipe versions stored it as given, relative to the folder the run was
+    started in; such a path is looked up from the current folder).
+
+    Raises
+    ------
+    InputError
+        The summary names no car file, or the file is no longer there (moved, deleted,
+        or a relative path run from another folder), naming the path and the remedy.
+    """
+    where = Path(out) / "summary.json"
+    raw = summary.get("car_file")
+    if not raw or raw == "None":
+        raise InputError("names no car file ('car_file'): rerun the scenario", file=where,
+                         key="car_file")
+    path = Path(raw)
+    if not path.is_file():
+        if path.is_absolute():
+            msg = (f"the run's car file {raw} does not exist: it has been moved or deleted "
+                   "since the run; put it back or set 'car_file' to its new absolute path")
+        else:
+            msg = (f"the run's car file {raw} is not in the current folder {Path.cwd()}: the "
+                   "path is relative (runs of earlier flexpipe versions stored it so); run "
+                   "this command in the folder the run was started in, or set 'car_file' "
+                   "to the file's absolute path")
+        raise InputError(msg, file=where, key="car_file")
+    return path
+
+
 def _why_no_motion(summary: dict, body: str) -> str:
     """Why a run folder has no recorded motion of ``body``, and what to do."""
+    if summary.get("scenario") == "check_step":
+        return ("the folder holds a step-convergence study (flexpipe run --check-step: "
+                "step_check.csv), not a run; stress recovery and animation need the folder "
+                "of a run (flexpipe run without --check-step)")
     if summary.get("state") in ("error", "interrupted"):
         return (f"the run ended with state '{summary['state']}' before writing it "
                 f"({summary.get('message', 'see summary.json')}): rerun the scenario")
@@ -142,6 +176,7 @@ def load_run(out, *, body: str = "flexible") -> RunData:
     mpath = out / MOTION_FILE.format(body=body)
     if not mpath.is_file():
         raise InputError(f"no {mpath.name}: {_why_no_motion(summary, body)}", file=out)
+    run_car_file(summary, out)  # before any work: stress and animate need the car
     motion = BodyMotion.load(mpath)
     with np.load(mpath, allow_pickle=False) as d:
         body_file = Path(str(d["body_file"])) if "body_file" in d.files else Path()

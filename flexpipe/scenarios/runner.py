@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import write_text_atomic
+from flexpipe._io import absolute, write_text_atomic
 from flexpipe.errors import FlexpipeError, InputError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -111,7 +111,6 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     from flexpipe.vehicle.spec import Car, load_car
 
     fmt = check_format(format)  # before minutes of simulation
-    out = check_run_folder(out)
     car = car if isinstance(car, Car) else load_car(car)
     if isinstance(road, (str, Path)):
         from flexpipe.roads import load_road
@@ -135,9 +134,10 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     for body in bodies:  # every argument checked before the output folder is touched
         check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                   prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
+    out = check_run_folder(out)  # after the arguments, so their errors come first
     stage = stage_directory(out)
     results, files, output_errors = {}, [], []
-    base = {"scenario": name, "title": title, "car": car.name, "car_file": str(car.file),
+    base = {"scenario": name, "title": title, "car": car.name, "car_file": absolute(car.file),
             "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
     try:
@@ -240,7 +240,7 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         summary["flexible_body"] = {k: info.get(k) for k in (
             "n_elastic_modes", "band_hz", "highest_mode_hz", "reduction_s", "reduction_cached",
             "modal_prewarp", "inertia_coupling")}
-    summary["static_wheel_load_N"] = [round(v, 2) for v in
+    summary["static_wheel_load_N"] = [round(v, 3) for v in
                                       next(iter(results.values())).info["static_wheel_load_N"]]
     if path is not None:
         summary["lateral_error_max_m"] = {

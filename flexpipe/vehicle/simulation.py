@@ -25,6 +25,7 @@ import math
 
 import numpy as np
 
+from flexpipe._io import absolute
 from flexpipe.errors import InputError
 from flexpipe.flexbody.invariants import MAX_MEAN_AXIS_COSINE, mean_axis_cosine
 from flexpipe.vehicle import bodymodel
@@ -274,15 +275,19 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     Pw = np.array([x0, y0, 0.0]) + W @ R0.T
     z0 = float(np.mean(road_obj.height_xy(Pw[:, 0], Pw[:, 1])))
     susp = None
-    if car.suspension is not None:
+    if car.suspension is None:  # ground reactions at rest, as flexpipe info gives them
+        from flexpipe.vehicle.corners import static_wheel_loads
+
+        static_N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY)
+    else:
         # springs preloaded for the static wheel loads of the true mass distribution; the
         # body in its design attitude on tyres carrying those loads: heave and pitch by the
         # tyres' static loaded radius minus the design wheel-centre height
         from flexpipe.vehicle.corners import static_loaded_radius
 
-        susp, N = linkage_statics(car, rb)
-        dz = np.array([static_loaded_radius(t, n) for t, n in zip(tires, N, strict=True)]) \
-            - W[:, 2]
+        susp, static_N = linkage_statics(car, rb)
+        dz = np.array([static_loaded_radius(t, n) for t, n in zip(tires, static_N,
+                                                                 strict=True)]) - W[:, 2]
         xf, xr = W[:2, 0].mean(), W[2:, 0].mean()
         slope = (dz[:2].mean() - dz[2:].mean()) / (xf - xr)
         theta = -math.atan(slope)  # rotation about the body y axis
@@ -396,12 +401,14 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         message = explain(message, car=car, body_mass=rb.mass, body_cg=rb.center_of_mass,
                           t=ctrl.rec.t[: ctrl.rec.rows], channels=ch)
     info = {
-        "car": car.name, "car_file": str(car.file), "body": body, "h": h,
+        "car": car.name, "car_file": absolute(car.file), "body": body, "h": h,
         "output_step": every * h, "speed": speed, "t_end": t_end,
         "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
-        "static_wheel_load_N": (corners.preload + corners.m_unsprung * GRAVITY).tolist(),
+        # the car's ground reactions at rest (every mass: body, wheels, a linkage's parts,
+        # rack and anti-roll-bar arms), the loads flexpipe info prints; they sum to m g
+        "static_wheel_load_N": np.asarray(static_N, dtype=float).tolist(),
         "cpu_python_step_s": float(python_cpu), "wall_python_step_s": float(python_wall),
         "cpu_settle_s": float(start[2]) if start is not None else 0.0,
         "modal_prewarp": build.modal_prewarp is not None,
