@@ -206,7 +206,10 @@ def _print_profile(summary: dict) -> None:
     if not prof:
         return
     bodies = list(prof)
-    print(f"CPU per step, ms (Exudyn module {summary.get('exudyn_module')})")
+    module = summary.get("exudyn_module")
+    clock = ("CPU time" if module == "exudynCPPfast" else
+             "wall-clock time (Exudyn's timers; a loaded machine inflates them)")
+    print(f"{clock} per step, ms (Exudyn module {module})")
     print(" " * 17 + "".join(f"{b:>12s}" for b in bodies))
     for part in next(iter(prof.values())):
         print(f"  {part:28s}" + "".join(f"{prof[b].get(part, float('nan')):12.4f}"
