@@ -57,10 +57,17 @@ def add_arguments(p) -> None:
 
 
 def add_info_arguments(p) -> None:
-    """Options of ``flexpipe info BODY.npz``."""
-    p.add_argument("body", help="FlexBody file written by flexpipe reduce (.npz)")
-    p.add_argument("--vtu", help="write the mode shapes to this .vtu file")
-    p.add_argument("--mac-size", type=int, default=12, help="rows/columns of MAC printed")
+    """Options of ``flexpipe info FILE``: a FlexBody, a car file or a mesh (the argument's
+    destination stays ``body``, which :mod:`flexpipe.cli_info` dispatches on)."""
+    from flexpipe.mesh.read import FORMATS
+
+    p.add_argument("body", metavar="FILE",
+                   help="the file to summarise: a FlexBody written by flexpipe reduce (.npz), "
+                   "a car file (.toml, e.g. cars/sedan.toml) or a mesh file "
+                   f"({' '.join(FORMATS)})")
+    p.add_argument("--vtu", help="write the mode shapes to this .vtu file (FlexBody files)")
+    p.add_argument("--mac-size", type=int, default=12,
+                   help="rows/columns of MAC printed (FlexBody files)")
 
 
 def run(args) -> int:

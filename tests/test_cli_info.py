@@ -62,3 +62,13 @@ def test_info_reads_a_deck_in_its_units(capsys, tmp_path):
     assert "units='mm-t-s'" in capsys.readouterr().err
     assert main(["info", str(mm), "--units", "mm-t-s"]) in (0, None)
     assert "rho=7850" in capsys.readouterr().out
+
+
+def test_info_help_lists_every_kind_of_file_it_takes(capsys):
+    """``info`` takes a FlexBody, a car file and a mesh; its help says so."""
+    assert main(["info", "--help"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "FlexBody" in out and ".npz" in out
+    assert "car file (.toml" in out
+    for suffix in (".msh", ".inp", ".bdf", ".vtu"):
+        assert suffix in out
