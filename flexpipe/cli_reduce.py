@@ -58,10 +58,12 @@ def add_arguments(p) -> None:
 
 def add_info_arguments(p, *, what: str = "FlexBody file written by flexpipe reduce (.npz)"
                        ) -> None:
-    """Options of ``flexpipe info BODY.npz``; ``what`` is the help of the file argument."""
+    """Options of ``flexpipe info FILE``; ``what`` is the help of the file argument (the
+    argument's destination stays ``body``, which :mod:`flexpipe.cli_info` dispatches on)."""
     p.add_argument("body", metavar="FILE", help=what)
-    p.add_argument("--vtu", help="write the mode shapes to this .vtu file")
-    p.add_argument("--mac-size", type=int, default=12, help="rows/columns of MAC printed")
+    p.add_argument("--vtu", help="write the mode shapes to this .vtu file (FlexBody files)")
+    p.add_argument("--mac-size", type=int, default=12,
+                   help="rows/columns of MAC printed (FlexBody files)")
 
 
 def run(args) -> int:

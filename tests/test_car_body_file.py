@@ -1,6 +1,6 @@
 """A car whose body is a ready reduced body (``[body] body_file``), and mounts tied by node
-set or node ids (``[body.mounts.<name>]``): the same body reached by another route must
-give the same car (reference: the car built from the mesh)."""
+set or the mesh file's node ids (``[body.mounts.<name>]``): the same body reached by another
+route must give the same car (reference: the car built from the mesh)."""
 
 from dataclasses import replace
 from pathlib import Path
@@ -73,16 +73,47 @@ def test_body_file_lacking_a_mount_is_named(tmp_path, mesh_car_runs):
 
 
 def test_mount_by_node_ids_ties_the_same_node(tmp_path):
+    """``[body.mounts] nodes`` are the mesh file's ids (GRID ids), as in an interface spec:
+    the id of the node at the mount point ties that node, not the one after it."""
+    from flexpipe.vehicle.mounts import mount_interfaces
+
     car = fp.load_car(CAR)
-    nodes = bodymodel.body_mesh(car).points
+    mesh = bodymodel.body_mesh(car)
     name = "front_upper_arm_front_l"
     p = car.suspension.mounts()[name]
-    k = int(np.argmin(np.linalg.norm(nodes - p, axis=1)))
+    k = int(np.argmin(np.linalg.norm(mesh.points - p, axis=1)))
+    grid = int(mesh.node_ids[k])
     path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
-    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [{k}]\ndofs = 6\n")
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [{grid}]\ndofs = 6\n")
     car2 = fp.load_car(path)
     m = {mm.name: mm for mm in body_mounts(car2)}[name]
-    assert m.nodes == (k,) and m.dofs == 6 and m.radius is None
+    assert m.node_ids == (grid,) and m.nodes is None and m.dofs == 6 and m.radius is None
+    itf = {i.name: i for i in mount_interfaces(body_mounts(car2), mesh, file=car2.file)}[name]
+    assert itf.nodes == (k,) and np.allclose(mesh.points[k], p, atol=1e-6)
+    # docs/car-file.md shows this very mount with its GRID id
+    assert f"[body.mounts.{name}]\nnodes = [{grid}]" in (ROOT / "docs" / "car-file.md").read_text()
+
+
+def test_mount_node_ids_not_in_the_mesh_are_named(tmp_path):
+    from flexpipe.vehicle.mounts import mount_interfaces
+
+    car = fp.load_car(CAR)
+    mesh = bodymodel.body_mesh(car)
+    name = "front_upper_arm_front_l"
+    path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [0, 99999]\n")
+    line = path.read_text().splitlines().index(f"[body.mounts.{name}]") + 1
+    car2 = fp.load_car(path)
+    with pytest.raises(InputError) as e:
+        mount_interfaces(body_mounts(car2), mesh, file=car2.file)
+    msg = str(e.value)
+    lo, hi = int(mesh.node_ids.min()), int(mesh.node_ids.max())
+    assert str(path) in msg and f"line {line}" in msg and f"key 'body.mounts.{name}.nodes'" in msg
+    assert f"{lo}..{hi}" in msg and str(mesh.n_nodes) in msg  # valid range and count
+    assert f"0 -> {lo}" in msg and f"99999 -> {hi}" in msg  # nearest existing ids
+    path.write_text(path.read_text().replace("nodes = [0, 99999]", "nodes = [1.5]"))
+    with pytest.raises(InputError, match=rf"key 'body.mounts.{name}.nodes'.*node ids"):
+        fp.load_car(path)
 
 
 def test_unknown_mount_name_is_an_error(tmp_path):

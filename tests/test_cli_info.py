@@ -112,3 +112,14 @@ def test_info_on_another_toml_file_says_what_it_is(capsys, tmp_path, name, words
     for w in [*words, "flexpipe info takes", ".npz", "[car]", "[road]", "[path]", ".bdf"]:
         assert w in err, err
     assert "missing required key" not in err
+
+
+def test_info_help_lists_every_kind_of_file_it_takes(capsys):
+    """``info`` takes a reduced body, a car, road or path file and a mesh; its help says
+    so (and that --vtu and --mac-size are for reduced bodies)."""
+    assert main(["info", "--help"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "reduced body" in out and ".npz" in out and "(FlexBody files)" in out
+    assert "car file (.toml" in out and "road" in out and ".crg" in out and "path" in out
+    for suffix in (".msh", ".inp", ".bdf", ".vtu"):
+        assert suffix in out

@@ -8,6 +8,7 @@ brief (sedan BIW), and for the Exudyn adapter the unreduced model held at three 
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -185,6 +186,28 @@ def test_mount_by_point_radius_node_set_and_node_ids(block):
     np.testing.assert_allclose(itfs[2].point, [0.0, 0.2, 0.05])  # centroid of the set
     body = flexpipe.reduce(block, itfs, n_modes=2)
     assert body.interface("s").nodes.size == len(block.mesh.node_sets["xmin"])
+
+
+def test_mount_by_mesh_file_ids_and_by_positions(block):
+    """``node_ids`` are the mesh file's ids, ``nodes`` 0-based positions; both tie the same
+    node, and ``Mesh.node_index`` turns one into the other."""
+    ids = np.arange(101, 101 + block.mesh.n_nodes) * 2  # file ids unlike the positions
+    mesh = replace(block.mesh, node_ids=ids)
+    i = int(np.linalg.norm(mesh.points - np.array([0.5, 0.2, 0.1]), axis=1).argmin())
+    (by_id,) = mount_interfaces([Mount("i", node_ids=(int(ids[i]),))], mesh)
+    (by_pos,) = mount_interfaces([Mount("p", nodes=(i,))], mesh)
+    assert by_id.nodes == by_pos.nodes == (i,)
+    assert mesh.node_index([ids[i], ids[0]]).tolist() == [i, 0]
+    with pytest.raises(InputError) as e:
+        mount_interfaces([Mount("i", node_ids=(int(ids[i]) + 1, 1))], mesh, file="car.toml")
+    msg = str(e.value)
+    assert "car.toml" in msg and "key 'mounts.i.node_ids'" in msg
+    assert f"{ids[0]} and {ids[-1]}" in msg and str(mesh.n_nodes) in msg  # ids with gaps
+    assert f"{ids[i] + 1} -> {ids[i]} or {ids[i + 1]}" in msg and f"1 -> {ids[0]}" in msg
+    with pytest.raises(InputError, match="node_ids"):  # a position past the end: hint at ids
+        mount_interfaces([Mount("p", nodes=(mesh.n_nodes,))], mesh)
+    with pytest.raises(InputError, match="a flexpipe.mesh.Mesh"):
+        mount_interfaces([Mount("i", node_ids=(1,))], block.nodes)
 
 
 # --------------------------------------------------------------------------- sedan BIW

@@ -97,6 +97,29 @@ def test_spec_node_ids_are_file_ids(files):
         read_interfaces(spec, node_ids=np.array([7, 8]))
 
 
+def test_missing_node_ids_name_the_valid_ids_and_the_nearest(files):
+    spec = files / "missing.toml"
+    spec.write_text('[[interface]]\nname = "p"\npoint = [0.0, 0.0, 0.0]\nnodes = [1, 99, 0, 12]\n')
+    with pytest.raises(InputError) as e:
+        read_interfaces(spec, node_ids=np.array([1, 2, 3, 10, 11, 40]))
+    msg = str(e.value)
+    assert "missing.toml, line 1, key 'interface[0].nodes'" in msg
+    assert "[99, 0, 12]" in msg and "6 node ids" in msg and "1 and 40" in msg  # range, count
+    assert "99 -> 40" in msg and "0 -> 1" in msg and "12 -> 11 or 40" in msg  # nearest ids
+
+
+def test_overlapping_interfaces_name_the_key_once(files, capsys):
+    spec = files / "overlap.toml"
+    spec.write_text('[[interface]]\nname = "a"\npoint = [0.0, 0.1, 0.05]\nradius = 0.3\n\n'
+                    '[[interface]]\nname = "tab"\npoint = [0.1, 0.1, 0.05]\nradius = 0.3\n')
+    code = main(["reduce", str(files / "bar.msh"), "--interfaces", str(spec), "-o",
+                 str(files / "x.npz"), "--material", "steel", "-q"])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "overlap.toml, line 6, key 'interface[1]': interfaces 'a' and 'tab' overlap" in err
+    assert err.count("key ") == 1 and "key 'tab'" not in err
+
+
 def test_reduce_stores_stress_modes_on_request(files, capsys):
     out = files / "stress.npz"
     assert main(["reduce", str(files / "bar.msh"), "--interfaces", str(files / "spec.toml"),

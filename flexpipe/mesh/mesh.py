@@ -246,6 +246,22 @@ class Mesh:
         x, y, z = self.points[index]
         return f"node {int(self.node_ids[index])} at ({x:.4g}, {y:.4g}, {z:.4g}) m"
 
+    def node_index(self, ids, *, file=None, line=None, key=None) -> np.ndarray:
+        """0-based positions in :attr:`points` of the nodes with file ids ``ids``.
+
+        The ids are those of the mesh file (Nastran GRID ids, Gmsh node tags, Abaqus node
+        numbers: :attr:`node_ids`); the positions are what :class:`flexpipe.Interface`
+        ``nodes=`` and :attr:`node_sets` hold.  ``file``, ``line`` and ``key`` locate the
+        ids in the user's input for the error (see :func:`index_of_ids`).
+
+        Raises
+        ------
+        InputError
+            An id that is no node of the mesh: the message gives the valid id range, the
+            node count and, for each missing id, the nearest existing ids.
+        """
+        return index_of_ids(self.node_ids, ids, file=file, line=line, key=key)
+
     def nodes_of(self, name: str) -> np.ndarray:
         """Node indices of the node set ``name``, or of all cells of the cell set ``name``.
 
@@ -275,3 +291,60 @@ class Mesh:
         from flexpipe.mesh.units import UnitSystem, convert
 
         return convert(self, UnitSystem(length=float(factor)), materials=False)
+
+
+def _near(sorted_ids: np.ndarray, v: int) -> str:
+    """``"99 -> 63"`` or ``"50 -> 48 or 52"``: the existing ids on either side of ``v``."""
+    k = int(np.searchsorted(sorted_ids, v))
+    near = [str(sorted_ids[j]) for j in (k - 1, k) if 0 <= j < len(sorted_ids)]
+    return f"{v} -> {' or '.join(near)}"
+
+
+def index_of_ids(node_ids, ids, *, file=None, line=None, key=None) -> np.ndarray:
+    """0-based positions of the file node ids ``ids`` in ``node_ids`` (``Mesh.node_ids``).
+
+    Parameters
+    ----------
+    node_ids : array_like of int
+        The mesh's node ids, in node order.
+    ids : array_like of int
+        The ids to find, e.g. as a user copied them from a pre-processor.
+    file, line, key : optional
+        Where ``ids`` came from, named by the error (:class:`~flexpipe.errors.InputError`).
+
+    Returns
+    -------
+    ndarray of int64
+        Positions, in the order of ``ids``.
+
+    Raises
+    ------
+    InputError
+        ``ids`` not integers, or ids that are no node of the mesh (the message lists the
+        first ten, each with its nearest existing ids, and the valid range and count).
+    """
+    from flexpipe.errors import InputError
+
+    where = dict(file=file, line=line, key=key)
+    want = np.asarray(ids)
+    if want.dtype == bool or (want.size and not np.issubdtype(want.dtype, np.integer)):
+        raise InputError(f"node ids must be integers, got {np.ravel(ids).tolist()[:10]}",
+                         **where)
+    want = want.astype(np.int64).reshape(-1)
+    have = np.asarray(node_ids, dtype=np.int64).reshape(-1)
+    order = np.argsort(have, kind="stable")
+    srt = have[order]
+    k = np.minimum(np.searchsorted(srt, want), max(len(srt) - 1, 0))
+    found = (srt[k] == want) if len(srt) else np.zeros(want.shape, dtype=bool)
+    if not found.all():
+        missing = list(dict.fromkeys(want[~found].tolist()))
+        more = f" and {len(missing) - 10} more" if len(missing) > 10 else ""
+        if not len(srt):
+            raise InputError(f"node ids {missing[:10]}{more} are not in the mesh: it has no "
+                             "nodes", **where)
+        lo, hi = int(srt[0]), int(srt[-1])
+        span = f"{lo}..{hi}" if hi - lo + 1 == len(srt) else f"between {lo} and {hi}, with gaps"
+        raise InputError(f"node ids {missing[:10]}{more} are not in the mesh; nearest existing "
+                         f"ids: {'; '.join(_near(srt, v) for v in missing[:10])}; valid: the "
+                         f"mesh's {len(srt)} node ids, {span}", **where)
+    return order[k]

@@ -3,9 +3,10 @@ map that turns them into 6 boundary DOF each.
 
 An interface is resolved against an :class:`~flexpipe.fem.FEModel` into a set of mesh
 nodes: those within ``radius`` of the point, a named node set of the mesh, explicit
-node indices, or -- when none is given -- the 6-DOF (shell/beam) node at the point,
-which is then the interface itself.  The spider is applied on the independent DOF of
-the model: every tied node DOF is replaced by the rigid motion of the hardpoint,
+nodes (0-based positions, ``Mesh.node_index`` for file ids), or -- when none is given --
+the 6-DOF (shell/beam) node at the point, which is then the interface itself.  The spider
+is applied on the independent DOF of the model: every tied node DOF is replaced by the
+rigid motion of the hardpoint,
 ``u = u_h + theta_h x (x - x_h)`` and ``theta = theta_h``.
 
 An interface has 6 boundary DOF (the hardpoint's translations and rotations: it transmits
@@ -38,7 +39,9 @@ class Interface:
     radius : float, optional
         Tie every node within this distance of ``point``, m.
     nodes : array_like of int, optional
-        Tie these nodes (0-based indices into the mesh points, as in ``Mesh.node_sets``).
+        Tie these nodes, given as 0-based positions in ``Mesh.points`` (as in
+        ``Mesh.node_sets``), **not** the ids of the mesh file; ``mesh.node_index(ids)``
+        turns file ids (Nastran GRID ids, Gmsh node tags) into positions.
     name : str, optional
         Interface name (markers, messages); default ``"if1"``, ``"if2"``, ...
     node_set : str, optional
@@ -60,7 +63,8 @@ class Interface:
     name: str | None = None
     node_set: str | None = None
     dofs: int = 6
-    #: where the interface was defined, ``(file, line)``, named by errors about it
+    #: where the interface was defined, ``(file, line)`` or ``(file, line, key)`` (the
+    #: spec's key of its table, e.g. ``"interface[1]"``), named by errors about it
     source: tuple | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
@@ -120,7 +124,7 @@ def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
     """Bind interfaces to the nodes of ``fe``; check they are valid and disjoint.
 
     An error about an interface read from a spec file (``Interface.source``) names that
-    file and the line of its ``[[interface]]`` table.
+    file, the line of its ``[[interface]]`` table and its key there (``interface[k]``).
 
     Raises
     ------
@@ -138,10 +142,10 @@ def resolve_interfaces(fe: FEModel, interfaces) -> list[ResolvedInterface]:
     except InputError as exc:
         src = {i.name: i.source for i in interfaces
                if isinstance(i, Interface) and i.source is not None}
-        if exc.file is None and exc.key in src:
-            file, line = src[exc.key]
-            raise InputError(str(exc), file=file, line=line, key=f"interface '{exc.key}'"
-                             ) from None
+        if exc.file is None and exc.key in src:  # the message names the interface
+            file, line, *key = src[exc.key]
+            raise InputError(exc.message, file=file, line=line,
+                             key=key[0] if key else exc.key) from None
         raise
 
 
@@ -180,7 +184,9 @@ def _resolve(fe: FEModel, interfaces: list) -> list[ResolvedInterface]:
             nodes = np.unique(np.asarray(itf.nodes, dtype=np.int64))
             if nodes.size == 0 or nodes.min() < 0 or nodes.max() >= fe.n_nodes:
                 raise InputError(f"interface '{name}': node indices must lie in "
-                                 f"[0, {fe.n_nodes}), got {list(itf.nodes)[:10]}", key=name)
+                                 f"[0, {fe.n_nodes}), got {list(itf.nodes)[:10]}; nodes= "
+                                 "takes 0-based positions, mesh.node_index(ids) turns the "
+                                 "mesh file's ids into them", key=name)
         else:
             if dist[nearest] > max(tol, 1e-9):
                 raise InputError(

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.mesh.mesh import index_of_ids
 from flexpipe.reduction.interface import Interface
 
 _KEYS = {"name", "point", "radius", "node_set", "nodes", "dofs"}
@@ -133,7 +134,7 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
             raise InputError(f"give only one of radius, nodes, node_set (got {given}); the "
                              "interface would otherwise silently ignore one",
                              key=f"interface[{k}].{given[1]}", **where)
-        kw = {"name": name, "source": (str(path), line)}
+        kw = {"name": name, "source": (str(path), line, f"interface[{k}]")}
         if "dofs" in e:
             if e["dofs"] not in (3, 6) or isinstance(e["dofs"], bool):
                 raise InputError(f"dofs must be 3 (forces only) or 6 (forces and moments), "
@@ -156,7 +157,7 @@ def read_interfaces(path, *, node_ids=None) -> list[Interface]:
         try:
             out.append(Interface(tuple(float(v) for v in p), **kw))
         except InputError as exc:
-            raise InputError(str(exc), key=f"interface[{k}]", **where) from None
+            raise InputError(exc.message, key=f"interface[{k}]", **where) from None
     return out
 
 
@@ -165,12 +166,8 @@ def _node_indices(ids, node_ids, *, key, where):
             isinstance(v, int) and not isinstance(v, bool) for v in ids)):
         raise InputError(f"nodes must be a non-empty list of integer node ids, got {ids!r}",
                          key=key, **where)
-    if node_ids is not None:
-        pos = {int(v): i for i, v in enumerate(np.asarray(node_ids))}
-        missing = [v for v in ids if v not in pos]
-        if missing:
-            raise InputError(f"node ids {missing[:10]} are not in the mesh", key=key, **where)
-        return np.array([pos[v] for v in ids], dtype=np.int64)
+    if node_ids is not None:  # the error names the valid ids and the nearest ones
+        return index_of_ids(node_ids, ids, key=key, **where)
     if min(ids) < 0:
         raise InputError(f"node indices must be >= 0, got {min(ids)}", key=key, **where)
     return np.array(ids, dtype=np.int64)

@@ -49,8 +49,7 @@ def body_keys(car, run, road=None):
     if car.suspension is not None:  # every suspension mount is an interface of the body
         from flexpipe.vehicle.linkage_setup import body_mounts
 
-        key["mounts"] = [[m.name, m.point, m.radius, m.dofs, m.node_set, m.nodes]
-                         for m in body_mounts(car)]
+        key["mounts"] = [m.cache_key() for m in body_mounts(car)]
     return mass_key, "body-" + bodymodel._digest(car, key), band
 
 

@@ -57,7 +57,10 @@ class BodySpec:
     points: dict
     fatigue: object = None  # FatigueMaterial of [body.fatigue] (feat/durability)
     body_file: Path | None = None  # ready reduced body (.npz from flexpipe reduce)
-    mounts: dict = None  # {mount: {"point", "radius", "dofs", "node_set", "nodes"}} overrides
+    #: per-mount ties of ``[body.mounts.<mount>]``: {mount: {"point", "radius", "dofs",
+    #: "node_set", "node_ids" (ids of the mesh file, checked against the mesh when it is
+    #: reduced), "line" (of the table, for errors)}}
+    mounts: dict = None
 
 
 # --------------------------------------------------------------------------- readers
@@ -172,18 +175,19 @@ def read_body(doc: Table, base: Path) -> BodySpec:
             d = {"point": m.vector("point_m") if m.has("point_m") else None,
                  "radius": m.number("radius_m", None, lo=0, lo_open=True),
                  "dofs": int(m.number("dofs", 0, lo=0, hi=6)) or None,
-                 "node_set": m.string("node_set", None), "nodes": None}
-            if m.has("nodes"):
+                 "node_set": m.string("node_set", None), "node_ids": None,
+                 "line": m._line(None)}
+            if m.has("nodes"):  # ids as in the mesh file, like `flexpipe reduce --interfaces`
                 raw_nodes = m.raw("nodes")
                 if not (isinstance(raw_nodes, list) and raw_nodes and all(
-                        isinstance(v, int) and not isinstance(v, bool) and v >= 0
-                        for v in raw_nodes)):
-                    raise m.error("nodes", "expected a list of node indices (integers >= 0, "
-                                           "0-based)")
-                d["nodes"] = tuple(raw_nodes)
+                        isinstance(v, int) and not isinstance(v, bool) for v in raw_nodes)):
+                    raise m.error("nodes", "expected a non-empty list of node ids as in the "
+                                           f"mesh file (integers, e.g. Nastran GRID ids), got "
+                                           f"{raw_nodes!r}")
+                d["node_ids"] = tuple(raw_nodes)
             if d["dofs"] not in (None, 3, 6):
                 raise m.error("dofs", f"must be 3 or 6, got {d['dofs']}")
-            if sum(x is not None for x in (d["radius"], d["node_set"], d["nodes"])) > 1:
+            if sum(x is not None for x in (d["radius"], d["node_set"], d["node_ids"])) > 1:
                 raise m.error(None, "give one of radius_m, node_set or nodes")
             m.finish()
             mounts[name] = d

@@ -308,8 +308,7 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
         from flexpipe.vehicle.mounts import as_mount
 
         mounts = [as_mount(m) for m in mounts]
-        key["mounts"] = [[m.name, m.point, m.radius, m.dofs, m.node_set, m.nodes]
-                         for m in mounts]
+        key["mounts"] = [m.cache_key() for m in mounts]
         key["interface_f_max"] = interface_f_max
     key = _digest(car, key)
     path = cache_dir() / f"body-{key[:20]}.npz"

@@ -40,7 +40,8 @@ def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, 
 
 def body_mounts(car: Car) -> list:
     """The body's interfaces for a linkage car: every suspension mount, tied as
-    ``[body.mounts.<name>]`` says (point + radius, node set or node ids) or else the nodes
+    ``[body.mounts.<name>]`` says (point + radius, node set or the mesh file's node ids,
+    ``Mount.node_ids``, checked against the mesh when it is reduced) or else the nodes
     within :data:`MOUNT_RADIUS_M` of the mount point; :data:`MOUNT_DOFS` DOF unless the car
     file says otherwise (``None``: 6 where a joint or bushing needs the mount's frame, else
     3, ``Suspension.mount_dofs``)."""
@@ -59,11 +60,12 @@ def body_mounts(car: Car) -> list:
     out = []
     for name, p in points.items():
         g = given.get(name, {})
-        tie = g.get("node_set") is not None or g.get("nodes") is not None
+        tie = g.get("node_set") is not None or g.get("node_ids") is not None
+        source = (car.file, g.get("line"), f"body.mounts.{name}") if name in given else None
         out.append(Mount(name, tuple(g["point"]) if g.get("point") is not None else tuple(p),
                          radius=g.get("radius") or (None if tie else MOUNT_RADIUS_M),
                          dofs=g.get("dofs") or dofs[name], node_set=g.get("node_set"),
-                         nodes=g.get("nodes")))
+                         node_ids=g.get("node_ids"), source=source))
     return out
 
 

@@ -7,8 +7,11 @@ spring or damper seat, rack mount) and how it ties into the mesh:
   :data:`NODE_TOL`) is the interface;
 * ``point`` + ``radius``: the nodes within ``radius`` are tied to the point (RBE2 spider);
 * ``node_set`` (a named set of the mesh, e.g. a Nastran ``SET1`` preceded by
-  ``$ SET name``) or ``nodes`` (0-based node indices): those nodes are tied to ``point``,
-  or to their centroid when no point is given.
+  ``$ SET name``), ``node_ids`` (ids as in the mesh file: Nastran GRID ids, Gmsh node
+  tags; what the car file's ``[body.mounts.<mount>] nodes`` gives) or ``nodes`` (0-based
+  positions in ``Mesh.points``, as :class:`flexpipe.Interface` takes; ``Mesh.node_index``
+  turns ids into positions): those nodes are tied to ``point``, or to their centroid when
+  no point is given.
 
 ``dofs`` = 3 (forces only: ball joints, bushings, spring seats) or 6 (forces and moments).
 :func:`mount_interfaces` checks the mounts against the mesh and returns the
@@ -19,7 +22,7 @@ spring or damper seat, rack mount) and how it ties into the mesh:
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -50,7 +53,13 @@ class Mount:
     node_set : str, optional
         Tie the nodes of this named mesh node set.
     nodes : tuple of int, optional
-        Tie these nodes (0-based indices).
+        Tie these nodes, given as 0-based positions in ``Mesh.points`` (not the file's ids).
+    node_ids : tuple of int, optional
+        Tie these nodes, given by their ids in the mesh file (``Mesh.node_ids``: Nastran
+        GRID ids, Gmsh node tags, Abaqus node numbers), as the car file does.
+    source : tuple, optional
+        ``(file, line, table)`` of the car file's ``[body.mounts.<name>]`` table the tie
+        came from; errors about the mount then name that file, line and key.
     """
 
     name: str
@@ -59,6 +68,8 @@ class Mount:
     dofs: int = 3
     node_set: str | None = None
     nodes: tuple | None = None
+    node_ids: tuple | None = None
+    source: tuple | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         if not isinstance(self.name, str) or not self.name:
@@ -73,18 +84,40 @@ class Mount:
         if self.dofs not in (3, 6) or isinstance(self.dofs, bool):
             raise InputError(f"dofs must be 3 (forces only) or 6 (forces and moments), got "
                              f"{self.dofs!r}", key=f"{key}.dofs")
-        given = [k for k in ("radius", "node_set", "nodes") if getattr(self, k) is not None]
+        given = [k for k in ("radius", "node_set", "nodes", "node_ids")
+                 if getattr(self, k) is not None]
         if len(given) > 1:
-            raise InputError(f"give one of radius, node_set, nodes (got {given})", key=key)
-        if self.point is None and not ({"node_set", "nodes"} & set(given)):
-            raise InputError("give a point (with an optional radius), a node_set or nodes",
+            raise InputError(f"give one of radius, node_set, nodes, node_ids (got {given})",
                              key=key)
+        if self.point is None and not ({"node_set", "nodes", "node_ids"} & set(given)):
+            raise InputError("give a point (with an optional radius), a node_set, nodes or "
+                             "node_ids", key=key)
         if self.radius is not None and not (np.isfinite(self.radius) and self.radius > 0):
             raise InputError(f"radius must be a positive length in m, got {self.radius!r}",
                              key=f"{key}.radius")
-        if self.nodes is not None:
-            object.__setattr__(self, "nodes",
-                               tuple(int(i) for i in np.asarray(self.nodes).reshape(-1)))
+        for k in ("nodes", "node_ids"):
+            v = getattr(self, k)
+            if v is not None:
+                a = np.asarray(v).reshape(-1)
+                if a.dtype == bool or (a.size and not np.issubdtype(a.dtype, np.integer)):
+                    raise InputError(f"{k} must be integers, got {list(a)[:10]}",
+                                     key=f"{key}.{k}")
+                object.__setattr__(self, k, tuple(int(i) for i in a))
+
+    def cache_key(self) -> list:
+        """The fields that decide the reduced body (for the body cache's key)."""
+        out = [self.name, self.point, self.radius, self.dofs, self.node_set, self.nodes]
+        return out if self.node_ids is None else out + [list(self.node_ids)]
+
+    def where(self, field: str | None = None, *, file=None) -> dict:
+        """``file``, ``line`` and ``key`` of an error about ``field`` of this mount: its
+        car-file table (``source``) when it has one, else ``file`` and ``mounts.<name>``."""
+        if self.source is None:
+            return {"file": file, "key": f"mounts.{self.name}" + (f".{field}" if field else "")}
+        src, line, table = self.source
+        car_key = {"point": "point_m", "radius": "radius_m", "node_ids": "nodes"}
+        return {"file": src, "line": line,
+                "key": table + (f".{car_key.get(field, field)}" if field else "")}
 
 
 def as_mount(m) -> Mount:
@@ -93,10 +126,11 @@ def as_mount(m) -> Mount:
     if isinstance(m, Mount):
         return m
     if isinstance(m, dict):
-        unknown = set(m) - {"name", "point", "radius", "dofs", "node_set", "nodes"}
+        unknown = set(m) - {"name", "point", "radius", "dofs", "node_set", "nodes", "node_ids"}
         if unknown:
             raise InputError(f"unknown mount keys {sorted(unknown)}; valid: name, point, "
-                             "radius, dofs, node_set, nodes", key=f"mounts.{m.get('name')}")
+                             "radius, dofs, node_set, nodes, node_ids",
+                             key=f"mounts.{m.get('name')}")
         return Mount(**m)
     if isinstance(m, (tuple, list)) and 2 <= len(m) <= 4:
         return Mount(*m)
@@ -112,7 +146,10 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
     ------
     InputError
         A point farther than :data:`OFF_BODY_TOL` from every node, a point without
-        radius that is not a node, an unknown node set, duplicate names.
+        radius that is not a node, an unknown node set, node ids that are not in the mesh
+        (the valid range and the nearest ids named), positions out of range, duplicate
+        names.  A mount read from the car file (``Mount.source``) is named by its file,
+        line and key there, else by ``file`` and ``mounts.<name>``.
     """
     from flexpipe.reduction import Interface
 
@@ -120,21 +157,29 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
     sets = getattr(mesh, "node_sets", {}) or {}
     out, seen = [], set()
     for m in map(as_mount, mounts):
-        key = f"mounts.{m.name}"
         if m.name in seen:
-            raise InputError(f"mount name {m.name!r} is used twice", file=file, key=key)
+            raise InputError(f"mount name {m.name!r} is used twice", **m.where(file=file))
         seen.add(m.name)
         point = m.point
         if m.node_set is not None:
             if m.node_set not in sets:
                 raise InputError(f"the body mesh has no node set {m.node_set!r}; valid: "
-                                 f"{sorted(sets)[:40]}", file=file, key=f"{key}.node_set")
+                                 f"{sorted(sets)[:40]}", **m.where("node_set", file=file))
             idx = np.asarray(sets[m.node_set], dtype=np.int64)
+        elif m.node_ids is not None:
+            if not hasattr(mesh, "node_index"):
+                raise InputError("node ids need the body as a flexpipe.mesh.Mesh (its "
+                                 "node_ids), not an array of node positions; give nodes= "
+                                 "(0-based positions) instead", **m.where("node_ids", file=file))
+            if not m.node_ids:
+                raise InputError("node_ids is empty", **m.where("node_ids", file=file))
+            idx = mesh.node_index(m.node_ids, **m.where("node_ids", file=file))
         elif m.nodes is not None:
             idx = np.asarray(m.nodes, dtype=np.int64)
             if idx.size == 0 or idx.min() < 0 or idx.max() >= len(X):
-                raise InputError(f"node indices must lie in [0, {len(X)}), got "
-                                 f"{list(m.nodes)[:10]}", file=file, key=f"{key}.nodes")
+                raise InputError(f"node positions (0-based) must lie in [0, {len(X)}), got "
+                                 f"{list(m.nodes)[:10]}; for the mesh file's node ids give "
+                                 "node_ids", **m.where("nodes", file=file))
         else:
             idx = None
         if point is None:
@@ -145,12 +190,12 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
             raise InputError(
                 f"mount point {tuple(np.round(point, 4))} m is off the body: the nearest body "
                 f"node is {d[k]:.3f} m away at {tuple(np.round(X[k], 4))}; a mount must lie "
-                f"within {OFF_BODY_TOL} m of the structure", file=file, key=f"{key}.point")
+                f"within {OFF_BODY_TOL} m of the structure", **m.where("point", file=file))
         if idx is None and m.radius is None and d[k] > NODE_TOL:
             raise InputError(
                 f"mount point {tuple(np.round(point, 4))} m is not a mesh node (nearest "
                 f"{d[k] * 1e3:.1f} mm away); give a radius to tie the nodes around it",
-                file=file, key=f"{key}.radius")
+                **m.where("radius", file=file))
         if idx is not None:
             out.append(Interface(point, nodes=idx, name=m.name, dofs=m.dofs))
         elif m.radius is not None:
