@@ -14,6 +14,7 @@ Examples::
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -94,7 +95,9 @@ def run(args) -> int:
                "interfaces)", args.quiet):
         body = reduce(fe, interfaces, method=args.method, n_modes=args.n_modes,
                       f_max=args.f_max, damping=args.damping, check=not args.no_check,
-                      stress=args.stress, interface_f_max=args.interface_f_max)
+                      stress=args.stress, interface_f_max=args.interface_f_max,
+                      log=None if args.quiet else
+                      (lambda line: print(f"  {line}", file=sys.stderr, flush=True)))
     body.save(out)
     print(info_text(body, path=out))
     if args.vtu:

@@ -93,7 +93,7 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
            f_max: float | None = None, *, damping=None, check: bool = False,
            backend: str | None = None, tol: float | None = None,
            cb_factor: float = CB_FACTOR, stress: str | None = None,
-           interface_f_max: float | None = None) -> FlexBody:
+           interface_f_max: float | None = None, log=None) -> FlexBody:
     """Reduce an FE model to a :class:`FlexBody` by component mode synthesis.
 
     Parameters
@@ -128,6 +128,9 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
         modes up to this frequency (Hz) instead of every static constraint mode, plus
         (with ``f_max``) the inertia vectors of those up to ``INERTIA_FACTOR * f_max``;
         each interface's ``residual_compliance`` holds the static flexibility dropped.
+    log : callable, optional
+        ``log(line)`` as each stage ends (its name, seconds and the time so far): the
+        progress of a reduction that takes minutes.
 
     Returns
     -------
@@ -136,13 +139,35 @@ def reduce(fe: FEModel, interfaces, method: str = "craig-bampton", n_modes: int 
     with dense_single_threaded():
         return _reduce(fe, interfaces, method, n_modes, f_max, damping=damping, check=check,
                        backend=backend, tol=tol, cb_factor=cb_factor, stress=stress,
-                       interface_f_max=interface_f_max)
+                       interface_f_max=interface_f_max, log=log)
+
+
+#: what each stage of :func:`reduce` did (its ``timings`` key -> words for the log)
+_STAGES = {"interfaces_s": "interfaces resolved", "partition_s": "matrices partitioned",
+           "factor_s": "K_ii factorized", "static_s": "static (constraint) modes",
+           "eigen_s": "fixed-interface normal modes", "basis_s": "basis complete",
+           "expand_s": "modes orthonormalized and expanded", "check_s": "full-model check",
+           "stress_s": "stress modes"}
+
+
+class _Timings(dict):
+    """The stage timings of :func:`reduce`, logging each as it is set."""
+
+    def __init__(self, log):
+        super().__init__()
+        self._log, self._t0 = log, time.perf_counter()
+
+    def __setitem__(self, key, seconds):
+        super().__setitem__(key, seconds)
+        if self._log is not None:
+            self._log(f"{_STAGES.get(key, key)}: {seconds:.1f} s "
+                      f"({time.perf_counter() - self._t0:.1f} s so far)")
 
 
 def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, tol,
-            cb_factor, stress=None, interface_f_max=None):
+            cb_factor, stress=None, interface_f_max=None, log=None):
     t0 = time.perf_counter()
-    timings = {}
+    timings = _Timings(log)
     if not isinstance(fe, FEModel):
         raise InputError(f"fe must be an FEModel (flexpipe.assemble), got {type(fe).__name__}")
     key = str(method).strip().lower()

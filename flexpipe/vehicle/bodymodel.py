@@ -327,13 +327,15 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
                                file=car.file)
     else:
         itf = corner_interfaces(car, fe.nodes)
+    log(f"  assembled {fe.n_dof} DOF in {time.perf_counter() - t0:.1f} s")
+    stage = {"log": lambda line: log("  " + line)}  # progress of a minutes-long reduction
     if method == "craig-bampton":  # the car's own cut-off for fixed-interface modes
         body = reduce(fe, itf, method=method, f_max=f_max, cb_factor=cutoff / f_max,
                       damping=modal_damping(car), stress=STRESS_MODES,
-                      interface_f_max=interface_f_max)
+                      interface_f_max=interface_f_max, **stage)
     else:
         body = reduce(fe, itf, method=method, f_max=cutoff, damping=modal_damping(car),
-                      stress=STRESS_MODES)
+                      stress=STRESS_MODES, **stage)
     seconds = time.perf_counter() - t0
     log(f"  {fe.n_dof} DOF -> {body.n_elastic} elastic modes "
         f"({body.frequencies_hz[body.n_rigid]:.1f}-{body.frequencies_hz[-1]:.0f} Hz) "
