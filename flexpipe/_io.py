@@ -266,16 +266,22 @@ def stage_directory(out) -> Path:
     InputError
         ``out`` is a file, or a folder holding files that are not a flexpipe run.
     """
+    return staging_folder(check_run_folder(out))
+
+
+def staging_folder(dest) -> Path:
+    """An empty staging folder ``.NAME.staging-PID`` next to ``dest`` (created with its
+    parent); staging folders left by processes that no longer run are removed."""
     import shutil
 
-    out = check_run_folder(out)
-    parent = out.resolve().parent
+    dest = Path(dest)
+    parent = dest.resolve().parent
     parent.mkdir(parents=True, exist_ok=True)
-    for old in parent.glob(f".{out.name}.staging-*"):
+    for old in parent.glob(f".{dest.name}.staging-*"):
         pid = old.name.rsplit("-", 1)[-1]
         if pid.isdigit() and not _alive(int(pid)):
             shutil.rmtree(old, ignore_errors=True)
-    stage = parent / f".{out.name}.staging-{os.getpid()}"
+    stage = parent / f".{dest.name}.staging-{os.getpid()}"
     shutil.rmtree(stage, ignore_errors=True)
     stage.mkdir()
     return stage

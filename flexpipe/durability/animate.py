@@ -21,7 +21,6 @@ holds exactly one animation (no frames of an earlier, denser or interrupted one)
 
 from __future__ import annotations
 
-import os
 import re
 import shutil
 from pathlib import Path
@@ -172,7 +171,7 @@ def stage_animation(dest) -> Path:
     InputError
         ``dest`` is a file, or a folder holding other files.
     """
-    from flexpipe._io import _alive
+    from flexpipe._io import staging_folder
 
     dest = Path(dest)
     if dest.exists():
@@ -184,16 +183,7 @@ def stage_animation(dest) -> Path:
             raise InputError(f"the folder holds files that are not an animation's ({other[:3]});"
                              " the animation replaces its folder as a whole: choose a new, "
                              "empty or animation folder as --dest", file=dest, key="dest")
-    parent = dest.resolve().parent
-    parent.mkdir(parents=True, exist_ok=True)
-    for old in parent.glob(f".{dest.name}.staging-*"):
-        pid = old.name.rsplit("-", 1)[-1]
-        if pid.isdigit() and not _alive(int(pid)):
-            shutil.rmtree(old, ignore_errors=True)
-    stage = parent / f".{dest.name}.staging-{os.getpid()}"
-    shutil.rmtree(stage, ignore_errors=True)
-    stage.mkdir()
-    return stage
+    return staging_folder(dest)
 
 
 def write_animation(out, run, body, *, scale: float = 1.0, every: int = 1,
