@@ -407,7 +407,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
         # the car's ground reactions at rest (every mass: body, wheels, a linkage's parts,
-        # rack and anti-roll-bar arms), the loads flexpipe info prints; they sum to m g
+        # rack and anti-roll-bar arms), the loads flexpipe info prints; they sum to m g.
+        # They are the zero-warp loads of the mass distribution: a prismatic car given
+        # unequal spring_preload_N values (corner weights) settles to other loads
         "static_wheel_load_N": np.asarray(static_N, dtype=float).tolist(),
         "cpu_python_step_s": float(python_cpu), "wall_python_step_s": float(python_wall),
         "cpu_settle_s": float(start[2]) if start is not None else 0.0,
