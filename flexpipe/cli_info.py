@@ -32,11 +32,14 @@ TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [
          "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg) or path "
          "(.toml with a [path] table) file, or a mesh (.bdf, .inp, .msh, .vtu, ...)")
 
-#: TOML files info does not describe: (tables that tell them, what they are, their use)
+#: TOML files info does not describe: (tables that tell them, what they are, their use),
+#: tried in order.  Any file with a [sweep] table is a sweep, whatever its design (a grid
+#: or Latin hypercube has [parameters], a list [[runs]]), but the half-car parameters
+#: (cars/halfcar_paper.toml) carry a [sweep] table beside [table1], so [table1] comes first.
 _OTHER_TOML = (
-    (("sweep", "parameters"), "sweep", "run it with flexpipe sweep FILE"),
     (("table1",), "half-car parameter", "read by flexpipe.halfcar.params.load_params for "
                                         "make paper"),
+    (("sweep",), "sweep", "run it with flexpipe sweep FILE"),
     (("steering", "speed"), "driver", "read by simulate(..., driver=FILE)"),
 )
 

@@ -114,6 +114,32 @@ def test_info_on_another_toml_file_says_what_it_is(capsys, tmp_path, name, words
     assert "missing required key" not in err
 
 
+def test_info_on_a_list_design_sweep_says_it_is_a_sweep(capsys, tmp_path):
+    """Finding: a list-design sweep ([sweep] design = "list", [road], [[runs]], no
+    [parameters]) was taken for a road file ("key 'runs': expected a single [road]
+    table"); any file with a [sweep] table is a sweep."""
+    path = tmp_path / "list_sweep.toml"
+    path.write_text(f"""[sweep]
+car = "{(ROOT / 'cars' / 'sedan.toml').as_posix()}"
+design = "list"
+
+[road]
+type = "iso8608"
+road_class = "C"
+
+[[runs]]
+speed_kmh = 50.0
+
+[[runs]]
+speed_kmh = 80.0
+""")
+    assert main(["info", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"flexpipe info: error: {path}: ") and "\n" not in err
+    assert "is a sweep file" in err and "flexpipe sweep" in err, err
+    assert "expected a single [road] table" not in err
+
+
 def test_info_help_lists_every_kind_of_file_it_takes(capsys):
     """``info`` takes a reduced body, a car, road or path file and a mesh; its help says
     so (and that --vtu and --mac-size are for reduced bodies)."""

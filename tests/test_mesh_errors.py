@@ -326,6 +326,43 @@ def test_material_check_follows_the_stated_units(tmp_path):
         read_mesh(BRACKET, units="mm-t-s")       # stated explicitly: a warning only
 
 
+def _steel_tet_and_bar(bar_mat, tet_mat="MAT1,1,2.1+11,,0.3,7850."):
+    """A steel tetrahedron (MAT1 1) with a connector bar of ``bar_mat`` (MAT1 2)."""
+    return _deck(*TET, "GRID,5,,2.,0.,0.", "CTETRA,1,1,1,2,3,4", "PSOLID,1,1",
+                 "CBAR,2,2,2,5,0.,0.,1.", "PBAR,2,2,1.-4,2.-9,3.-9,4.-9", tet_mat, bar_mat)
+
+
+@pytest.mark.parametrize("bar_mat, speed", [("MAT1,2,2.1+14,,0.3,7.85", "5.17e+06"),
+                                            ("MAT1,2,2.1+14,,0.3,7850.", "1.64e+05")])
+def test_stiff_dummy_bar_material_beside_steel_is_a_warning(tmp_path, bar_mat, speed):
+    """Finding: one stiff dummy material (connector bars: E 1000 x steel's, or
+    nearly massless) in an SI deck was a MeshError; it is valid, so a warning naming the
+    file, line, card, values and speed, and the steel is read as it is."""
+    p = _write(tmp_path, "dummy.bdf", _steel_tet_and_bar(bar_mat))
+    E, rho = (float(x.replace("+", "e+")) for x in bar_mat.split(",")[2:6:3])
+    values = re.escape(f"MAT1 2: E = {E:g} and RHO = {rho:g} ")
+    with pytest.warns(MeshWarning, match=rf"dummy.bdf line 12: {values}.*sqrt\(E/RHO\) = "
+                                         rf"{re.escape(speed)} m/s; valid: 10 to 50000") as rec:
+        mesh = read_mesh(p)
+    assert len([w for w in rec if "wave speed" in str(w.message)]) == 1   # MAT1 1 is fine
+    assert "mm-t-s" not in str(rec[0].message) and "looks like" not in str(rec[0].message)
+    assert mesh.n_nodes == 5
+
+
+def test_every_material_off_the_same_way_is_a_unit_slip_error(tmp_path):
+    """A whole deck with RHO in t/mm^3 (every material above the range) stays an error,
+    naming the first card and the others; materials off on both sides only warn."""
+    text = _steel_tet_and_bar("MAT1,2,2.1+14,,0.3,7.85-9", "MAT1,1,2.1+11,,0.3,7.85-9")
+    with pytest.raises(MeshError, match=r"slip2.bdf, line 11: MAT1 1: .*= 5.17e\+09 m/s; "
+                                        r"valid: 10 to 50000 m/s.*other materials.*MAT1 2 "
+                                        r"\(1.64e\+11 m/s\).*RHO looks like t/mm\^3"):
+        read_mesh(_write(tmp_path, "slip2.bdf", text))
+    text = _steel_tet_and_bar("MAT1,2,2.1+14,,0.3,7.85", "MAT1,1,2.1+5,,0.3,7850.")
+    with pytest.warns(MeshWarning, match="wave speed") as rec:
+        read_mesh(_write(tmp_path, "both.bdf", text))
+    assert len([w for w in rec if "wave speed" in str(w.message)]) == 2
+
+
 @pytest.mark.parametrize("name", sorted(p.name for p in BRACKET.parent.iterdir()
                                         if p.suffix in (".bdf", ".msh")))
 def test_shipped_meshes_pass_the_material_check(name):

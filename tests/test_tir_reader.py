@@ -268,6 +268,21 @@ def test_coefficient_sign_fixed_by_physics_names_file_line_key_and_range(tmp_pat
     assert valid in msg
 
 
+def test_relaxation_sign_message_states_the_same_sign_rule(tmp_path):
+    """Finding: the message said "PTY1 > 0 and PTY2 > 0" while the check (rightly)
+    accepts both negative: the rule is that they have the same sign."""
+    path, line_no = _with(tmp_path, "PTY2", "-1.8")
+    with pytest.raises(InputError) as exc:
+        read_tir(path)
+    msg = str(exc.value)
+    assert str(path) in msg and f"line {line_no}" in msg and "key 'PTY2'" in msg
+    assert "same sign" in msg and "both < 0" in msg and "PTY2 = -1.8" in msg
+    text, n = re.subn(r"^(PTY[12]\s*=\s*)(\S+)", r"\g<1>-\g<2>", SAMPLE.read_text(),
+                      flags=re.M)
+    assert n == 2
+    read_tir(_write(tmp_path, text, "both_negative.tir"))   # same sign: accepted
+
+
 def test_wrong_cornering_stiffness_sign_message_gives_the_convention(tmp_path):
     path, _ = _with(tmp_path, "PKY1", "18.0")
     with pytest.raises(InputError, match=r"Ky = \+.* N/rad.*ISO/Adams W-axes.*negative Fy"):

@@ -20,8 +20,10 @@ per radian ...), like the materials.
 
 :func:`check_wave_speeds` then checks each material card the model uses (the reader's
 ``Mesh.info["materials"]``, Nastran MAT1/MAT8): its bar wave speed ``sqrt(E / rho)`` in
-the model's SI units must be one of a solid (:data:`WAVE_SPEED_RANGE`), which catches E or
-RHO given in another unit system than the rest of the deck.
+the model's SI units should be one of a solid (:data:`WAVE_SPEED_RANGE`).  A card outside
+it is a warning (decks use stiff or massless dummy materials for connector bars); every
+material outside it on the same side is an error, a unit slip of the whole deck (E or RHO
+given in another unit system, a mm-t-s deck read as SI).
 """
 
 from __future__ import annotations
@@ -190,14 +192,26 @@ def check_wave_speeds(mesh, system: UnitSystem, *, materials: bool) -> None:
     RHO x WTMASS are taken as the model takes them: converted with ``system`` when
     ``materials`` (``units`` was given), as SI otherwise.
 
+    A single card outside :data:`WAVE_SPEED_RANGE` is not certainly wrong: production
+    decks use deliberately stiff or nearly massless dummy materials for connector bars
+    (e.g. E = 1000 x steel's with steel's density, 1.6e5 m/s).  A unit slip of the whole
+    deck, though, moves *every* material's speed the same way.
+
+    Warns
+    -----
+    MeshWarning
+        For each card outside the range that is not part of such a global slip (the
+        message names the file, line, card, E, RHO and the speed); with ``units`` or a
+        WTMASS (a stated conversion) for every card outside the range (the message says
+        when the values look like SI).
+
     Raises
     ------
     MeshError
         When the deck states no unit conversion (no ``units``, no WTMASS: E and RHO are
-        taken as SI), a speed outside :data:`WAVE_SPEED_RANGE`; the message names the
-        card, E, RHO, the speed and the likely unit slip.  With ``units`` or a WTMASS the
-        same finding is a :class:`MeshWarning` - the conversion was stated explicitly
-        (the message says when the values look like SI).
+        taken as SI) and every material the model uses lies outside the range on the
+        same side; the message names the first card, E, RHO, the speed, the other cards
+        and the likely unit slip (e.g. read the deck with ``units='mm-t-s'``).
     """
     import warnings
 
@@ -207,27 +221,45 @@ def check_wave_speeds(mesh, system: UnitSystem, *, materials: bool) -> None:
     wtmass = float(mesh.info.get("wtmass", 1.0))
     fE = system.factor(SECTION_DIMENSIONS["E"]) if materials else 1.0
     frho = (system.factor(SECTION_DIMENSIONS["rho"]) if materials else 1.0) * wtmass
-    for name, (E, rho, file, line) in (mesh.info.get("materials") or {}).items():
-        if not (E > 0 and rho > 0):
-            continue
-        c = float(np.sqrt(E * fE / (rho * frho)))
-        if lo <= c <= hi:
-            continue
-        taken = ([f"converted from units {system.name!r}"] if materials else
-                 ["taken as SI (Pa, kg/m^3)" + ("" if wtmass != 1.0 else
-                                                ", as no units were given")])
-        if wtmass != 1.0:
-            taken.append(f"RHO times PARAM WTMASS {wtmass:g}")
-        what = (f"{name}: E = {E:g} and RHO = {rho:g} ({', '.join(taken)}) give a bar wave "
+    speeds = {name: (E, rho, file, line, float(np.sqrt(E * fE / (rho * frho))))
+              for name, (E, rho, file, line) in (mesh.info.get("materials") or {}).items()
+              if E > 0 and rho > 0}
+    out = {name: v for name, v in speeds.items() if not lo <= v[4] <= hi}
+    if not out:
+        return
+    stated = materials or wtmass != 1.0
+    taken = ([f"converted from units {system.name!r}"] if materials else
+             ["taken as SI (Pa, kg/m^3)" + ("" if wtmass != 1.0 else
+                                            ", as no units were given")])
+    if wtmass != 1.0:
+        taken.append(f"RHO times PARAM WTMASS {wtmass:g}")
+
+    def what(name):
+        E, rho, _, _, c = speeds[name]
+        return (f"{name}: E = {E:g} and RHO = {rho:g} ({', '.join(taken)}) give a bar wave "
                 f"speed sqrt(E/RHO) = {c:.3g} m/s; valid: {lo:g} to {hi:g} m/s, the range "
                 "of solid materials (soft rubber ~30, steel 5200, diamond 18000)")
-        if materials or wtmass != 1.0:      # a stated conversion: warn, do not overrule
-            stated = f"units {system.name!r}" if materials else f"WTMASS {wtmass:g}"
-            hint = (f"the values look like SI (m-kg-s) ones: check {stated}"
-                    if lo <= np.sqrt(E / rho) <= hi else f"check E, RHO and {stated}")
-            warnings.warn(MeshWarning(f"{file} line {line}: {what}; {hint}"), stacklevel=3)
-            continue
-        r = np.log10(c / _STEEL_C)
+
+    sides = {v[4] > hi for v in out.values()}
+    if not stated and len(out) == len(speeds) and len(sides) == 1:
+        # every material off the same way: a unit slip of the whole deck
+        name, (_, _, file, line, _) = next(iter(out.items()))
+        others = [f"{n} ({v[4]:.3g} m/s)" for n, v in out.items() if n != name]
+        also = (f"; so do all the other materials the model uses: {', '.join(others[:5])}"
+                f"{', ...' if len(others) > 5 else ''}" if others else "")
+        r = float(np.median([np.log10(v[4] / _STEEL_C) for v in out.values()]))
         f, hint = min(_SLIPS, key=lambda fs: abs(np.log10(fs[0]) - r))
         hint = hint if abs(np.log10(f) - r) < 1.0 else "check the units of E and RHO"
-        raise MeshError(f"{what}; {hint}", file=file, line=line)
+        raise MeshError(f"{what(name)}{also}; {hint}", file=file, line=line)
+    for name, (E, rho, file, line, c) in out.items():
+        if stated:      # a stated conversion: warn, do not overrule
+            how = f"units {system.name!r}" if materials else f"WTMASS {wtmass:g}"
+            hint = (f"the values look like SI (m-kg-s) ones: check {how}"
+                    if lo <= np.sqrt(E / rho) <= hi else f"check E, RHO and {how}")
+        else:           # other materials are solid: a deliberate dummy, not a unit slip
+            kind = "stiff or light" if c > hi else "soft or heavy"
+            hint = (f"accepted as a deliberately {kind} material (e.g. a dummy connector "
+                    "bar), since not every material of the model is off the same way (a "
+                    "unit slip of the whole deck would move them all); check E and RHO if "
+                    "it is not meant to be")
+        warnings.warn(MeshWarning(f"{file} line {line}: {what(name)}; {hint}"), stacklevel=3)

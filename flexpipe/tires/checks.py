@@ -223,9 +223,10 @@ def _check_mf_signs(path, sections, lines, value, fail, *, long_: bool, lat: boo
         pty2 = value("LATERAL_COEFFICIENTS", "PTY2")
         if pty1 and pty2 and pty1 * pty2 < 0.0:
             key, v = ("PTY1", pty1) if pty1 < 0.0 else ("PTY2", pty2)
-            fail("LATERAL_COEFFICIENTS", key, v, "PTY1 > 0 and PTY2 > 0 (the lateral "
-                 "relaxation length PTY1 sin(2 atan(Fz/(PTY2 Fz0))) R0 is a length, about "
-                 "1-3 R0; one of them negative makes it negative)")
+            fail("LATERAL_COEFFICIENTS", key, v, "PTY1 and PTY2 of the same sign (PTY1 > 0 "
+                 f"with PTY2 > 0, the usual fit, or both < 0; got PTY1 = {pty1:g}, PTY2 = "
+                 f"{pty2:g}): the lateral relaxation length PTY1 sin(2 atan(Fz/(PTY2 Fz0))) "
+                 "R0 is a length, about 1-3 R0; opposite signs make it negative")
     if long_:
         # rolling resistance My = -R0 Fz (QSY1 + ...) tanh(Vx/VXLOW) opposes the rolling
         # (fits: QSY1 about 0.005-0.02); a negative QSY1 would push the wheel forward
