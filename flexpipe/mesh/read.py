@@ -128,8 +128,9 @@ def read_mesh(path, scale: float = 1.0, *, units: str | None = None, thickness=N
     ------
     MeshError
         Unreadable or corrupt file, unsupported element type, duplicate ids, NaN
-        coordinates, unreferenced nodes, inverted or degenerate elements, a material
-        whose E / rho is no solid's in SI units (without ``units``; see
+        coordinates, unreferenced nodes, inverted or degenerate elements, every material
+        the model uses off the solids' E / rho range the same way (a unit slip of the whole
+        deck, without ``units``; a single stiff or light dummy material is a warning; see
         :func:`~flexpipe.mesh.units.check_wave_speeds`); the message names the file, the
         line where known, and the node or element id.
     """
