@@ -76,9 +76,12 @@ def toml_text(path) -> str:
     kind = toml_kind(doc)
     if kind == "car":
         from flexpipe.vehicle.describe import car_text
+        from flexpipe.vehicle.mounts import check_mount_node_ids
         from flexpipe.vehicle.spec import load_car
 
-        return car_text(load_car(path))
+        car = load_car(path)
+        check_mount_node_ids(car)  # mount node ids of the mesh, as a flexible run checks
+        return car_text(car)
     if kind == "road":
         from flexpipe.roads import load_road
 

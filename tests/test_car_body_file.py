@@ -73,7 +73,7 @@ def test_body_file_lacking_a_mount_is_named(tmp_path, mesh_car_runs):
 
 
 def test_mount_by_node_ids_ties_the_same_node(tmp_path):
-    """``[body.mounts] nodes`` are the mesh file's ids (GRID ids), as in an interface spec:
+    """``[body.mounts] node_ids`` are the mesh file's ids (GRID ids), as in an interface spec:
     the id of the node at the mount point ties that node, not the one after it."""
     from flexpipe.vehicle.mounts import mount_interfaces
 
@@ -84,14 +84,15 @@ def test_mount_by_node_ids_ties_the_same_node(tmp_path):
     k = int(np.argmin(np.linalg.norm(mesh.points - p, axis=1)))
     grid = int(mesh.node_ids[k])
     path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
-    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [{grid}]\ndofs = 6\n")
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnode_ids = [{grid}]\ndofs = 6\n")
     car2 = fp.load_car(path)
     m = {mm.name: mm for mm in body_mounts(car2)}[name]
     assert m.node_ids == (grid,) and m.nodes is None and m.dofs == 6 and m.radius is None
     itf = {i.name: i for i in mount_interfaces(body_mounts(car2), mesh, file=car2.file)}[name]
     assert itf.nodes == (k,) and np.allclose(mesh.points[k], p, atol=1e-6)
     # docs/car-file.md shows this very mount with its GRID id
-    assert f"[body.mounts.{name}]\nnodes = [{grid}]" in (ROOT / "docs" / "car-file.md").read_text()
+    doc = (ROOT / "docs" / "car-file.md").read_text()
+    assert f"[body.mounts.{name}]\nnode_ids = [{grid}]" in doc
 
 
 def test_mount_node_ids_not_in_the_mesh_are_named(tmp_path):
@@ -101,19 +102,71 @@ def test_mount_node_ids_not_in_the_mesh_are_named(tmp_path):
     mesh = bodymodel.body_mesh(car)
     name = "front_upper_arm_front_l"
     path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
-    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [0, 99999]\n")
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnode_ids = [0, 99999]\n")
     line = path.read_text().splitlines().index(f"[body.mounts.{name}]") + 1
     car2 = fp.load_car(path)
     with pytest.raises(InputError) as e:
         mount_interfaces(body_mounts(car2), mesh, file=car2.file)
     msg = str(e.value)
     lo, hi = int(mesh.node_ids.min()), int(mesh.node_ids.max())
-    assert str(path) in msg and f"line {line}" in msg and f"key 'body.mounts.{name}.nodes'" in msg
+    assert str(path) in msg and f"line {line}" in msg
+    assert f"key 'body.mounts.{name}.node_ids'" in msg
     assert f"{lo}..{hi}" in msg and str(mesh.n_nodes) in msg  # valid range and count
     assert f"0 -> {lo}" in msg and f"99999 -> {hi}" in msg  # nearest existing ids
-    path.write_text(path.read_text().replace("nodes = [0, 99999]", "nodes = [1.5]"))
-    with pytest.raises(InputError, match=rf"key 'body.mounts.{name}.nodes'.*node ids"):
+    path.write_text(path.read_text().replace("node_ids = [0, 99999]", "node_ids = [1.5]"))
+    with pytest.raises(InputError, match=rf"key 'body.mounts.{name}.node_ids'.*node ids"):
         fp.load_car(path)
+
+
+def test_old_mount_key_nodes_is_a_migration_error(tmp_path):
+    """``nodes`` meant 0-based positions, then file ids: a car file that still has it is an
+    error naming the file, line and key and telling to give the deck's ids as node_ids."""
+    name = "front_upper_arm_front_l"
+    path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnodes = [5530]\n")
+    line = path.read_text().splitlines().index("nodes = [5530]") + 1
+    with pytest.raises(InputError) as e:
+        fp.load_car(path)
+    msg = str(e.value)
+    assert str(path) in msg and f"line {line}" in msg and f"key 'body.mounts.{name}.nodes'" in msg
+    assert "no longer accepted" in msg and "node_ids" in msg and "from your deck" in msg
+
+
+def _bad_id_car(tmp_path) -> tuple:
+    name = "front_upper_arm_front_l"
+    path = _variant(tmp_path, f'mesh = "{ROOT}/meshes/sedan_biw.bdf"')
+    path.write_text(path.read_text() + f"\n[body.mounts.{name}]\nnode_ids = [99999]\n")
+    line = path.read_text().splitlines().index(f"[body.mounts.{name}]") + 1
+    return path, f"line {line}", f"key 'body.mounts.{name}.node_ids'"
+
+
+def test_bad_mount_node_ids_are_caught_by_check_run(tmp_path):
+    """Before any reduction or output: check_run (a run's and a sweep's up-front check) and
+    flexpipe info name the bad id like the reduction does; a rigid run does not need it."""
+    from flexpipe.vehicle.run_inputs import check_run
+
+    path, line, key = _bad_id_car(tmp_path)
+    hi = int(bodymodel.body_mesh(fp.load_car(CAR)).node_ids.max())
+    for body in ("flexible", "full"):
+        with pytest.raises(InputError) as e:
+            check_run(path, speed=10.0, t_end=0.1, body=body)
+        msg = str(e.value)
+        assert str(path) in msg and line in msg and key in msg and f"99999 -> {hi}" in msg
+    check_run(path, speed=10.0, t_end=0.1, body="rigid")
+
+
+def test_flexible_run_with_bad_mount_id_touches_no_output(tmp_path, capsys):
+    from flexpipe.cli import main
+
+    path, line, key = _bad_id_car(tmp_path)
+    out = tmp_path / "run"
+    code = main(["run", str(path), "--speed", "36", "--t-end", "0.1", "--body", "flexible",
+                 "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 2 and key in err and line in err and "99999" in err
+    assert not out.exists() and not (tmp_path / "run.failed").exists()
+    assert main(["info", str(path)]) == 2
+    assert key in capsys.readouterr().err
 
 
 def test_unknown_mount_name_is_an_error(tmp_path):

@@ -177,18 +177,25 @@ def read_body(doc: Table, base: Path) -> BodySpec:
                  "dofs": int(m.number("dofs", 0, lo=0, hi=6)) or None,
                  "node_set": m.string("node_set", None), "node_ids": None,
                  "line": m._line(None)}
-            if m.has("nodes"):  # ids as in the mesh file, like `flexpipe reduce --interfaces`
-                raw_nodes = m.raw("nodes")
-                if not (isinstance(raw_nodes, list) and raw_nodes and all(
-                        isinstance(v, int) and not isinstance(v, bool) for v in raw_nodes)):
-                    raise m.error("nodes", "expected a non-empty list of node ids as in the "
-                                           f"mesh file (integers, e.g. Nastran GRID ids), got "
-                                           f"{raw_nodes!r}")
-                d["node_ids"] = tuple(raw_nodes)
+            if m.has("nodes"):  # renamed: it meant 0-based positions, then file ids
+                raise m.error("nodes", "`nodes` is no longer accepted; give the mesh file's "
+                                       "node ids as `node_ids` (the ids your pre-processor "
+                                       "shows, e.g. Nastran GRID ids); the old `nodes` "
+                                       "counted positions from 0, which are id - 1 only in a "
+                                       "deck numbered 1..n without gaps, so take the ids "
+                                       "from your deck")
+            if m.has("node_ids"):  # ids as in the mesh file, like `flexpipe reduce --interfaces`
+                raw_ids = m.raw("node_ids")
+                if not (isinstance(raw_ids, list) and raw_ids and all(
+                        isinstance(v, int) and not isinstance(v, bool) for v in raw_ids)):
+                    raise m.error("node_ids", "expected a non-empty list of node ids as in "
+                                              "the mesh file (integers, e.g. Nastran GRID "
+                                              f"ids), got {raw_ids!r}")
+                d["node_ids"] = tuple(raw_ids)
             if d["dofs"] not in (None, 3, 6):
                 raise m.error("dofs", f"must be 3 or 6, got {d['dofs']}")
             if sum(x is not None for x in (d["radius"], d["node_set"], d["node_ids"])) > 1:
-                raise m.error(None, "give one of radius_m, node_set or nodes")
+                raise m.error(None, "give one of radius_m, node_set or node_ids")
             m.finish()
             mounts[name] = d
         mt.finish()

@@ -41,7 +41,8 @@ def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, 
 def body_mounts(car: Car) -> list:
     """The body's interfaces for a linkage car: every suspension mount, tied as
     ``[body.mounts.<name>]`` says (point + radius, node set or the mesh file's node ids,
-    ``Mount.node_ids``, checked against the mesh when it is reduced) or else the nodes
+    ``Mount.node_ids``, checked against the mesh by ``check_run`` and again when it is
+    reduced) or else the nodes
     within :data:`MOUNT_RADIUS_M` of the mount point; :data:`MOUNT_DOFS` DOF unless the car
     file says otherwise (``None``: 6 where a joint or bushing needs the mount's frame, else
     3, ``Suspension.mount_dofs``)."""

@@ -8,7 +8,7 @@ spring or damper seat, rack mount) and how it ties into the mesh:
 * ``point`` + ``radius``: the nodes within ``radius`` are tied to the point (RBE2 spider);
 * ``node_set`` (a named set of the mesh, e.g. a Nastran ``SET1`` preceded by
   ``$ SET name``), ``node_ids`` (ids as in the mesh file: Nastran GRID ids, Gmsh node
-  tags; what the car file's ``[body.mounts.<mount>] nodes`` gives) or ``nodes`` (0-based
+  tags; what the car file's ``[body.mounts.<mount>] node_ids`` gives) or ``nodes`` (0-based
   positions in ``Mesh.points``, as :class:`flexpipe.Interface` takes; ``Mesh.node_index``
   turns ids into positions): those nodes are tied to ``point``, or to their centroid when
   no point is given.
@@ -21,6 +21,7 @@ spring or damper seat, rack mount) and how it ties into the mesh:
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -115,7 +116,7 @@ class Mount:
         if self.source is None:
             return {"file": file, "key": f"mounts.{self.name}" + (f".{field}" if field else "")}
         src, line, table = self.source
-        car_key = {"point": "point_m", "radius": "radius_m", "node_ids": "nodes"}
+        car_key = {"point": "point_m", "radius": "radius_m"}
         return {"file": src, "line": line,
                 "key": table + (f".{car_key.get(field, field)}" if field else "")}
 
@@ -205,6 +206,49 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
     return out
 
 
+@functools.lru_cache(maxsize=4)
+def _mesh_node_ids(path: str, stamp: tuple, scale: float, units, thickness) -> np.ndarray:
+    """The node ids of a mesh file, read once per file version (``stamp``: mtime, size)
+    so that a sweep's checks of many runs on one body read its mesh once."""
+    from flexpipe.mesh import read_mesh
+
+    return read_mesh(path, scale, units=units, thickness=thickness,
+                     check_coincident=False).node_ids
+
+
+def check_mount_node_ids(car) -> None:
+    """Check the car file's ``[body.mounts.<mount>] node_ids`` against the body mesh's node
+    ids before any output is written (the reduction checks them again, with the same
+    message).  Reads the mesh only when a mount gives node ids.
+
+    Raises
+    ------
+    InputError
+        Ids that are no node of the mesh, named by the car file, the line of the
+        ``[body.mounts.<mount>]`` table and the key ``body.mounts.<mount>.node_ids``,
+        with the valid id range, the node count and the nearest existing ids.
+    MeshError
+        The body mesh cannot be read.
+    """
+    from flexpipe.mesh.mesh import index_of_ids
+
+    body = car.body
+    given = {n: g for n, g in (body.mounts or {}).items() if g.get("node_ids") is not None}
+    if not given or body.mesh is None:
+        return
+    path = Path(body.mesh)
+    try:
+        st = path.stat()
+        stamp = (st.st_mtime_ns, st.st_size)
+    except OSError:
+        stamp = None  # read_mesh names the missing file
+    ids = _mesh_node_ids(str(path), stamp, body.mesh_scale, body.mesh_units,
+                         body.shell_thickness)
+    for name, g in given.items():
+        index_of_ids(ids, g["node_ids"], file=car.file, line=g.get("line"),
+                     key=f"body.mounts.{name}.node_ids")
+
+
 def read_hardpoints(path) -> dict:
     """``{name: (x, y, z)}`` from the ``$ HARDPOINT name x y z`` comments of a deck."""
     path = Path(path)
@@ -224,5 +268,5 @@ def read_hardpoints(path) -> dict:
     return out
 
 
-__all__ = ["Mount", "NODE_TOL", "OFF_BODY_TOL", "as_mount", "mount_interfaces",
-           "read_hardpoints"]
+__all__ = ["Mount", "NODE_TOL", "OFF_BODY_TOL", "as_mount", "check_mount_node_ids",
+           "mount_interfaces", "read_hardpoints"]

@@ -126,8 +126,9 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
               inertia_coupling: str = "auto") -> RunArguments:
     """Check the arguments of :func:`~flexpipe.vehicle.simulation.simulate` (same meaning,
     same units: speed in m/s, times in s) without reducing or integrating anything: the
-    numbers, the body model, the car, road, path and driver files, and that the road
-    and path are long enough.
+    numbers, the body model, the car, road, path and driver files, that the road
+    and path are long enough, and for a flexible or full body that the car file's mount
+    ``node_ids`` are nodes of the body mesh (which reads the mesh when a mount gives ids).
 
     Raises
     ------
@@ -160,6 +161,10 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         raise InputError(f"body='{body}' needs a body mesh; this car has only rigid mass "
                          "properties ([body.rigid]); use body='rigid'", file=car.file,
                          key="body.mesh")
+    if body != "rigid":  # the mount ids, before a run writes anything (not at reduction)
+        from flexpipe.vehicle.mounts import check_mount_node_ids
+
+        check_mount_node_ids(car)
     if f_max is not None:
         f_max = checked_number(f_max, "f_max", lo=0.0, hi=5000.0)
     rates = np.asarray(initial_rates, dtype=float).reshape(-1)
