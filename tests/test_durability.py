@@ -331,6 +331,28 @@ def test_animation_folder_is_replaced_as_a_whole(straight, tmp_path, monkeypatch
     assert "notes.txt" in str(e.value) and (other / "notes.txt").read_text() == "keep"
 
 
+def test_animation_folder_with_hidden_files_of_others_is_refused(tmp_path):
+    """Only the animation's own temporary files may be hidden: a folder holding ``.git``
+    and ``.env`` is refused (replacing it would delete them), one holding a temporary
+    frame of :func:`flexpipe._io.atomic_path` is accepted."""
+    from flexpipe.durability.animate import stage_animation
+    from flexpipe.errors import InputError
+
+    dest = tmp_path / "repo"
+    (dest / ".git").mkdir(parents=True)
+    (dest / ".env").write_text("SECRET=1")
+    with pytest.raises(InputError) as e:
+        stage_animation(dest)
+    assert str(dest) in str(e.value) and "dest" in str(e.value)
+    assert ".git" in str(e.value) and (dest / ".env").read_text() == "SECRET=1"
+    anim = tmp_path / "anim"
+    anim.mkdir()
+    for name in ("animation.pvd", "body_00001.vtu", ".body_00002.vtu.k3_9xq0a.vtu"):
+        (anim / name).write_text("")
+    stage = stage_animation(anim)
+    assert stage.is_dir() and stage.name.startswith(".anim.staging-")
+
+
 def _copy_run(out, dest):
     import shutil
 
