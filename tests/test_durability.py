@@ -376,6 +376,27 @@ def test_summary_describes_what_stress_and_animate_rewrote(straight, tmp_path):
     assert not list(out.glob(".summary.json.*"))  # the temp file was renamed
 
 
+def test_interrupted_stress_report_leaves_the_previous_one(straight, tmp_path, monkeypatch):
+    """``stress/`` is replaced as a whole: an error after some files of the new report are
+    written leaves the previous report (files and stress_summary.json) and no staging
+    folder."""
+    import flexpipe.durability.report as R
+    from flexpipe.durability.pipeline import stress_outputs
+
+    out = _copy_run(straight[0], tmp_path / "run")
+    before = {p.name: p.read_bytes() for p in (out / "stress").iterdir()}
+    assert "hotspots.csv" in before and "stress_summary.json" in before
+
+    def broken(*a, **k):
+        raise RuntimeError("injected")
+
+    monkeypatch.setattr(R, "write_png", broken)
+    with pytest.raises(RuntimeError, match="injected"):
+        stress_outputs(out, top=2, fatigue=False, log=lambda *a: None)
+    assert {p.name: p.read_bytes() for p in (out / "stress").iterdir()} == before
+    assert not list(out.glob(".stress.*"))
+
+
 @pytest.fixture(scope="module")
 def short_runs(straight, tmp_path_factory):
     """Short runs that reuse the reduced body cached by ``straight`` (its FLEXPIPE_CACHE):
