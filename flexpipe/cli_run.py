@@ -177,6 +177,7 @@ def _check_step_arguments(args, *, h: float, t_end: float) -> None:
     """``--t-from`` (only with ``--check-step``) and, for ``--check-step``, the window
     ``--t-from`` .. ``--t-end`` and the finest step h/4, in the options' terms."""
     from flexpipe.errors import InputError
+    from flexpipe.scenarios.runner import HUB_COMPARE_FRACTION, HUB_COMPARE_FROM
     from flexpipe.vehicle.convergence import DEFAULT_T_FROM
     from flexpipe.vehicle.run_inputs import H_MIN, T_END_MAX, checked_number
 
@@ -184,7 +185,8 @@ def _check_step_arguments(args, *, h: float, t_end: float) -> None:
         if getattr(args, "t_from", None) is not None:
             raise InputError("--t-from is the start of --check-step's comparison window; "
                              "give it with --check-step (a run compares rigid and flexible "
-                             "after 0.5 s)", key="t_from")
+                             f"from min({HUB_COMPARE_FROM:g} s, {HUB_COMPARE_FRACTION:g} x "
+                             "--t-end))", key="t_from")
         return
     t_from = DEFAULT_T_FROM if args.t_from is None else checked_number(
         args.t_from, "--t-from", lo=0.0, hi=T_END_MAX, lo_closed=True, unit="s", key="t_from")
@@ -206,8 +208,10 @@ def _print_profile(summary: dict) -> None:
     if not prof:
         return
     bodies = list(prof)
+    from flexpipe.exu import MODULES
+
     module = summary.get("exudyn_module")
-    clock = ("CPU time" if module == "exudynCPPfast" else
+    clock = ("CPU time" if module == MODULES["fast"] else
              "wall-clock time (Exudyn's timers; a loaded machine inflates them)")
     print(f"{clock} per step, ms (Exudyn module {module})")
     print(" " * 17 + "".join(f"{b:>12s}" for b in bodies))

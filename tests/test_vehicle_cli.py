@@ -257,7 +257,7 @@ def _no_simulation(*a, **k):
     (["--check-step", "--t-end", "1", "--t-from", "1"], ["--t-from 1 s", "<= 0.999 s"]),
     (["--check-step", "--t-from", "-1"], ["--t-from", "[0, 3600] s"]),
     (["--check-step", "--h", "2e-5"], ["--h", "h/4 = 5e-06 s", "1e-05 s", "4e-05 s"]),
-    (["--t-from", "0.2"], ["--t-from", "--check-step"]),
+    (["--t-from", "0.2"], ["--t-from", "--check-step", "min(0.5 s, 0.25 x --t-end)"]),
     (["--check-step", "--t-end", "-1"], ["--t-end", "(0, 3600] s"]),
 ])
 def test_check_step_arguments_are_checked_before_any_run(tmp_path, capsys, monkeypatch,
