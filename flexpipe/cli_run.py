@@ -232,10 +232,19 @@ def _check_step(args, body: str, out: Path) -> int:
     path = None if args.path in (None, "straight") else args.path
     title = (f"{Path(args.road).name if args.road else 'flat road'}, "
              f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
-    run_step_check(args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
-                   t_end=args.t_end, body=body, h=args.h, refinements=(2, 4),
-                   t_from=args.t_from, cache=not args.no_cache, prewarp=not args.no_prewarp,
-                   inertia_coupling=args.inertia_coupling, title=title,
-                   log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
-                   report=print)
+    summary, _ = run_step_check(
+        args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
+        t_end=args.t_end, body=body, h=args.h, refinements=(2, 4), t_from=args.t_from,
+        cache=not args.no_cache, prewarp=not args.no_prewarp,
+        inertia_coupling=args.inertia_coupling, title=title,
+        log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
+        report=print)
+    if summary["status"] != 0:  # as a run that stops early: exit 1, out unchanged
+        import sys
+
+        from flexpipe._io import failed_folder
+
+        print(f"flexpipe run: stopped early ({summary['message']}); {out} is unchanged; "
+              f"this study's files are in {failed_folder(out)}", file=sys.stderr)
+        return 1
     return 0
