@@ -177,6 +177,7 @@ def _check_step_arguments(args, *, h: float, t_end: float) -> None:
     """``--t-from`` (only with ``--check-step``) and, for ``--check-step``, the window
     ``--t-from`` .. ``--t-end`` and the finest step h/4, in the options' terms."""
     from flexpipe.errors import InputError
+    from flexpipe.scenarios.runner import HUB_COMPARE_FRACTION, HUB_COMPARE_FROM
     from flexpipe.vehicle.convergence import DEFAULT_T_FROM
     from flexpipe.vehicle.run_inputs import H_MIN, T_END_MAX, checked_number
 
@@ -184,7 +185,8 @@ def _check_step_arguments(args, *, h: float, t_end: float) -> None:
         if getattr(args, "t_from", None) is not None:
             raise InputError("--t-from is the start of --check-step's comparison window; "
                              "give it with --check-step (a run compares rigid and flexible "
-                             "after 0.5 s)", key="t_from")
+                             f"from min({HUB_COMPARE_FROM:g} s, {HUB_COMPARE_FRACTION:g} x "
+                             "--t-end))", key="t_from")
         return
     t_from = DEFAULT_T_FROM if args.t_from is None else checked_number(
         args.t_from, "--t-from", lo=0.0, hi=T_END_MAX, lo_closed=True, unit="s", key="t_from")
@@ -206,8 +208,10 @@ def _print_profile(summary: dict) -> None:
     if not prof:
         return
     bodies = list(prof)
+    from flexpipe.exu import MODULES
+
     module = summary.get("exudyn_module")
-    clock = ("CPU time" if module == "exudynCPPfast" else
+    clock = ("CPU time" if module == MODULES["fast"] else
              "wall-clock time (Exudyn's timers; a loaded machine inflates them)")
     print(f"{clock} per step, ms (Exudyn module {module})")
     print(" " * 17 + "".join(f"{b:>12s}" for b in bodies))
@@ -228,10 +232,19 @@ def _check_step(args, body: str, out: Path) -> int:
     path = None if args.path in (None, "straight") else args.path
     title = (f"{Path(args.road).name if args.road else 'flat road'}, "
              f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
-    run_step_check(args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
-                   t_end=args.t_end, body=body, h=args.h, refinements=(2, 4),
-                   t_from=args.t_from, cache=not args.no_cache, prewarp=not args.no_prewarp,
-                   inertia_coupling=args.inertia_coupling, title=title,
-                   log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
-                   report=print)
+    summary, _ = run_step_check(
+        args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
+        t_end=args.t_end, body=body, h=args.h, refinements=(2, 4), t_from=args.t_from,
+        cache=not args.no_cache, prewarp=not args.no_prewarp,
+        inertia_coupling=args.inertia_coupling, title=title,
+        log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
+        report=print)
+    if summary["status"] != 0:  # as a run that stops early: exit 1, out unchanged
+        import sys
+
+        from flexpipe._io import failed_folder
+
+        print(f"flexpipe run: stopped early ({summary['message']}); {out} is unchanged; "
+              f"this study's files are in {failed_folder(out)}", file=sys.stderr)
+        return 1
     return 0

@@ -331,6 +331,28 @@ def test_animation_folder_is_replaced_as_a_whole(straight, tmp_path, monkeypatch
     assert "notes.txt" in str(e.value) and (other / "notes.txt").read_text() == "keep"
 
 
+def test_animation_folder_with_hidden_files_of_others_is_refused(tmp_path):
+    """Only the animation's own temporary files may be hidden: a folder holding ``.git``
+    and ``.env`` is refused (replacing it would delete them), one holding a temporary
+    frame of :func:`flexpipe._io.atomic_path` is accepted."""
+    from flexpipe.durability.animate import stage_animation
+    from flexpipe.errors import InputError
+
+    dest = tmp_path / "repo"
+    (dest / ".git").mkdir(parents=True)
+    (dest / ".env").write_text("SECRET=1")
+    with pytest.raises(InputError) as e:
+        stage_animation(dest)
+    assert str(dest) in str(e.value) and "dest" in str(e.value)
+    assert ".git" in str(e.value) and (dest / ".env").read_text() == "SECRET=1"
+    anim = tmp_path / "anim"
+    anim.mkdir()
+    for name in ("animation.pvd", "body_00001.vtu", ".body_00002.vtu.k3_9xq0a.vtu"):
+        (anim / name).write_text("")
+    stage = stage_animation(anim)
+    assert stage.is_dir() and stage.name.startswith(".anim.staging-")
+
+
 def _copy_run(out, dest):
     import shutil
 
@@ -352,6 +374,27 @@ def test_summary_describes_what_stress_and_animate_rewrote(straight, tmp_path):
     assert summary["file_descriptions"]["stress/hotspots.csv"].startswith("top 3 elements")
     assert summary["file_descriptions"]["animation/body.pvd"] == desc  # the rest kept
     assert not list(out.glob(".summary.json.*"))  # the temp file was renamed
+
+
+def test_interrupted_stress_report_leaves_the_previous_one(straight, tmp_path, monkeypatch):
+    """``stress/`` is replaced as a whole: an error after some files of the new report are
+    written leaves the previous report (files and stress_summary.json) and no staging
+    folder."""
+    import flexpipe.durability.report as R
+    from flexpipe.durability.pipeline import stress_outputs
+
+    out = _copy_run(straight[0], tmp_path / "run")
+    before = {p.name: p.read_bytes() for p in (out / "stress").iterdir()}
+    assert "hotspots.csv" in before and "stress_summary.json" in before
+
+    def broken(*a, **k):
+        raise RuntimeError("injected")
+
+    monkeypatch.setattr(R, "write_png", broken)
+    with pytest.raises(RuntimeError, match="injected"):
+        stress_outputs(out, top=2, fatigue=False, log=lambda *a: None)
+    assert {p.name: p.read_bytes() for p in (out / "stress").iterdir()} == before
+    assert not list(out.glob(".stress.*"))
 
 
 @pytest.fixture(scope="module")

@@ -54,6 +54,31 @@ def test_summary_compares_only_runs_that_both_completed(preload_car):
     assert "not computed" in one["hub_force_difference_note"]
 
 
+def test_hub_force_note_states_the_comparison_start_actually_used():
+    """A 0.1 s run is compared from min(0.5 s, 0.25 x 0.1 s) = 0.025 s, and the note says
+    so (not 'after the first 0.5 s')."""
+    from flexpipe.scenarios.runner import _summary
+
+    car = fp.load_car(ROOT / "cars" / "sedan.toml")
+    good = fp.simulate(car, speed=10.0, t_end=0.1, body="rigid")
+    note = _summary({}, {"rigid": good, "flexible": good}, path=None,
+                    speed=10.0)["hub_force_difference_note"]
+    assert "t = 0.025 s" in note and "0.5 s" in note and "0.25" in note
+    assert "first 0.5 s" not in note
+
+
+def test_profile_table_names_the_clock_of_the_fast_module(monkeypatch, capsys):
+    """The CPU-time label follows flexpipe.exu.MODULES['fast'], not a copy of its name."""
+    import flexpipe.exu
+    from flexpipe.cli_run import _print_profile
+
+    monkeypatch.setitem(flexpipe.exu.MODULES, "fast", "exudynRenamed")
+    summary = {"exudyn_module": "exudynRenamed",
+               "profile_ms_per_step": {"rigid": {"solver": 1.0}}}
+    _print_profile(summary)
+    assert capsys.readouterr().out.startswith("CPU time per step")
+
+
 def test_failed_run_keeps_the_old_folder_and_writes_its_own_status(tmp_path, monkeypatch):
     """A run that raises midway (here: its plot, after the rigid body run) leaves the old
     run's files in ``out`` untouched and its own summary (state 'error') with the files of

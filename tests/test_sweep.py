@@ -334,3 +334,34 @@ def test_runs_moving_a_suspension_mount_get_their_own_body():
     # same for both springs
     assert len(runs) == 4 and len({k[1] for k in keys}) == 2
     assert keys[0][1] == keys[1][1] and keys[0][1] != keys[2][1]
+
+
+@pytest.mark.parametrize("t_end, h, output_step, settle, n", [
+    (0.003, 1e-3, 1e-3, 0.0, 4),  # t = 0 counts: 0, 1, 2, 3 ms
+    (0.003, 1e-3, 1e-3, 0.001, 3),
+    (0.010, 1e-3, 2e-3, 0.004, 4),  # 4, 6, 8, 10 ms
+    (0.010, 1e-3, 2e-3, 0.0041, 3),
+    (0.010, 1e-3, 2e-3, 0.0039, 4),
+])
+def test_settle_window_counts_the_samples_run_metrics_uses(t_end, h, output_step, settle,
+                                                           n):
+    """The settle check counts the output samples exactly as run_metrics selects them
+    (t = 0 included): enough samples pass, one too few is refused naming the key, the
+    count and the latest valid settle_s."""
+    from flexpipe.sweeps.metrics import MIN_SAMPLES
+    from flexpipe.sweeps.spec import _check_window
+
+    dt = output_step
+    t = np.arange(int(round(t_end / dt)) + 1) * dt
+    assert int((t >= settle - 1e-12).sum()) == n  # run_metrics' own rule
+    keys = ("sweep.settle_s", "sweep.t_end_s")
+    if n >= MIN_SAMPLES:
+        _check_window(settle, t_end, h, output_step, where="s.toml", keys=keys)
+        return
+    with pytest.raises(InputError) as info:
+        _check_window(settle, t_end, h, output_step, where="s.toml", keys=keys)
+    msg = str(info.value)
+    assert info.value.key == "sweep.settle_s" and "s.toml" in msg
+    assert f"leaves {n} output sample" in msg and f"at least {MIN_SAMPLES}" in msg
+    latest = (len(t) - MIN_SAMPLES) * dt
+    assert f"settle_s <= {latest:.6g} s" in msg

@@ -257,7 +257,7 @@ def _no_simulation(*a, **k):
     (["--check-step", "--t-end", "1", "--t-from", "1"], ["--t-from 1 s", "<= 0.999 s"]),
     (["--check-step", "--t-from", "-1"], ["--t-from", "[0, 3600] s"]),
     (["--check-step", "--h", "2e-5"], ["--h", "h/4 = 5e-06 s", "1e-05 s", "4e-05 s"]),
-    (["--t-from", "0.2"], ["--t-from", "--check-step"]),
+    (["--t-from", "0.2"], ["--t-from", "--check-step", "min(0.5 s, 0.25 x --t-end)"]),
     (["--check-step", "--t-end", "-1"], ["--t-end", "(0, 3600] s"]),
 ])
 def test_check_step_arguments_are_checked_before_any_run(tmp_path, capsys, monkeypatch,
@@ -383,3 +383,54 @@ def test_failed_check_step_keeps_the_folder_and_writes_its_summary(tmp_path, cap
     summary = json.loads((tmp_path / "study.failed" / "summary.json").read_text())
     assert summary["scenario"] == "check_step" and summary["state"] == "error"
     assert "diverged" in summary["message"]
+
+
+def test_check_step_summary_names_road_and_path_files_absolutely(tmp_path, capsys,
+                                                                 monkeypatch):
+    """A road given relative to the working folder is stored by its absolute path (like
+    car_file), so the study's summary.json finds it from any folder."""
+    from flexpipe.errors import SolverError
+
+    def diverging(*a, **k):
+        raise SolverError("diverged", time=0.1)
+
+    monkeypatch.chdir(ROOT)
+    monkeypatch.setattr("flexpipe.vehicle.simulation.simulate", diverging)
+    out = tmp_path / "study"
+    assert main(["run", str(SEDAN), "--speed", "70", "--t-end", "1", "--body", "rigid",
+                 "--road", "roads/flat_500m.toml", "--check-step", "--out", str(out),
+                 "-q"]) == 2
+    capsys.readouterr()
+    summary = json.loads((tmp_path / "study.failed" / "summary.json").read_text())
+    assert summary["road"] == str(ROOT / "roads" / "flat_500m.toml")
+    assert Path(summary["road"]).is_absolute() and summary["path"] is None
+
+
+def test_check_step_run_that_stops_early_is_reported_like_a_run(tmp_path, capsys,
+                                                                 monkeypatch):
+    """A refined run that stops before t_end: the study says 'stopped early' (status -1,
+    exit 1, like a run), keeps the run that completed and leaves the folder as it was."""
+    from types import SimpleNamespace
+
+    import flexpipe.vehicle.simulation as S
+
+    real = S.simulate
+
+    def second_stops(car, *, h, **k):
+        if h < 1e-3:
+            return SimpleNamespace(status=-1, message="stopped at t = 0.1 s: diverged",
+                                   info={"h": h})
+        return real(car, h=h, **k)
+
+    out = tmp_path / "study"
+    before = _earlier_run(out)
+    monkeypatch.setattr(S, "simulate", second_stops)
+    assert main(["run", str(SEDAN), "--speed", "70", "--t-end", "0.2", "--t-from", "0.1",
+                 "--body", "rigid", "--check-step", "--out", str(out), "-q"]) == 1
+    err = capsys.readouterr().err.strip()
+    assert "stopped early" in err and "h = 0.0005 s" in err and "study.failed" in err
+    assert "\n" not in err and _files(out) == before
+    summary = json.loads((tmp_path / "study.failed" / "summary.json").read_text())
+    assert summary["state"] == "stopped early" and summary["status"] == -1
+    assert list(summary["completed_runs"]) == ["h = 0.001 s"]
+    assert "h = 0.0005 s" in summary["message"] and "diverged" in summary["message"]

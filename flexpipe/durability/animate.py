@@ -32,9 +32,12 @@ from flexpipe.errors import InputError
 
 WHEEL_SEGMENTS = 24
 WHEEL_HALF_WIDTH = 0.1  # m
-#: names of the files an animation folder holds (hidden names: temporary files)
-_ANIMATION_FILE = re.compile(r"(body|wheels)_\d+\.vtu|(body|wheels|animation)\.pvd|"
-                             r"road\.vtu|preview\.png|\..*")
+_ANIMATION_NAME = (r"((body|wheels)_\d+\.vtu|(body|wheels|animation)\.pvd|"
+                   r"road\.vtu|preview\.png)")
+#: names of the files an animation folder holds: its own files and the temporary files
+#: :func:`flexpipe._io.atomic_path` leaves of them (``.NAME.XXXXXXXX.SUFFIX``, from
+#: ``tempfile.mkstemp``); any other hidden entry (``.git``, ``.env``) is not an animation's
+_ANIMATION_FILE = re.compile(rf"{_ANIMATION_NAME}|\.{_ANIMATION_NAME}\.\w+\.(vtu|pvd|png)")
 
 
 def _pvd(path, entries):

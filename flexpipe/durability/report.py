@@ -13,6 +13,11 @@
 * ``stress_max.png`` - the body coloured by max von Mises (headless matplotlib): shells,
   beams and solids on one colour scale, the top hot spots marked, the clipping of the
   scale and the largest value with its element stated (:func:`png_text`).
+
+The folder is a transaction, like the animation folder: the files are written into a
+staging folder ``.NAME.staging-PID`` next to it, which then replaces the folder as a
+whole, so an interrupted report leaves the previous one (and its ``stress_summary.json``)
+intact.
 """
 
 from __future__ import annotations
@@ -24,7 +29,13 @@ from pathlib import Path
 
 import numpy as np
 
-from flexpipe._io import atomic_path, write_matrix_csv, write_text_atomic
+from flexpipe._io import (
+    atomic_path,
+    commit_directory,
+    staging_folder,
+    write_matrix_csv,
+    write_text_atomic,
+)
 from flexpipe.fem.stress import KIND
 
 #: channels considered as loads for the correlation column
@@ -257,9 +268,26 @@ def write_png(path, body, sr, *, title=""):
 
 
 def write_stress_report(out, sr, body, channels, *, top: int = 20, title: str = "") -> dict:
-    """Write the report files into ``out``; returns ``{file name: description}``."""
+    """Write the report files into ``out``; returns ``{file name: description}``.
+
+    The files go into a staging folder that replaces ``out`` as a whole when every file
+    is written; on an error or interrupt it is removed and ``out`` keeps its previous
+    report.
+    """
+    import shutil
+
+    stage = staging_folder(out)
+    try:
+        files = _write_report_files(stage, sr, body, channels, top=top, title=title)
+        commit_directory(stage, out)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    return files
+
+
+def _write_report_files(out, sr, body, channels, *, top, title) -> dict:
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     rows, hist = hotspots(sr, channels, top=top)
     header = list(rows[0]) if rows else ["element_id"]
     _write_csv(out / "hotspots.csv", header, [list(r.values()) for r in rows])

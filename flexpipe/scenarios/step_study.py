@@ -8,13 +8,16 @@ folder are checked first; the study writes ``step_check.csv`` and ``summary.json
 fluctuation, floor and differences, and what every file holds) into a staging folder
 that replaces the output folder only when the study completes.  A study that fails or
 is interrupted leaves the output folder as it was and puts its own ``summary.json`` in
-``OUT.failed``.  The folder is a flexpipe run folder, so a later run or study may replace
+``OUT.failed``: state ``"stopped early"`` (status -1, like a run) with the runs that
+completed when one of its runs stops before ``t_end``, else ``"error"`` or
+``"interrupted"``.  The folder is a flexpipe run folder, so a later run or study may replace
 it.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import time
 from pathlib import Path
 
@@ -62,18 +65,24 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
 
     Returns
     -------
-    (dict, StepCheck)
-        The summary written and the study.
+    (dict, StepCheck or None)
+        The summary written and the study; a study whose run stopped early returns its
+        summary (status -1, written to ``OUT.failed``) and None.
 
     Raises
     ------
     InputError
-        A bad argument or output folder, before anything is written; or a run that did
-        not complete (the study's summary is then in ``OUT.failed``).
+        A bad argument or output folder, before anything is written; or a failure of the
+        study (its summary is then in ``OUT.failed``).
     """
     from flexpipe._io import check_run_folder, commit_directory, failed_folder, stage_directory
     from flexpipe.scenarios.runner import _kept, _remove_stale_failure, _write_failure
-    from flexpipe.vehicle.convergence import DEFAULT_T_FROM, check_step, check_step_inputs
+    from flexpipe.vehicle.convergence import (
+        DEFAULT_T_FROM,
+        StoppedEarly,
+        check_step,
+        check_step_inputs,
+    )
     from flexpipe.vehicle.run_inputs import as_car
 
     t_from = DEFAULT_T_FROM if t_from is None else t_from
@@ -85,8 +94,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
     stage = stage_directory(out)
     base = {"scenario": "check_step", "title": title, "car": car.name,
             "car_file": absolute(car.file), "body": body,
-            "road": None if road is None else str(road),
-            "path": None if path is None else str(path),
+            "road": _source(road), "path": _source(path),
             "speed_kmh": round(speed * 3.6, 3), "time_step_s": steps[0]}
     t0 = time.perf_counter()
     try:
@@ -95,6 +103,16 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
         chk = check_step(car, h=steps[0], refinements=refinements, t_from=t_from,
                          progress=progress, cache=cache, log=lambda m: log("      " + m), **kw)
         write_text_atomic(stage / "step_check.csv", chk.csv_text())
+    except StoppedEarly as exc:  # like a run that stops early: status -1, out unchanged
+        summary = {**base, "status": -1, "state": "stopped early",
+                   "message": " ".join(str(exc).split()),
+                   "completed_runs": {f"h = {r.info['h']:g} s": r.message for r in exc.runs},
+                   "files": ["summary.json"],
+                   "total_wall_time_s": round(time.perf_counter() - t0, 2)}
+        write_text_atomic(stage / "summary.json", json.dumps(summary, indent=2) + "\n")
+        failed = commit_directory(stage, failed_folder(out))
+        log(f"stopped early; {out} {_kept(out)}; this study's files are in {failed}/")
+        return summary, None
     except BaseException as exc:
         _write_failure(stage, base, {}, [], exc, bodies=(body,), t0=t0)
         failed = commit_directory(stage, failed_folder(out))
@@ -113,3 +131,13 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
     _remove_stale_failure(failed_folder(out))
     log(f"wrote {Path(out)}/: {', '.join(summary['files'])}")
     return summary, chk
+
+
+def _source(value) -> str | None:
+    """How summary.json names a road or path: a file by its absolute path (found from any
+    working folder, like ``car_file``), anything else (a name, a road object) as text."""
+    if value is None:
+        return None
+    if isinstance(value, str | os.PathLike) and Path(value).is_file():
+        return absolute(value)
+    return str(value)

@@ -254,12 +254,13 @@ def _num(v, key, where, *, lo=None, open_=False, hi=None, unit="") -> float:
 
 def _check_window(settle, t_end, h, output_step, *, where, keys) -> None:
     """The metrics need samples after ``settle``: at least :data:`MIN_SAMPLES` of the
-    output times ``j * dt`` (``dt`` the output step as simulate() rounds it to whole
-    steps ``h``) up to ``t_end``."""
+    output times ``j * dt``, ``j = 0 .. n_out`` (``dt`` the output step as simulate()
+    rounds it to whole steps ``h``; the t = 0 sample included) up to ``t_end``, counted
+    as :func:`flexpipe.sweeps.metrics.run_metrics` selects them (``t >= settle - 1e-12``)."""
     every = max(1, int(round(output_step / h)))
     dt = every * h
     n_out = int(round(t_end / h)) // every
-    first = max(1, math.ceil((settle - 1e-12) / dt))
+    first = max(0, math.ceil((settle - 1e-12) / dt))
     n = max(0, n_out - first + 1)
     if n < MIN_SAMPLES:
         latest = (n_out - MIN_SAMPLES + 1) * dt

@@ -208,6 +208,16 @@ class StepCheck:
         return float(np.nanmax(row)) if np.any(np.isfinite(row)) else float("nan")
 
 
+class StoppedEarly(InputError):
+    """A run of the study did not reach ``t_end`` (key ``h``): ``runs`` holds the runs
+    that completed before it (finest step last), ``result`` the run that stopped."""
+
+    def __init__(self, message: str, *, runs, result):
+        super().__init__(message, key="h")
+        self.runs = list(runs)
+        self.result = result
+
+
 def check_step_inputs(car, *, h: float | None = None, refinements=(2, 4),
                       t_from: float = DEFAULT_T_FROM, **simulate_kw) -> tuple:
     """Check every argument of :func:`check_step` without running anything: the
@@ -289,8 +299,10 @@ def check_step(car, *, h: float | None = None, refinements=(2, 4), channels=DEFA
     Raises
     ------
     InputError
-        A bad argument, before any run (:func:`check_step_inputs`), or a run that did not
-        complete.
+        A bad argument, before any run (:func:`check_step_inputs`).
+    StoppedEarly
+        A run that did not complete (an :class:`InputError` with key ``h`` that keeps the
+        runs completed before it).
     """
     from flexpipe.vehicle.export import channel_unit
     from flexpipe.vehicle.run_inputs import as_car
@@ -306,7 +318,8 @@ def check_step(car, *, h: float | None = None, refinements=(2, 4), channels=DEFA
             log(f"[{i}/{len(steps)}] h = {hh:g} s")
         r = simulate(car, h=hh, progress=progress, **simulate_kw)
         if r.status != 0:
-            raise InputError(f"the run at h = {hh:g} s did not complete: {r.message}", key="h")
+            raise StoppedEarly(f"the run at h = {hh:g} s did not complete: {r.message}",
+                               runs=runs, result=r)
         runs.append(r)
     ref = runs[-1]
     channels = tuple(channels)
