@@ -80,10 +80,7 @@ def linkage_statics(car: Car, rb):
     from flexpipe.vehicle.corners import static_wheel_loads
     from flexpipe.vehicle.suspension.statics import point_masses, preloaded, with_wheels
 
-    links = car.suspension.corners()
-    wheels = {c.name: (c.unsprung_mass - sum(p.mass for p in links[c.name].parts),
-                       c.unsprung_inertia) for c in car.corners}
-    susp = with_wheels(car.suspension, wheels)
+    susp = with_wheels(car.suspension, car.suspension.wheels)  # load_car requires all four
     N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY,
                            point_masses=point_masses(susp))
     return preloaded(susp, dict(zip(CORNERS, N, strict=True)), g=GRAVITY), N
