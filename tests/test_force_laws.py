@@ -178,3 +178,25 @@ def test_nonlinear_bushing_deflects_as_its_table():
     want = np.interp(F, f, x)  # the load is carried by the table along z
     assert float(A[:, 2] @ p) == pytest.approx(want, rel=1e-6)
     assert np.linalg.norm(p - (A[:, 2] @ p) * A[:, 2]) < 1e-9
+
+
+def test_elements_between_the_same_seats_share_one_summed_law():
+    """Spring, damper and stops between the same two seats are one connector whose force
+    is the sum of the elements' own NumPy forces; elements on other seats stay apart."""
+    from flexpipe.exu.force_laws import seat_groups
+
+    group = [ELEMENTS[k] for k in ("spring_rate", "damper", "bump_stop", "rebound_stop")]
+    other = ForceElement("s2", "spring", "arm", (0.0, 0.5, -0.27), "m", B, rate=5e4,
+                         free_length=L0)
+    assert [len(g) for g in seat_groups(group + [other])] == [4, 1]
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    law = symbolic_law(mbs, *group)
+    rng = np.random.default_rng(5)
+    for u, v in zip(rng.uniform(-0.1, 0.1, 200), rng.uniform(-1.5, 1.5, 200), strict=True):
+        got = law.Evaluate(mbs, 0.0, 0, float(u), float(v), 0.0, 0.0, 0.0)
+        want = sum(f.damper_force(v) if f.kind == "damper" else -f.static_force(L0 + u)
+                   for f in group)
+        assert got == pytest.approx(want, rel=1e-12, abs=1e-9), (u, v)
+    with pytest.raises(ValueError, match="share their seats"):
+        symbolic_law(mbs, group[0], other)

@@ -341,3 +341,24 @@ def test_kc_of_a_suspension_only_file_has_no_wheel(tmp_path):
     assert s["wheel mass [kg]"] == 0.0
     assert s["spring preload [N]"] == pytest.approx(
         spring_preload(susp.axles["front"].left, 4220.0), rel=1e-12)
+
+
+def test_mount_dofs_follow_what_passes_a_moment_in_each_mode(tmp_path):
+    """A moment passes into the body at a bushing, a revolute or universal joint, the rack
+    housing and an anti-roll-bar bearing; in the kinematic mode a bushing is the joint it
+    surrounds, so a bushed ball or inline joint there passes a force only (3 DOF)."""
+    kin = load_suspension(SAMPLE)
+    assert kin.mode == "kinematic"
+    comp = load_suspension(_sample_with(tmp_path, 'mode = "kinematic"', 'mode = "compliant"'))
+    bushed = {j.mount: j.kind for c in comp.corners().values() for j in c.joints
+              if j.mount is not None and j.bushing is not None}
+    assert bushed  # the sample bushes ball, inline and universal joints
+    for name, kind in bushed.items():
+        assert comp.mount_dofs()[name] == 6, name
+        assert kin.mount_dofs()[name] == (3 if kind in ("spherical", "inline") else 6), name
+    for name in list(kin.rack.mounts) + [n for a in kin.axles.values()
+                                         if a.anti_roll_bar is not None
+                                         for n, _ in a.anti_roll_bar.mounts]:
+        assert kin.mount_dofs()[name] == comp.mount_dofs()[name] == 6, name
+    assert {n for n, d in kin.mount_dofs().items() if d == 3} > \
+        {n for n, d in comp.mount_dofs().items() if d == 3}

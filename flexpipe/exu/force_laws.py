@@ -78,11 +78,44 @@ def _law(f):
     return law
 
 
-def symbolic_law(mbs, element):
-    """The element's force law as an Exudyn symbolic user function (keep it alive for
-    the lifetime of the system: it owns the expression tree)."""
-    return CreateSymbolicUserFunction(mbs, _law(element), "springForceUserFunction",
+def symbolic_law(mbs, *elements):
+    """The force law of one element, or the sum of several acting between the same two
+    seats (same design length), as an Exudyn symbolic user function (keep it alive for
+    the lifetime of the system: it owns the expression tree).
+
+    Elements between the same seats share one connector (:func:`seat_groups`): their
+    forces act along the same line and depend on the same length change and rate, so
+    the connector's force is the sum of theirs, and the body's marker at the seat is
+    evaluated once per Newton iteration instead of once per element.
+    """
+    if not elements:
+        raise ValueError("symbolic_law needs at least one force element")
+    lengths = {round(float(f.design_length), 12) for f in elements}
+    if len(lengths) != 1:
+        raise ValueError("elements summed into one law must share their seats; design "
+                         f"lengths {sorted(lengths)} m differ")
+    laws = [_law(f) for f in elements]
+    if len(laws) == 1:
+        law = laws[0]
+    else:
+        def law(mbs, t, item, u, v, k, d, f0):
+            out = laws[0](mbs, t, item, u, v, k, d, f0)
+            for other in laws[1:]:
+                out = out + other(mbs, t, item, u, v, k, d, f0)
+            return out
+    return CreateSymbolicUserFunction(mbs, law, "springForceUserFunction",
                                       itemTypeName=_ITEM)
+
+
+def seat_groups(elements) -> list:
+    """The force elements grouped by their seats (body mount or part, and point, at both
+    ends), in the order of first appearance: each group is one connector."""
+    groups: dict = {}
+    for f in elements:
+        key = (f.mount, f.part, tuple(round(float(x), 9) for x in f.point),
+               tuple(round(float(x), 9) for x in f.body_point))
+        groups.setdefault(key, []).append(f)
+    return list(groups.values())
 
 
 def bushing_law(mbs, bushing):

@@ -29,7 +29,7 @@ from exudyn.rigidBodyUtilities import GetRigidBodyNode
 
 from flexpipe.exu import mount_sensors
 from flexpipe.exu.body import NODE_TYPE
-from flexpipe.exu.force_laws import bushing_law, symbolic_law
+from flexpipe.exu.force_laws import bushing_law, seat_groups, symbolic_law
 from flexpipe.vehicle.suspension.model import ARB_ARM_MASS, BODY, RACK, RACK_MASS
 
 OV = exu.OutputVariableType
@@ -190,10 +190,11 @@ class LinkageModel:
             elif lk.b == BODY:
                 kind = "distance" if lk.axial_stiffness is None or self.kinematic else "vector"
                 self.body_links.append((lk.mount, co, kind, (mb, ma), None))
-        for f in c.forces:
+        for group in seat_groups(c.forces):  # one connector per pair of seats
+            f = group[0]
             mb = self.mount_marker(f.mount, False)
             ma = self._marker(own(f.part), f.point, False)
-            law = symbolic_law(mbs, f)  # evaluated by Exudyn in every Newton iteration
+            law = symbolic_law(mbs, *group)  # evaluated by Exudyn in every Newton iteration
             self._laws.append(law)  # keeps the expression tree alive
             co = mbs.AddObject(eii.ObjectConnectorSpringDamper(
                 markerNumbers=[mb, ma], referenceLength=f.design_length, stiffness=0.0,

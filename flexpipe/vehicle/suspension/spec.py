@@ -68,11 +68,13 @@ class Suspension:
         """``{mount: 3 | 6}``: 6 where a moment passes into the body (a bushing, a
         revolute or universal joint, the rack housing, an anti-roll-bar bearing), 3 where
         only a force passes (ball joints, inline joints, links, spring and damper
-        seats)."""
+        seats).  In the kinematic mode a bushing is the joint it surrounds, so a bushed
+        ball or inline joint passes no moment there either."""
         out = {name: 3 for name in self.mounts()}
+        bushed = self.mode != "kinematic"
         for c in self.corners().values():
             for j in c.joints:
-                if j.mount is not None and (j.bushing is not None
+                if j.mount is not None and ((j.bushing is not None and bushed)
                                             or j.kind not in ("spherical", "inline")):
                     out[j.mount] = 6
         if self.rack is not None:
