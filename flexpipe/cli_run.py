@@ -62,6 +62,9 @@ def add_arguments(parser) -> None:
                         help="output directory (default: out/<car>-<road>-<speed>kmh); "
                              "replaced only by a completed run, see 'outputs' below")
     parser.add_argument("--no-cache", action="store_true", help="rebuild the reduced body")
+    parser.add_argument("--f-max", type=float, default=None,
+                        help="top of the flexible body's band, Hz (fixed-interface modes to "
+                             "1.5x it; default from the road and speed, 20-40 Hz)")
     parser.add_argument("--check-step", action="store_true",
                         help="step-convergence study instead of a run: the first body model "
                              "at h, h/2 and h/4; prints the RMS hub-force differences (N, "
@@ -124,7 +127,8 @@ def run(args) -> int:
                        cache=not args.no_cache, h=args.h, name="run", format=args.format,
                        log=(lambda *a: None) if args.quiet else print,
                        progress=not args.quiet, prewarp=not args.no_prewarp,
-                       inertia_coupling=args.inertia_coupling, profile=args.profile)
+                       inertia_coupling=args.inertia_coupling, profile=args.profile,
+                       f_max=args.f_max)
     if args.profile and not args.quiet:
         _print_profile(summary)
     if summary["status"] != 0:
@@ -170,6 +174,12 @@ def check_arguments(args) -> tuple[str, ...]:
         raise InputError(f"--h {h:g} s is longer than --t-end {t_end:g} s; choose --h <= "
                          "--t-end", key="h")
     _check_step_arguments(args, h=h, t_end=t_end)
+    if getattr(args, "f_max", None) is not None:
+        checked_number(args.f_max, "--f-max", lo=0.0, hi=5000.0, unit="Hz", key="f_max")
+        if not set(bodies) & {"flexible"}:
+            raise InputError(f"--f-max is the band of the flexible body; --body "
+                             f"{','.join(bodies)} has none (the full body keeps every mode "
+                             "to 250 Hz)", key="f_max")
     return bodies
 
 
@@ -236,7 +246,7 @@ def _check_step(args, body: str, out: Path) -> int:
         args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
         t_end=args.t_end, body=body, h=args.h, refinements=(2, 4), t_from=args.t_from,
         cache=not args.no_cache, prewarp=not args.no_prewarp,
-        inertia_coupling=args.inertia_coupling, title=title,
+        inertia_coupling=args.inertia_coupling, title=title, f_max=args.f_max,
         log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
         report=print)
     if summary["status"] != 0:  # as a run that stops early: exit 1, out unchanged

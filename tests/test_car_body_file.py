@@ -2,6 +2,7 @@
 set or the mesh file's node ids (``[body.mounts.<name>]``): the same body reached by another
 route must give the same car (reference: the car built from the mesh)."""
 
+import math
 from dataclasses import replace
 from pathlib import Path
 
@@ -178,3 +179,30 @@ def test_unknown_mount_name_is_an_error(tmp_path):
     car = replace(car, body=replace(car.body, mounts={"front_lower_arm_frnt_l": {}}))
     with pytest.raises(InputError, match="body.mounts.front_lower_arm_frnt_l"):
         body_mounts(car)
+
+
+def test_interface_band_is_read_and_checked(tmp_path):
+    """``[body] interface_band_hz``: a frequency (>= 100 Hz) or "all" (every static mode);
+    a full body keeps every static mode whatever the car file says; bad values and a
+    prismatic-corner car name the key."""
+    from flexpipe.vehicle.linkage_setup import INTERFACE_F_MAX_HZ, interface_band
+
+    mesh = f'mesh = "{ROOT}/meshes/sedan_biw.bdf"'
+    car = fp.load_car(CAR)
+    assert car.body.interface_band_hz is None
+    assert interface_band(car) == INTERFACE_F_MAX_HZ
+    assert interface_band(car, full=True) == math.inf
+    for value, want in (("800.0", 800.0), ('"all"', math.inf)):
+        c = fp.load_car(_variant(tmp_path, f"{mesh}\ninterface_band_hz = {value}"))
+        assert interface_band(c) == want and interface_band(c, full=True) == math.inf
+    for value, words in (("50.0", ">= 100"), ('"most"', '"all"'), ("-1.0", ">= 100")):
+        with pytest.raises(InputError, match=words) as exc:
+            fp.load_car(_variant(tmp_path, f"{mesh}\ninterface_band_hz = {value}"))
+        assert "body.interface_band_hz" in str(exc.value) and "car.toml" in str(exc.value)
+    prismatic = (ROOT / "cars" / "sedan.toml").read_text().replace('"../', f'"{ROOT}/')
+    assert "[body]\n" in prismatic
+    p = tmp_path / "prismatic.toml"
+    p.write_text(prismatic.replace("[body]\n", "[body]\ninterface_band_hz = 800.0\n", 1))
+    with pytest.raises(InputError, match="prismatic corners") as exc:
+        fp.load_car(p)
+    assert "body.interface_band_hz" in str(exc.value)

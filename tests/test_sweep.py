@@ -191,9 +191,11 @@ def test_runs_sharing_a_body_share_one_reduction_key():
     runs = spec.runs()
     keys = [body_keys(car, r, road_of(r)) for r, car in zip(runs, _cars(runs), strict=True)]
     # the body depends on its damping (and band), not on the springs or the speed here
-    # (both speeds excite the road above the 30 Hz band limit)
+    # (both speeds excite the road above the band's cap)
+    from flexpipe.vehicle.bodymodel import BAND_CAP_HZ
+
     assert len(runs) == 8 and len({k[1] for k in keys}) == 2 and len({k[0] for k in keys}) == 2
-    assert {k[2] for k in keys} == {30.0}
+    assert {k[2] for k in keys} == {BAND_CAP_HZ}
 
 
 def _spec_file(folder, text: str) -> Path:

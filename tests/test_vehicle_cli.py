@@ -79,6 +79,8 @@ def _files(folder: Path) -> dict:
     (["--body", "rgid"], ["--body", "rigid, flexible, full"]),
     (["--t-end", "0.0005"], ["--h", "--t-end"]),
     (["--road", str(ROOT / "roads" / "bump.csv"), "--t-end", "100"], ["bump.csv", "30 m"]),
+    (["--f-max", "0", "--body", "flexible"], ["--f-max", "(0, 5000] Hz"]),
+    (["--f-max", "40"], ["--f-max", "band of the flexible body", "--body rigid"]),
 ])
 def test_bad_run_arguments_leave_the_output_folder_untouched(tmp_path, capsys, args, words):
     """Argument errors are found before any work: an earlier run in --out keeps every
@@ -434,3 +436,21 @@ def test_check_step_run_that_stops_early_is_reported_like_a_run(tmp_path, capsys
     assert summary["state"] == "stopped early" and summary["status"] == -1
     assert list(summary["completed_runs"]) == ["h = 0.001 s"]
     assert "h = 0.0005 s" in summary["message"] and "diverged" in summary["message"]
+
+
+def test_f_max_reaches_every_flexible_run_and_the_step_study(tmp_path, monkeypatch):
+    """``--f-max`` is the band of the flexible body in a run and in --check-step."""
+    import flexpipe.vehicle.simulation as S
+
+    seen = []
+
+    def record(*args, **kw):
+        seen.append(kw.get("f_max"))
+        raise RuntimeError("stop after the first simulate call")
+
+    monkeypatch.setattr(S, "simulate", record)
+    for extra in ([], ["--check-step"]):
+        with pytest.raises(RuntimeError, match="stop after"):
+            main(["run", str(SEDAN), "--speed", "70", "--body", "flexible", "--f-max", "40",
+                  "--t-end", "1", "--out", str(tmp_path / f"o{len(extra)}"), "-q", *extra])
+    assert seen == [40.0, 40.0]

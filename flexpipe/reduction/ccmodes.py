@@ -64,9 +64,9 @@ def characteristic_constraint_modes(M, K, Psi_c, *, f_max: float):
     C_res : ndarray, shape (n_b, n_b)
         Residual flexibility of the deleted CC modes on the boundary DOF.
     """
-    if not (np.isfinite(f_max) and f_max > 0):
+    if not f_max > 0:  # NaN fails too; inf keeps every CC mode (all static modes)
         raise InputError(f"the interface-reduction cut-off must be a positive frequency in "
-                         f"Hz, got {f_max!r}", key="interface_f_max")
+                         f"Hz (inf: keep every mode), got {f_max!r}", key="interface_f_max")
     Psi_c = np.asarray(Psi_c, dtype=float)
     Kb = Psi_c.T @ (K @ Psi_c)
     Mb = Psi_c.T @ (M @ Psi_c)

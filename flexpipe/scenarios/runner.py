@@ -82,8 +82,11 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              h: float | None = None, notes=None, name: str = "run", log=print,
              format: str = "csv", progress: bool = True,  # noqa: A002
              prewarp: bool = True, inertia_coupling: str = "auto",
-             profile: bool = False) -> dict:
+             profile: bool = False, f_max: float | None = None) -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
+
+    ``f_max`` (Hz) is the flexible body's band (``simulate``'s; default from the road and
+    speed, :func:`flexpipe.vehicle.bodymodel.choose_band`).
 
     The run is a transaction.  Every argument (numbers, body kinds, car, road and path
     files, road and path lengths) and the output folder are checked first
@@ -135,6 +138,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     if not bodies:
         raise InputError("give at least one body kind", key="bodies")
     kw = {} if h is None else {"h": h}
+    if f_max is not None:
+        kw["f_max"] = f_max
     for body in bodies:  # every argument checked before the output folder is touched
         check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                   prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)

@@ -70,7 +70,8 @@ def body_task(car, body: str, band: float, rigid, cache: bool = True) -> dict:
     from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ
 
     cutoff = FULL_CUTOFF_HZ if body == "full" else None
-    fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache)
+    fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache,
+                               full=body == "full")
     return {"rigid": rigid, "flexbody": fb, "reduction": dict(info, band_hz=band)}
 
 

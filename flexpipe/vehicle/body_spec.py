@@ -7,6 +7,7 @@ Every error is an :class:`~flexpipe.errors.InputError` naming the file, line and
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,6 +18,9 @@ from flexpipe.fem.material import LIBRARY, Material
 from flexpipe.mesh.units import unit_system
 from flexpipe.vehicle._toml import Table
 
+#: lowest interface band a car file may ask for (Hz): the characteristic constraint modes
+#: must reach well above the 20-40 Hz band of the body's fixed-interface modes
+MIN_INTERFACE_BAND_HZ = 100.0
 
 @dataclass(frozen=True)
 class AddedMass:
@@ -61,6 +65,11 @@ class BodySpec:
     #: "node_set", "node_ids" (ids of the mesh file, checked against the mesh when it is
     #: reduced), "line" (of the table, for errors)}}
     mounts: dict = None
+    #: linkage cars: characteristic constraint modes up to this frequency (Hz) replace the
+    #: static modes of the mounts (interface reduction); ``inf``: keep every static mode
+    #: (full Craig-Bampton, ``interface_band_hz = "all"``); None: the default
+    #: (:data:`flexpipe.vehicle.linkage_setup.INTERFACE_F_MAX_HZ`)
+    interface_band_hz: float | None = None
 
 
 # --------------------------------------------------------------------------- readers
@@ -128,6 +137,19 @@ def read_body(doc: Table, base: Path) -> BodySpec:
     thick = t.number("shell_thickness_m", None, lo=0, lo_open=True)
     zeta = t.number("damping_ratio", 0.02, lo=0, hi=1.0)
     radius = t.number("interface_radius_m", 0.12, lo=0, lo_open=True)
+    band = None
+    if t.has("interface_band_hz"):
+        raw = t.raw("interface_band_hz")
+        if raw == "all":
+            band = math.inf
+        elif isinstance(raw, str):
+            raise t.error("interface_band_hz", f"expected a frequency in Hz (>= "
+                                               f"{MIN_INTERFACE_BAND_HZ:g}) or \"all\", got "
+                                               f"{raw!r}")
+        else:
+            band = t.number("interface_band_hz", lo=MIN_INTERFACE_BAND_HZ,
+                            doc="top of the mounts' characteristic constraint modes, Hz "
+                                "(they must reach well above the 20-40 Hz body band)")
     rigid = None
     if t.has("rigid"):
         r = t.sub("rigid")
@@ -206,6 +228,6 @@ def read_body(doc: Table, base: Path) -> BodySpec:
         fatigue = read_fatigue_table(t.sub("fatigue"))
     t.finish()
     return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
-                    fatigue, body_file, mounts)
+                    fatigue, body_file, mounts, band)
 
 

@@ -29,6 +29,16 @@ from flexpipe.vehicle.spec import CORNERS, Car
 DEFAULT_METHOD = "craig-bampton"
 #: the car keeps Craig-Bampton fixed-interface modes up to this multiple of its band
 CB_RATIO = 1.5
+#: highest band :func:`choose_band` picks, Hz (fixed-interface modes to CB_RATIO x it).
+#: The hub forces need the body's local dynamics above the 0-25 Hz ride band: on the
+#: linkage car (ISO C, 70 km/h, 3 s, bench/bench_body_modes.py, 2026-12-02) a band of
+#: 30 Hz (59 elastic modes) left them 20.7 % of their fluctuating part off the full body
+#: (every fixed-interface mode to 250 Hz and every static mode; 6.4 % below 50 Hz,
+#: 15.5 % at 50-150 Hz), 40 Hz (75 modes) 8.0 % (1.9 %, 4.8 %); the rest sits at
+#: 150-300 Hz, in the mounts' static modes.  A higher cap gains little (60 Hz, 105 modes:
+#: 7.5 %) and costs step accuracy: at 45 Hz the flexible x hub forces are 5.0-5.5 % off
+#: h/8 at the default step (bench/bench_convergence.py), above the 5 % target
+BAND_CAP_HZ = 40.0
 #: a hardpoint farther than this from every body node is "off the body", m
 OFF_BODY_TOL = 0.05
 #: bump when the cache layout or the reduction settings' meaning changes
@@ -345,7 +355,7 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
     return body, {"cached": False, "seconds": seconds, "path": str(path)}
 
 
-def choose_band(speed: float, road=None, *, lo: float = 20.0, hi: float = 30.0,
+def choose_band(speed: float, road=None, *, lo: float = 20.0, hi: float = BAND_CAP_HZ,
                 contact_length: float = 0.2) -> float:
     """Top of the frequency band the flexible body must reproduce, Hz.
 
@@ -354,11 +364,10 @@ def choose_band(speed: float, road=None, *, lo: float = 20.0, hi: float = 30.0,
     The band is 1.5 x the road content up to the wavenumber holding 90 % of the profile's
     slope (velocity-input) variance, limited by the contact filter, but at least ``lo`` =
     20 Hz (1.5 x the ~13 Hz wheel hop, which every road and manoeuvre excites) and at most
-    ``hi`` = 30 Hz, the band the paper's reduced model is built for (above the 0-25 Hz
-    ride band; the suspension and tyres isolate the body above it, and the time-step cost
-    of the flexible body grows with the square of its mode count).  The car then keeps
-    Craig-Bampton fixed-interface modes up to ``CB_RATIO`` x the band; the constraint
-    modes keep the static flexibility of every higher mode at the hardpoints.
+    ``hi`` (:data:`BAND_CAP_HZ`, 40 Hz: what the hub forces need, not only the 0-25 Hz
+    ride band, see there).  The car then keeps Craig-Bampton fixed-interface modes up to
+    ``CB_RATIO`` x the band; the constraint modes keep the static flexibility of every
+    higher mode at the hardpoints.
     """
     f_road = 0.0
     if road is not None:

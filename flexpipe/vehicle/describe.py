@@ -14,6 +14,8 @@ at the same load.
 
 from __future__ import annotations
 
+import math
+
 from flexpipe.vehicle.spec import CORNERS, Car
 
 
@@ -52,6 +54,12 @@ def car_text(car: Car) -> str:
                      "and moments):")
         for m, p in mounts.items():
             lines.append(f"    {m:<30} {_p(p)} m  dofs {dofs[m]}")
+        from flexpipe.vehicle.linkage_setup import interface_band
+
+        band = interface_band(car)
+        lines.append("  flexible body's mounts: " + (
+            "every static mode ([body] interface_band_hz = \"all\")" if math.isinf(band) else
+            f"characteristic constraint modes to {band:g} Hz ([body] interface_band_hz)"))
     extra = 0.0 if car.suspension is None else sum(m for m, _ in point_masses(susp)) \
         - sum(unsprung)  # rack and anti-roll-bar arms
     W = 9.81 * (rb.mass + sum(unsprung) + extra)

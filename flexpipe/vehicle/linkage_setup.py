@@ -9,6 +9,8 @@
 
 from __future__ import annotations
 
+import math
+
 from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import GRAVITY
@@ -26,14 +28,29 @@ MOUNT_RADIUS_M = 0.005
 MOUNT_DOFS = None
 
 
-def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, log=None):
+def interface_band(car: Car, *, full: bool = False) -> float:
+    """Top (Hz) of the characteristic constraint modes that replace a linkage car's mount
+    static modes: the car file's ``[body] interface_band_hz``, else
+    :data:`INTERFACE_F_MAX_HZ`; ``inf`` (``"all"``, and always for a ``full`` body) keeps
+    every CC mode, i.e. the span of every static mode, plus the inertia vectors of the
+    interface reduction (plain Craig-Bampton without them has the trimmed body's
+    free-free frequencies 2 % low, ``bench/bench_mounts.py``)."""
+    band = car.body.interface_band_hz
+    if full:
+        return math.inf
+    return INTERFACE_F_MAX_HZ if band is None else float(band)
+
+
+def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, log=None,
+                    full: bool = False):
     """The car's reduced flexible body for band ``f_max`` (Hz): interfaces at the four
     corner hardpoints, or for a linkage car at every suspension mount
-    (:func:`body_mounts`, interface reduction to :data:`INTERFACE_F_MAX_HZ`).  Returns
+    (:func:`body_mounts`, interface reduction to :func:`interface_band`; a ``full`` body,
+    ``cutoff`` its fixed-interface cut-off, keeps every static mode).  Returns
     ``(FlexBody, info)`` as :func:`flexpipe.vehicle.bodymodel.reduced_body`."""
     kw = {}
     if car.suspension is not None:  # every body-side mount an interface of the body
-        kw = {"mounts": body_mounts(car), "interface_f_max": INTERFACE_F_MAX_HZ}
+        kw = {"mounts": body_mounts(car), "interface_f_max": interface_band(car, full=full)}
     return bodymodel.reduced_body(car, f_max=f_max, cache=cache, cutoff=cutoff,
                                   log=log or (lambda *a: None), **kw)
 

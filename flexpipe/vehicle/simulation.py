@@ -146,7 +146,8 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
         if bodies.get("flexbody") is not None:
             fb, info = bodies["flexbody"], bodies["reduction"]
         else:
-            fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache, log=log)
+            fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache, log=log,
+                                       full=body == "full")
         out.update(flexbody=fb, band_hz=None if body == "full" else band, reduction=info)
     return out
 

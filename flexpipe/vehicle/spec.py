@@ -251,8 +251,15 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> Corn
 
 
 def _check_mount_names(body: BodySpec, suspension, path: Path, lines: list[str]) -> None:
-    """A prismatic-corner car has no suspension mounts for ``[body.mounts]`` (it would be
-    ignored); a linkage car's names are checked by ``load_suspension``."""
+    """A prismatic-corner car has no suspension mounts for ``[body.mounts]`` or
+    ``[body] interface_band_hz`` (they would be ignored); a linkage car's names are checked
+    by ``load_suspension``."""
+    if suspension is None and body.interface_band_hz is not None:
+        raise InputError("[body] interface_band_hz sets the interface reduction of a linkage "
+                         "car's mounts ([suspension.*]); this car has prismatic corners, "
+                         "whose four hardpoints keep every static mode: remove the key",
+                         file=path, line=Table({}, "body", path, lines)._line(
+                             "interface_band_hz"), key="body.interface_band_hz")
     if suspension is None and body.mounts:
         name = next(iter(body.mounts))
         raise InputError("[body.mounts] ties the mounts of a linkage suspension "
