@@ -34,7 +34,7 @@ def interface_band(car: Car, *, full: bool = False) -> float:
     :data:`INTERFACE_F_MAX_HZ`; ``inf`` (``"all"``, and always for a ``full`` body) keeps
     every CC mode, i.e. the span of every static mode, plus the inertia vectors of the
     interface reduction (plain Craig-Bampton without them has the trimmed body's
-    free-free frequencies 2 % low, ``bench/bench_mounts.py``)."""
+    free-free frequencies 2 % high, ``bench/bench_mounts.py``)."""
     band = car.body.interface_band_hz
     if full:
         return math.inf
