@@ -22,6 +22,7 @@ from flexpipe.vehicle._toml import Table
 #: must reach well above the 20-40 Hz band of the body's fixed-interface modes
 MIN_INTERFACE_BAND_HZ = 100.0
 
+
 @dataclass(frozen=True)
 class AddedMass:
     """A non-structural mass spread over the body nodes near ``position``.
