@@ -8,12 +8,15 @@ Bodies
     inertia (or the ``[body.rigid]`` properties of a car without mesh).
 ``"flexible"``
     The body reduced by component mode synthesis (Craig-Bampton, interfaces at the four
-    suspension hardpoints) for a band chosen from the speed and the road content
+    suspension hardpoints, or at every suspension mount of a linkage car with their static
+    modes reduced to the characteristic constraint modes up to ``[body]
+    interface_band_hz``) for a band chosen from the speed and the road content
     (:func:`flexpipe.vehicle.bodymodel.choose_band`), cached on disk.
 ``"full"``
-    The same FE model with every fixed-interface mode up to :data:`FULL_CUTOFF_HZ` (four
-    times the flexible body's cut-off) plus the static constraint modes, so the
-    quasi-static response of all higher modes is kept exactly.  This is what "unreduced"
+    The same FE model with every fixed-interface mode up to :data:`FULL_CUTOFF_HZ` (over
+    four times the flexible body's cut-off) plus every static constraint mode (no
+    interface reduction), so the quasi-static response of all higher modes is kept
+    exactly.  This is what "unreduced"
     can mean for an FFRF multibody body at acceptable cost: it differs from the full FE
     model only by the *dynamics* of modes far above the road and ride excitation (and
     above what the default 1 ms step resolves).  Meant for short validation runs.
