@@ -176,7 +176,7 @@ def check_arguments(args) -> tuple[str, ...]:
     _check_step_arguments(args, h=h, t_end=t_end)
     if getattr(args, "f_max", None) is not None:
         checked_number(args.f_max, "--f-max", lo=0.0, hi=5000.0, unit="Hz", key="f_max")
-        if not set(bodies) & {"flexible"}:
+        if "flexible" not in bodies:
             raise InputError(f"--f-max is the band of the flexible body; --body "
                              f"{','.join(bodies)} has none (the full body keeps every mode "
                              "to 250 Hz)", key="f_max")

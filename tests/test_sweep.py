@@ -198,6 +198,28 @@ def test_runs_sharing_a_body_share_one_reduction_key():
     assert {k[2] for k in keys} == {BAND_CAP_HZ}
 
 
+def test_runs_with_another_interface_band_get_their_own_body():
+    """A sweep over ``body.interface_band_hz`` of a linkage car reduces one body per
+    value (the band changes the body's modes), and a full run keeps every static mode
+    whatever the car file says; its key is the reduction cache's."""
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.execute import _cars
+    from flexpipe.sweeps.tasks import body_keys, road_of
+
+    car_file = str(ROOT / "cars" / "sedan_linkage.toml")
+    spec = load_sweep({"sweep": {"car": car_file, "road": str(ROAD), "body": "flexible",
+                                 "t_end_s": 1.0},
+                       "parameters": {"car.body.interface_band_hz": [400.0, 800.0, "all"]}})
+    runs = spec.runs()
+    keys = [body_keys(car, r, road_of(r))[1] for r, car in zip(runs, _cars(runs), strict=True)]
+    assert len(set(keys)) == 3
+    full = load_sweep({"sweep": {"car": car_file, "road": str(ROAD), "body": "full",
+                                 "t_end_s": 1.0},
+                       "parameters": {"car.body.interface_band_hz": [400.0, 800.0]}})
+    runs = full.runs()
+    keys = [body_keys(car, r, road_of(r))[1] for r, car in zip(runs, _cars(runs), strict=True)]
+    assert len(set(keys)) == 1
+
 def _spec_file(folder, text: str) -> Path:
     car = rigid_sedan(folder)
     path = Path(folder) / "study.toml"

@@ -108,12 +108,11 @@ def symbolic_law(mbs, *elements):
 
 
 def seat_groups(elements) -> list:
-    """The force elements grouped by their seats (body mount or part, and point, at both
-    ends), in the order of first appearance: each group is one connector."""
+    """The force elements grouped by their seats (the body mount, and the part with its
+    point), in the order of first appearance: each group is one connector."""
     groups: dict = {}
     for f in elements:
-        key = (f.mount, f.part, tuple(round(float(x), 9) for x in f.point),
-               tuple(round(float(x), 9) for x in f.body_point))
+        key = (f.mount, f.part, tuple(round(float(x), 9) for x in f.point))
         groups.setdefault(key, []).append(f)
     return list(groups.values())
 

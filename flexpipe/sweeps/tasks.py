@@ -36,7 +36,7 @@ def body_keys(car, run, road=None):
     mount get their own reduction) and ``band`` its band (Hz).
     """
     from flexpipe.vehicle import bodymodel
-    from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ
+    from flexpipe.vehicle.linkage_setup import FULL_CUTOFF_HZ
 
     if car.body.mesh is None:
         return None, None, None
@@ -44,13 +44,14 @@ def body_keys(car, run, road=None):
     if run.body == "rigid":
         return mass_key, None, None
     band = bodymodel.choose_band(run.speed, road)
-    cutoff = FULL_CUTOFF_HZ if run.body == "full" else bodymodel.CB_RATIO * band
-    key = {"cutoff": round(cutoff, 6), "m": bodymodel.DEFAULT_METHOD}
+    full = run.body == "full"
+    kw = {}
     if car.suspension is not None:  # every suspension mount is an interface of the body
-        from flexpipe.vehicle.linkage_setup import body_mounts
+        from flexpipe.vehicle.linkage_setup import body_mounts, interface_band
 
-        key["mounts"] = [m.cache_key() for m in body_mounts(car)]
-    return mass_key, "body-" + bodymodel._digest(car, key), band
+        kw = {"mounts": body_mounts(car), "interface_f_max": interface_band(car, full=full)}
+    cutoff = FULL_CUTOFF_HZ if full else bodymodel.CB_RATIO * band
+    return mass_key, "body-" + bodymodel.body_key(car, cutoff=cutoff, **kw), band
 
 
 def mass_task(car, cache: bool = True):
@@ -67,11 +68,8 @@ def body_task(car, body: str, band: float, rigid, cache: bool = True) -> dict:
     the others as reductions done.
     """
     from flexpipe.vehicle.linkage_setup import reduce_car_body
-    from flexpipe.vehicle.simulation import FULL_CUTOFF_HZ
 
-    cutoff = FULL_CUTOFF_HZ if body == "full" else None
-    fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache,
-                               full=body == "full")
+    fb, info = reduce_car_body(car, f_max=band, cache=cache, full=body == "full")
     return {"rigid": rigid, "flexbody": fb, "reduction": dict(info, band_hz=band)}
 
 

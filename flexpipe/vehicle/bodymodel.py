@@ -281,6 +281,19 @@ def modal_damping(car: Car):
     return ratio
 
 
+def body_key(car: Car, *, cutoff: float, method: str = DEFAULT_METHOD, mounts=None,
+             interface_f_max: float | None = None) -> str:
+    """Digest of everything the reduced body of :func:`reduced_body` depends on (its
+    cache entry's name and the sweeps' grouping of runs that share a body): the mesh and
+    body settings, the fixed-interface ``cutoff`` (Hz), the method and, with ``mounts``
+    (:class:`~flexpipe.vehicle.mounts.Mount` list), every mount and the interface band."""
+    key = {"cutoff": round(float(cutoff), 6), "m": method, "stress": STRESS_MODES}
+    if mounts is not None:
+        key["mounts"] = [m.cache_key() for m in mounts]
+        key["interface_f_max"] = interface_f_max
+    return _digest(car, key)
+
+
 def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
                  cache: bool = True, log=print, cutoff: float | None = None,
                  mounts=None, interface_f_max: float | None = None):
@@ -313,14 +326,12 @@ def reduced_body(car: Car, *, f_max: float, method: str = DEFAULT_METHOD,
         return ready_body(car, names), {"cached": True, "seconds": 0.0,
                                         "path": str(car.body.body_file)}
     cutoff = CB_RATIO * f_max if cutoff is None else float(cutoff)
-    key = {"cutoff": round(cutoff, 6), "m": method, "stress": STRESS_MODES}
     if mounts is not None:  # every body-side mount an interface (flexpipe/vehicle/mounts.py)
         from flexpipe.vehicle.mounts import as_mount
 
         mounts = [as_mount(m) for m in mounts]
-        key["mounts"] = [m.cache_key() for m in mounts]
-        key["interface_f_max"] = interface_f_max
-    key = _digest(car, key)
+    key = body_key(car, cutoff=cutoff, method=method, mounts=mounts,
+                   interface_f_max=interface_f_max)
     path = cache_dir() / f"body-{key[:20]}.npz"
     if cache:  # verified entry (input key, content hash, physics) or rebuilt with a warning
         _cache.clean_stale(cache_dir())
@@ -460,6 +471,6 @@ def describe_modes(mesh_path, *, car=None, n: int = 20) -> str:
     return "\n".join(lines)
 
 
-__all__ = ["CORNERS", "RigidBodyData", "body_fe", "body_mesh", "cache_dir", "choose_band",
-           "classify_modes", "corner_interfaces", "describe_modes", "global_modes",
+__all__ = ["CORNERS", "RigidBodyData", "body_fe", "body_key", "body_mesh", "cache_dir",
+           "choose_band", "classify_modes", "corner_interfaces", "describe_modes", "global_modes",
            "modal_damping", "point_nodes", "reduced_body", "rigid_properties", "spread_mass"]

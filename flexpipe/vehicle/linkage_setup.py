@@ -16,6 +16,8 @@ from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import GRAVITY
 from flexpipe.vehicle.spec import CORNERS, Car
 
+#: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
+FULL_CUTOFF_HZ = 250.0
 #: interface reduction of a body with every suspension mount an interface: characteristic
 #: constraint modes up to this frequency (Hz), see flexpipe.reduction.ccmodes
 INTERFACE_F_MAX_HZ = 400.0
@@ -41,13 +43,14 @@ def interface_band(car: Car, *, full: bool = False) -> float:
     return INTERFACE_F_MAX_HZ if band is None else float(band)
 
 
-def reduce_car_body(car: Car, *, f_max: float, cutoff=None, cache: bool = True, log=None,
+def reduce_car_body(car: Car, *, f_max: float, cache: bool = True, log=None,
                     full: bool = False):
     """The car's reduced flexible body for band ``f_max`` (Hz): interfaces at the four
     corner hardpoints, or for a linkage car at every suspension mount
-    (:func:`body_mounts`, interface reduction to :func:`interface_band`; a ``full`` body,
-    ``cutoff`` its fixed-interface cut-off, keeps every static mode).  Returns
-    ``(FlexBody, info)`` as :func:`flexpipe.vehicle.bodymodel.reduced_body`."""
+    (:func:`body_mounts`, interface reduction to :func:`interface_band`).  A ``full`` body
+    keeps every fixed-interface mode to :data:`FULL_CUTOFF_HZ` and every static mode.
+    Returns ``(FlexBody, info)`` as :func:`flexpipe.vehicle.bodymodel.reduced_body`."""
+    cutoff = FULL_CUTOFF_HZ if full else None
     kw = {}
     if car.suspension is not None:  # every body-side mount an interface of the body
         kw = {"mounts": body_mounts(car), "interface_f_max": interface_band(car, full=full)}

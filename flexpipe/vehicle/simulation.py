@@ -34,6 +34,7 @@ from flexpipe.flexbody.invariants import MAX_MEAN_AXIS_COSINE, mean_axis_cosine
 from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import GRAVITY, corner_arrays
 from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
+    FULL_CUTOFF_HZ,
     INTERFACE_F_MAX_HZ,
     MOUNT_RADIUS_M,
     body_mounts,
@@ -59,13 +60,10 @@ from flexpipe.vehicle.spec import Car
 #: 0.3 at 0.5, 2.32 / 0.94 / 0.22 at 0.7 (2026-12-01)
 SPECTRAL_RADIUS = 0.7
 #: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
-#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 3.8 %,
+#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 4.5 %,
 #: ``bench/bench_convergence.py``); 2 ms leaves the flexible body's x at 8 %, its
 #: attachment modes beyond what a 2 ms step can follow (README)
 DEFAULT_STEP = 1e-3
-
-#: Craig-Bampton cut-off of the "full" body, Hz (all fixed-interface modes below it)
-FULL_CUTOFF_HZ = 250.0
 
 
 def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
@@ -145,11 +143,10 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
            "band_hz": None, "reduction": None}
     if body in ("flexible", "full"):
         band = f_max if f_max is not None else bodymodel.choose_band(speed, road)
-        cutoff = FULL_CUTOFF_HZ if body == "full" else None
         if bodies.get("flexbody") is not None:
             fb, info = bodies["flexbody"], bodies["reduction"]
         else:
-            fb, info = reduce_car_body(car, f_max=band, cutoff=cutoff, cache=cache, log=log,
+            fb, info = reduce_car_body(car, f_max=band, cache=cache, log=log,
                                        full=body == "full")
         out.update(flexbody=fb, band_hz=None if body == "full" else band, reduction=info)
     return out
