@@ -1,8 +1,8 @@
 """Reduction cost and accuracy with every suspension mount an interface (sample sedan).
 
 The trimmed sample body (``cars/sedan.toml`` on ``meshes/sedan_biw.bdf``) is reduced for
-the car's 30 Hz band (Craig-Bampton, fixed-interface modes to 1.5 x 30 Hz as the car
-does) with
+a 30 Hz band (Craig-Bampton, fixed-interface modes to 1.5 x 30 Hz, as the car did until
+its band cap was raised to 40 Hz, ``flexpipe.vehicle.bodymodel.BAND_CAP_HZ``) with
 
 ``corners4``   the four corner hardpoints as 6-DOF spiders (today's car);
 ``m30x6``      the 30 body-side mounts as 6-DOF interfaces;

@@ -182,9 +182,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         against h/8 on ISO class C at 70/100 km/h and on the slalom, 4 s, output every
         step (``bench/bench_convergence.py``, README, worst corner and axis, percent of
         the fluctuating part): the linkage car rigid 0.1-0.2 % (z), 0.1-2.3 % (x, y),
-        flexible 0.1-0.2 % (z), 0.3-3.8 % (x, y); the prismatic car rigid within 1.6 %,
-        flexible 0.0-0.2 % (z) and 1.2-4.1 % (x, y).  At 2 ms the linkage car is within
-        6.5 % (rigid) and 8.3 % (flexible).  Check any run with
+        flexible 0.1-0.2 % (z), 0.2-4.5 % (x, y); the prismatic car rigid within 1.6 %,
+        flexible 0.0-0.2 % (z) and 1.2-4.6 % (x, y) (2026-12-02, the 40 Hz body).  At
+        2 ms the linkage car is within 6.5 % (rigid) and 8.6 % (flexible).  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
