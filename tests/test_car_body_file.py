@@ -195,7 +195,8 @@ def test_interface_band_is_read_and_checked(tmp_path):
     for value, want in (("800.0", 800.0), ('"all"', math.inf)):
         c = fp.load_car(_variant(tmp_path, f"{mesh}\ninterface_band_hz = {value}"))
         assert interface_band(c) == want and interface_band(c, full=True) == math.inf
-    for value, words in (("50.0", ">= 100"), ('"most"', '"all"'), ("-1.0", ">= 100")):
+    for value, words in (("50.0", ">= 100"), ('"most"', '"all"'), ("-1.0", ">= 100"),
+                         ("inf", '"all"'), ("true", '"all"')):
         with pytest.raises(InputError, match=words) as exc:
             fp.load_car(_variant(tmp_path, f"{mesh}\ninterface_band_hz = {value}"))
         assert "body.interface_band_hz" in str(exc.value) and "car.toml" in str(exc.value)

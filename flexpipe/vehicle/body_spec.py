@@ -143,10 +143,10 @@ def read_body(doc: Table, base: Path) -> BodySpec:
         raw = t.raw("interface_band_hz")
         if raw == "all":
             band = math.inf
-        elif isinstance(raw, str):
+        elif isinstance(raw, bool) or not isinstance(raw, int | float) or not math.isfinite(raw):
             raise t.error("interface_band_hz", f"expected a frequency in Hz (>= "
-                                               f"{MIN_INTERFACE_BAND_HZ:g}) or \"all\", got "
-                                               f"{raw!r}")
+                                               f"{MIN_INTERFACE_BAND_HZ:g}) or \"all\" (every "
+                                               f"static mode), got {raw!r}")
         else:
             band = t.number("interface_band_hz", lo=MIN_INTERFACE_BAND_HZ,
                             doc="top of the mounts' characteristic constraint modes, Hz "
