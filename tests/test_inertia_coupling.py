@@ -172,3 +172,36 @@ def test_constant_coupling_tumbling_body_close_to_full(box_body):
     np.testing.assert_allclose(pc, pf, atol=1e-7)
     np.testing.assert_allclose(oc, of, atol=1e-7)
     np.testing.assert_allclose(qc, qf, atol=2e-2 * np.abs(qf).max())
+
+
+def test_compact_modal_matrices_and_the_mass_matrix_exudyn_assembles(box_body):
+    """Diagonal modal matrices go to Exudyn as their non-zero entries only (a dense
+    matrix otherwise), and the constant-coupling body's system mass matrix is the FE
+    body's own: the rigid mass on the frame's translations and the reduced modal mass
+    ``Phi^T M Phi`` on the modal coordinates, computed here from the FE mass matrix."""
+    from flexpipe.exu.inertia import compact
+
+    c = compact(np.diag([2.0, 0.0, 5.0])).GetPythonObject()
+    assert isinstance(c, dict)
+    np.testing.assert_array_equal(c["triplets"], [[0, 0, 2.0], [2, 2, 5.0]])
+    full = np.array([[1.0, 0.5], [0.5, 2.0]])
+    np.testing.assert_array_equal(compact(full).GetPythonObject(), full)
+
+    fe, body, *_ = box_body
+    Phi = body.modes[:, :, body.n_rigid:].reshape(-1, body.n_elastic)
+    Mt = translational_block(fe.M, fe.M.shape[0] // len(body.nodes))
+    M_modal = Phi.T @ (Mt @ Phi)
+    assert np.allclose(M_modal, np.diag(np.diag(M_modal)), atol=1e-9 * M_modal.max())
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    add_flexible_body(mbs, body, gravity=(0, 0, 0), damping=False,
+                      inertia_coupling="constant")
+    mbs.Assemble()
+    solver = exu.MainSolverStatic()
+    solver.InitializeSolver(mbs, _quiet(exu.SimulationSettings()))
+    solver.ComputeMassMatrix(mbs)
+    n = solver.GetODE2size()
+    M = solver.GetSystemMassMatrix()[:n, :n]
+    m_fe = _mass_and_centre(body.nodes, Mt)[0]
+    np.testing.assert_allclose(np.diag(M)[:3], m_fe, rtol=1e-9)
+    np.testing.assert_allclose(M[7:, 7:], M_modal, rtol=0, atol=1e-9 * M_modal.max())

@@ -126,6 +126,39 @@ def test_hub_forces_from_sensors_equal_the_python_reads(output_step, monkeypatch
             np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.abs(b).max() + 1e-9)
 
 
+@pytest.mark.parametrize("body", ["rigid", "flexible"])
+def test_point_accelerations_and_motion_from_sensors_equal_the_python_reads(body,
+                                                                             monkeypatch):
+    """The named points' accelerations and the body motion filled after the run from
+    Exudyn's sensors (flexpipe.exu.output_sensors) against the same values read from
+    Python at every output row (``CarController.output_sensors = False``): one
+    trajectory, equal to rounding; on the flexible body the points are mesh nodes of the
+    super element and the motion carries every elastic modal coordinate."""
+    from flexpipe.scenarios.runner import _straight_road
+    from flexpipe.vehicle.dynamics import CarController
+
+    car = fp.load_car(CAR)
+    kw = dict(road=_straight_road(), speed=70 / 3.6, t_end=0.2, body=body,
+              output_step=2e-3, settle=False)
+    r = fp.simulate(car, **kw)
+    monkeypatch.setattr(CarController, "output_sensors", False)
+    ref = fp.simulate(car, **kw)
+    assert r.status == ref.status == 0
+    names = [k for k in ref.channels if k.startswith("acc_")]
+    assert len(names) == 3 * len(car.body.points) > 0
+    for k in names:
+        a, b = r[k], ref[k]
+        assert np.isfinite(a).all()
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * np.abs(b).max() + 1e-12)
+    m, mr = r.motion, ref.motion
+    assert len(m.t) == len(r.t) and m.q.shape == mr.q.shape
+    assert (m.q.shape[1] > 0) == (body == "flexible")
+    for name in ("q", "position", "rotation"):
+        a, b = getattr(m, name), getattr(mr, name)
+        assert np.isfinite(a).all()
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-9 * (np.abs(b).max(initial=0) + 1))
+
+
 @pytest.fixture(scope="module")
 def iso_c_runs():
     """Rigid twin and flexible bodies of the linkage car on ISO class C at 70 km/h."""

@@ -17,6 +17,13 @@ carry only the kinematics (markers at ``p + A (x + Phi q)``, ``computeFFRFterms=
 an ``ObjectRigidBody`` on the frame node and an ``ObjectGenericODE2`` with the modal
 mass, stiffness and damping on the modal node.  Both have small, mostly constant mass
 matrices; :func:`check_mean_axes` refuses bodies whose modes are not mean-axis modes.
+The modal matrices of a reduced body are diagonal; :func:`compact` hands them to Exudyn
+as their diagonal entries instead of dense m x m matrices, which Exudyn adds entry by
+entry into the system matrices at every Newton iteration.  On the flexible linkage car
+(75 modes; ISO C 70 km/h, 2 s, Exudyn's timers on its range-checked module, two
+simultaneous pairs of runs, 2026-12-02) the mass-matrix timer fell from 0.099 / 0.138 to
+0.070 / 0.075 ms per step and the body-and-force timer from 0.211 / 0.253 to 0.187 /
+0.198 ms; the hub forces are bitwise the same.
 """
 
 from __future__ import annotations
@@ -36,6 +43,20 @@ def dense(A) -> exu.MatrixContainer:
     """Exudyn matrix container holding ``A`` as a dense matrix."""
     c = exu.MatrixContainer()
     c.SetWithDenseMatrix(np.ascontiguousarray(A, dtype=float), useDenseMatrix=True)
+    return c
+
+
+def compact(A) -> exu.MatrixContainer:
+    """Exudyn matrix container holding ``A``: sparse (its non-zero entries only) when
+    ``A`` is diagonal, as modal matrices are, else dense."""
+    A = np.ascontiguousarray(A, dtype=float)
+    if A.ndim != 2 or A.shape[0] != A.shape[1] or np.any(A - np.diag(np.diag(A))):
+        return dense(A)
+    i = np.flatnonzero(np.diag(A))
+    c = exu.MatrixContainer()
+    c.SetWithSparseMatrix(np.column_stack([i, i, A[i, i]]).astype(float),
+                          numberOfRows=A.shape[0], numberOfColumns=A.shape[1],
+                          useDenseMatrix=False)
     return c
 
 
@@ -65,8 +86,8 @@ def add_constant_coupling(mbs, body, n_frame, n_modal, M, K, D):
     mass-proportional loads such as gravity)."""
     if M.shape[0]:
         mbs.AddObject(eii.ObjectGenericODE2(
-            nodeNumbers=[n_modal], massMatrix=dense(M), stiffnessMatrix=dense(K),
-            dampingMatrix=dense(D)))
+            nodeNumbers=[n_modal], massMatrix=compact(M), stiffnessMatrix=compact(K),
+            dampingMatrix=compact(D)))
     return mbs.AddObject(eii.ObjectRigidBody(
         nodeNumber=n_frame, mass=body.mass, inertia=inertia6(body.inertia_origin),
         centerOfMass=list(map(float, body.center_of_mass)),

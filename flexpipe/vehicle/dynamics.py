@@ -103,12 +103,15 @@ class CarController:
 
     #: linkage cars: hub forces from Exudyn's sensor records (see ``_record``)
     hub_sensors = True
+    #: named points' accelerations and the body motion from Exudyn's sensor records when
+    #: ``output_history`` is given (False: read every row in the step, as the tests compare)
+    output_sensors = True
 
     def __init__(self, *, corners, tires, road, steering, speed_pi, target_speed, car, h, t_end,
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
                  preview_time=0.3, linkage=None,
-                 body_motion=None):
+                 body_motion=None, output_history=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -126,6 +129,10 @@ class CarController:
         self.joint_forces = joint_forces
         self.wheel_acc = wheel_acc
         self.body_motion = body_motion  # durability: () -> (q, p, R), one per output row
+        #: t -> the points' accelerations and the body motion at the output times t,
+        #: recorded by Exudyn (flexpipe.exu.output_sensors.history); rows after the first
+        #: are filled from it after the run (fill_from_sensors)
+        self.output_history = output_history if self.output_sensors else None
         self.motion = []
         self._first_row = None  # arguments of the t = 0 row (refresh_first_row)
         self.gvec = np.array([0.0, 0.0, -float(gravity)])
@@ -336,25 +343,12 @@ class CarController:
         self.step_no += 1
         return loads
 
-    def fill_mounts(self) -> None:
-        """Per-mount channels of the rows after the first from the linkage's sensors
-        (:meth:`flexpipe.exu.linkage.LinkageModel.mount_force_history`)."""
-        if not (self.mounts and self.mount_sensors) or self.rec.rows < 2:
-            return
-        rows = slice(1, self.rec.rows)
-        hist = self.linkage.mount_force_history(self.rec.t[rows])
-        for m in self.mounts:
-            for k, ax in enumerate("xyz"):
-                self.rec.data[rows, self.rec.index[f"mount_{m}_{ax}"]] = hist[m][:, k]
-        if self._hub_rows:  # hub_<corner>_<axis>: tyre force + weight - m a + links
-            idx = np.array(sorted(self._hub_rows))
-            F = np.array([self._hub_rows[i][0] for i in idx])
-            R = np.array([self._hub_rows[i][1] for i in idx])
-            hub_g = self.linkage.hub_force_history(self.rec.t[idx], F)
-            hub = np.einsum("rnji,rnj->rni", R, hub_g)
-            for c, corner in enumerate(CORNERS):
-                for k, ax in enumerate("xyz"):
-                    self.rec.data[idx, self.rec.index[f"hub_{corner}_{ax}"]] = hub[:, c, k]
+    def fill_from_sensors(self) -> None:
+        """The rows after the first from Exudyn's sensor records
+        (:func:`flexpipe.vehicle.sensor_rows.fill`)."""
+        from flexpipe.vehicle import sensor_rows
+
+        sensor_rows.fill(self)
 
     def _fail(self, t: float, why: str):
         self.status = -1
@@ -415,7 +409,7 @@ class CarController:
             # what the corner applies to the body = tyre force + weight - m a
             if self.linkage is not None and self.rec.rows > 0 and self.hub_sensors:
                 # the parts' accelerations and the rack and bar links are recorded by
-                # Exudyn's sensors: the hub force is made of them after the run (fill_mounts)
+                # Exudyn's sensors: the hub force is made of them after the run
                 self._hub_rows[self.rec.rows] = (np.array(F_tire, dtype=float),
                                                  st.mount_R.copy())
                 hub = np.full((4, 3), np.nan)
@@ -450,19 +444,24 @@ class CarController:
         corner[:, 6] = st.jounce
         corner[:, 7] = st.spin_rate
         k = c0 + 32
+        later = self.rec.rows > 0 and self.output_history is not None
         if self.points:
-            acc = self.point_acc()
-            for p in self.points:
-                row[k:k + 3] = R.T @ acc[p]
-                k += 3
+            if later:  # filled after the run from Exudyn's sensors (fill_from_sensors)
+                row[k:k + 3 * len(self.points)] = np.nan
+                k += 3 * len(self.points)
+            else:
+                acc = self.point_acc()
+                for p in self.points:
+                    row[k:k + 3] = R.T @ acc[p]
+                    k += 3
         if self.mounts:
             if self.rec.rows == 0 or not self.mount_sensors:
                 mf = self.linkage.mount_forces()
                 for m in self.mounts:
                     row[k:k + 3] = R.T @ mf[m]
                     k += 3
-            else:  # filled after the run from Exudyn's sensors (fill_mounts)
+            else:  # filled after the run from Exudyn's sensors (fill_from_sensors)
                 row[k:] = np.nan
         self.rec.add(st.t, row)
-        if self.body_motion is not None and len(self.motion) < self.rec.rows:
+        if self.body_motion is not None and len(self.motion) < self.rec.rows and not later:
             self.motion.append(self.body_motion())

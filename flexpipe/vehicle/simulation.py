@@ -361,7 +361,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                              joint_forces=system.joint_forces,
                              wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
                              linkage=getattr(system, "linkage", None),
-                             body_motion=system.body_motion_sample)
+                             body_motion=system.body_motion_sample,
+                             output_history=system.output_history)
 
     start = settled_start(build, make_system, make_controller) if settle else None
     system = make_system(build)
@@ -394,7 +395,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                    f"step h = {h:g} s for the stiffness of the model, or a diverging state")
     else:
         status, message = 0, f"reached t_end = {t_end:g} s"
-    ctrl.fill_mounts()
+    ctrl.fill_from_sensors()
     ch = ctrl.rec.channels()
     if status != 0:  # flexpipe#14 (robust): say what diverged and which input is implausible
         from flexpipe.vehicle.diagnose import explain

@@ -1,0 +1,75 @@
+"""Named-point accelerations and the body's motion recorded by Exudyn sensors.
+
+A car run records, at every output row, the global acceleration of each named body point
+(``acc_<point>_<axis>``) and, for durability, the body's motion (elastic modal
+coordinates, frame position and rotation; ``Result.motion``).  Read from Python in the
+step, that is one Exudyn call per point plus three for the motion and a list of every
+modal coordinate turned into an array, every output row; on a flexible body the point
+call evaluates the super element's acceleration at a mesh node.  Stored by Exudyn's own
+sensors after every output step instead, the same values cost no Python at all and are
+turned into the channels after the run (:func:`history`).  The first row (t = 0) has no
+sensor sample (sensors store after a step) and keeps the Python reads.
+``tests/test_linkage_car.py`` checks the sensor channels against the Python reads.
+"""
+
+from __future__ import annotations
+
+import exudyn as exu
+import exudyn.itemInterface as eii
+import numpy as np
+
+OV = exu.OutputVariableType
+
+
+def add(system) -> None:
+    """Sensors (stored in memory) for the named points' accelerations and the body's
+    motion of the car ``system`` (a :class:`flexpipe.exu.car.CarSystem` whose
+    ``points``, ``body_obj``, ``body_node`` and ``modal_node`` are set).  Call before the
+    system is assembled."""
+    mbs = system.mbs
+    kw = dict(storeInternal=True, writeToFile=False)
+    points = {}
+    for name, (kind, where) in system.points.items():
+        if kind == "node":
+            item = eii.SensorSuperElement(bodyNumber=system.body_obj, meshNodeNumber=where,
+                                          outputVariableType=OV.Acceleration, **kw)
+        else:
+            item = eii.SensorBody(bodyNumber=system.body_obj, localPosition=where,
+                                  outputVariableType=OV.Acceleration, **kw)
+        points[name] = mbs.AddSensor(item)
+    node = system.body_node
+    modal = None if system.modal_node is None else mbs.AddSensor(eii.SensorNode(
+        nodeNumber=system.modal_node, outputVariableType=OV.Coordinates, **kw))
+    system._output_sensors = (points, modal, mbs.AddSensor(eii.SensorNode(
+        nodeNumber=node, outputVariableType=OV.Position, **kw)), mbs.AddSensor(eii.SensorNode(
+            nodeNumber=node, outputVariableType=OV.RotationMatrix, **kw)))
+
+
+def history(system, t: np.ndarray) -> dict:
+    """The recorded values at the times ``t`` (n,): ``{"points": {name: (n, 3) global
+    acceleration}, "q": (n, modes), "p": (n, 3), "R": (n, 3, 3), "ok": (n,) bool}``;
+    ``ok`` is False (and the rows NaN) where no sample lies within 1e-9 s of ``t``; None
+    when nothing was recorded."""
+    points, modal, s_p, s_R = system._output_sensors
+    get = system.mbs.GetSensorStoredData
+    raw_R = np.asarray(get(s_R), dtype=float).reshape(-1, 10)
+    ts = raw_R[:, 0]
+    t = np.asarray(t, dtype=float)
+    if not len(ts):
+        return None
+    j = np.clip(np.searchsorted(ts, t - 1e-9), 0, len(ts) - 1)
+    ok = np.abs(ts[j] - t) < 1e-9
+
+    def data(raw):
+        out = raw.reshape(len(ts), -1)[j, 1:]
+        out[~ok] = np.nan
+        return out
+
+    acc = {name: data(np.asarray(get(s), dtype=float)) for name, s in points.items()}
+    q = data(np.asarray(get(modal), dtype=float)) if modal is not None \
+        else np.zeros((len(t), 0))
+    return {"points": acc, "q": q, "p": data(np.asarray(get(s_p), dtype=float)),
+            "R": data(raw_R).reshape(len(t), 3, 3), "ok": ok}
+
+
+__all__ = ["add", "history"]

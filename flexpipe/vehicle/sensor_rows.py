@@ -1,0 +1,67 @@
+"""Output rows made after a run from Exudyn's sensor records.
+
+During a run :class:`flexpipe.vehicle.dynamics.CarController` records the first output row
+(t = 0) from Python reads and leaves NaN in the rows after it where Exudyn's own sensors
+store the values at every output step: the named points' accelerations and the body motion
+(:mod:`flexpipe.exu.output_sensors`), and on a linkage car the per-mount and hub forces
+(:mod:`flexpipe.exu.mount_sensors`).  :func:`fill` turns those records into the channels,
+vectorized over the rows, once the run is over.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flexpipe.vehicle.spec import CORNERS
+
+
+def fill(ctrl) -> None:
+    """Fill the rows after the first of the controller ``ctrl``'s recorder (and its body
+    motion) from the sensors of its run; nothing to do with fewer than two rows."""
+    if ctrl.rec.rows < 2:
+        return
+    if ctrl.output_history is not None:
+        _points_and_motion(ctrl)
+    if ctrl.mounts and ctrl.mount_sensors:
+        _mounts_and_hubs(ctrl)
+
+
+def _points_and_motion(ctrl) -> None:
+    """``acc_<point>_<axis>`` (body axes) and the body motion rows."""
+    rec = ctrl.rec
+    rows = slice(1, rec.rows)
+    hist = ctrl.output_history(rec.t[rows])
+    if hist is None:
+        return
+    R = hist["R"]
+    for p in ctrl.points:
+        a = np.einsum("nji,nj->ni", R, hist["points"][p])  # global -> body axes
+        for k, ax in enumerate("xyz"):
+            rec.data[rows, rec.index[f"acc_{p}_{ax}"]] = a[:, k]
+    if ctrl.body_motion is not None and len(ctrl.motion) == 1:
+        ctrl.motion.extend(zip(hist["q"], hist["p"], R, strict=True))
+
+
+def _mounts_and_hubs(ctrl) -> None:
+    """``mount_<m>_<axis>`` (:meth:`flexpipe.exu.linkage.LinkageModel.mount_force_history`)
+    and ``hub_<corner>_<axis>``: tyre force + weight - m a + links
+    (:meth:`~flexpipe.exu.linkage.LinkageModel.hub_force_history`), body axes."""
+    rec = ctrl.rec
+    rows = slice(1, rec.rows)
+    hist = ctrl.linkage.mount_force_history(rec.t[rows])
+    for m in ctrl.mounts:
+        for k, ax in enumerate("xyz"):
+            rec.data[rows, rec.index[f"mount_{m}_{ax}"]] = hist[m][:, k]
+    hub_rows = ctrl._hub_rows
+    if hub_rows:
+        idx = np.array(sorted(hub_rows))
+        F = np.array([hub_rows[i][0] for i in idx])
+        R = np.array([hub_rows[i][1] for i in idx])
+        hub_g = ctrl.linkage.hub_force_history(rec.t[idx], F)
+        hub = np.einsum("rnji,rnj->rni", R, hub_g)
+        for c, corner in enumerate(CORNERS):
+            for k, ax in enumerate("xyz"):
+                rec.data[idx, rec.index[f"hub_{corner}_{ax}"]] = hub[:, c, k]
+
+
+__all__ = ["fill"]
