@@ -12,6 +12,15 @@ own on it (``FLEXPIPE_EXUDYN=checked``; its total, printed too, is that module's
 timed runs use the module flexpipe loads by default (``exudyn_module`` in the output).  The
 linkage car is also run at 2 ms (the default before the step was halved for convergence)
 as the peer of the default step.
+
+This virtual machine's speed changes by 20-55 % from minute to minute (other machines
+share its cores and caches), and a slow spell hits the flexible car's run harder than
+the rigid one's (single runs on 2026-12-02 gave ratios of 1.76 to 2.27 within
+five minutes).  The linkage car at the default step, the figure the targets are about,
+is therefore run :data:`REPEATS` times, rigid and flexible alternating; each run's CPU
+time is printed, and the figures are the best of the runs (as ``timeit`` takes them:
+the machine's noise only ever adds time), their ratio, and the range of the ratios of
+adjacent pairs.
 """
 
 from __future__ import annotations
@@ -31,37 +40,52 @@ ROOT = Path(__file__).resolve().parents[1]
 SPEED = 70.0 / 3.6
 T_RUN = 10.0
 T_PROFILE = 2.0
+#: alternating runs of the linkage car at the default step (best of them is the figure)
+REPEATS = 3
 
 
 def run() -> dict:
     """Run the benchmark; returns a flat dict of figures."""
     road = _straight_road()
     out = {"t_run_s": T_RUN, "speed_kmh": 70.0, "h_s": DEFAULT_STEP}
-    runs = [("linkage", ROOT / "cars" / "sedan_linkage.toml", DEFAULT_STEP, ""),
-            ("prismatic", ROOT / "cars" / "sedan.toml", DEFAULT_STEP, ""),
-            ("linkage", ROOT / "cars" / "sedan_linkage.toml", 2e-3, "_at_2ms")]
+    linkage, prismatic = ROOT / "cars" / "sedan_linkage.toml", ROOT / "cars" / "sedan.toml"
+    runs = [("linkage", linkage, DEFAULT_STEP, "", REPEATS),
+            ("prismatic", prismatic, DEFAULT_STEP, "", 1),
+            ("linkage", linkage, 2e-3, "_at_2ms", 1)]
     preps = {}  # (car file, body) -> (car, prepared run): set up once, used by every run
-    for tag, path, h, suffix in runs:
-        for body in ("rigid", "flexible"):
-            if (path, body) not in preps:
-                car = load_car(path)
-                preps[path, body] = car, prepare(car, body=body, speed=SPEED, road=road)
-            car, prep = preps[path, body]
-            r = simulate(car, road=road, speed=SPEED, t_end=T_RUN, body=body, prepared=prep,
-                         h=h)
-            key = f"{tag}_{body}{suffix}"
-            py = r.info.get("cpu_python_step_s", 0.0)
-            out[f"{key}_status"] = r.status
-            out[f"{key}_cpu_s"] = round(r.cpu_time, 3)
-            out[f"{key}_realtime_factor"] = round(r.realtime_factor, 3)
-            out[f"{key}_cpu_python_step_s"] = round(py, 3)
-            out[f"{key}_cpu_exudyn_s"] = round(r.cpu_time - py, 3)
-            out[f"{key}_ms_per_step"] = round(1e3 * r.cpu_time / (T_RUN / h), 4)
-            out[f"{key}_newton_iterations_per_step"] = r.info.get("newton_iterations_per_step")
-            if body == "flexible":
-                out[f"{key}_modes"] = r.info.get("n_elastic_modes")
+    for tag, path, h, suffix, repeats in runs:
+        cpu = {"rigid": [], "flexible": []}
+        for _ in range(repeats):
+            for body in ("rigid", "flexible"):
+                if (path, body) not in preps:
+                    car = load_car(path)
+                    preps[path, body] = car, prepare(car, body=body, speed=SPEED, road=road)
+                car, prep = preps[path, body]
+                r = simulate(car, road=road, speed=SPEED, t_end=T_RUN, body=body,
+                             prepared=prep, h=h)
+                cpu[body].append(r.cpu_time)
+                key = f"{tag}_{body}{suffix}"
+                out[f"{key}_status"] = min(out.get(f"{key}_status", 0), r.status)  # worst
+                if r.cpu_time > min(cpu[body]):
+                    continue  # the figures are the best run's
+                py = r.info.get("cpu_python_step_s", 0.0)
+                out[f"{key}_cpu_s"] = round(r.cpu_time, 3)
+                out[f"{key}_realtime_factor"] = round(r.realtime_factor, 3)
+                out[f"{key}_cpu_python_step_s"] = round(py, 3)
+                out[f"{key}_cpu_exudyn_s"] = round(r.cpu_time - py, 3)
+                out[f"{key}_ms_per_step"] = round(1e3 * r.cpu_time / (T_RUN / h), 4)
+                out[f"{key}_newton_iterations_per_step"] = r.info.get(
+                    "newton_iterations_per_step")
+                if body == "flexible":
+                    out[f"{key}_modes"] = r.info.get("n_elastic_modes")
         out[f"{tag}_cpu_ratio_flexible_to_rigid{suffix}"] = round(
             out[f"{tag}_flexible{suffix}_cpu_s"] / out[f"{tag}_rigid{suffix}_cpu_s"], 3)
+        if repeats > 1:
+            for body, times in cpu.items():
+                out[f"{tag}_{body}{suffix}_cpu_s_runs"] = [round(c, 2) for c in times]
+            pairs = [f / r for r, f in zip(cpu["rigid"], cpu["flexible"], strict=True)]
+            out[f"{tag}_cpu_ratio_flexible_to_rigid{suffix}_pairs"] = [
+                round(min(pairs), 3), round(max(pairs), 3)]
     out["linkage_over_prismatic_cpu_flexible"] = round(
         out["linkage_flexible_cpu_s"] / out["prismatic_flexible_cpu_s"], 3)
     out["target_flexible_rtf_at_least_3"] = out["linkage_flexible_realtime_factor"] >= 3.0
