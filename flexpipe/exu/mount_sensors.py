@@ -14,6 +14,8 @@ import exudyn as exu
 import exudyn.itemInterface as eii
 import numpy as np
 
+from flexpipe.exu.output_sensors import stored_reader
+
 OV = exu.OutputVariableType
 
 
@@ -60,19 +62,16 @@ def add(model, body_node) -> None:
 
 
 def _reader(model, t):
-    """``(data, j, ok)`` for the times ``t``: ``data(sensor, width)`` reads a sensor's
-    values (n, width) at the samples ``j`` nearest ``t``; ``ok`` where a sample lies
-    within 1e-9 s of ``t``."""
-    get = model.mbs.GetSensorStoredData
-    ts = np.asarray(get(model._body_sensor), dtype=float).reshape(-1, 10)[:, 0]
-    t = np.asarray(t, dtype=float)
-    j = np.clip(np.searchsorted(ts, t - 1e-9), 0, max(len(ts) - 1, 0))
-    ok = (len(ts) > 0) & (np.abs(ts[j] - t) < 1e-9) if len(ts) else np.zeros(len(t), bool)
-
-    def data(sid, width):
-        return np.asarray(get(sid), dtype=float).reshape(len(ts), -1)[j, 1:1 + width]
-
-    return data, j, ok
+    """``(data, ok)`` for the times ``t``: ``data(sensor, width)`` reads a sensor's
+    values (n, width) at the samples nearest ``t`` (all NaN when nothing was recorded);
+    ``ok`` where a sample lies within 1e-9 s of ``t``
+    (:func:`flexpipe.exu.output_sensors.stored_reader`, clocked by the body sensor)."""
+    got = stored_reader(model.mbs, model._body_sensor, t)
+    if got is None:
+        n = len(np.atleast_1d(t))
+        return (lambda sid, width: np.full((n, width), np.nan)), np.zeros(n, dtype=bool)
+    read, ok = got
+    return (lambda sid, width: read(sid)[:, :width]), ok
 
 
 def hub_history(model, t: np.ndarray, F_tire: np.ndarray):
@@ -80,7 +79,7 @@ def hub_history(model, t: np.ndarray, F_tire: np.ndarray):
     :func:`add` and the tyre forces ``F_tire`` (n, 4, 3) applied at those times, as
     :meth:`flexpipe.exu.linkage.LinkageModel.hub_forces` computes them from Python
     reads; rows NaN where no sensor sample lies within 1e-9 s of ``t``."""
-    data, _j, ok = _reader(model, t)
+    data, ok = _reader(model, t)
     parts, links = model._hub_sensors
     out = np.array(F_tire, dtype=float)
     g = np.asarray(model.g, dtype=float)
@@ -100,7 +99,7 @@ def history(model, t: np.ndarray):
     lies within 1e-9 s of ``t`` (None without sensors)."""
     if not getattr(model, "_sensors", None):
         return None
-    data, _j, ok = _reader(model, t)
+    data, ok = _reader(model, t)
     Rb = data(model._body_sensor, 9).reshape(-1, 3, 3)
     out = {}
     for (mount, _co, kind, _m, A), sens in zip(model.body_links, model._sensors, strict=True):

@@ -45,31 +45,45 @@ def add(system) -> None:
             nodeNumber=node, outputVariableType=OV.RotationMatrix, **kw)))
 
 
+def stored_reader(mbs, clock, t):
+    """``(data, ok)`` for the output times ``t`` (n,) from sensors stored in memory:
+    ``data(sensor)`` gives a sensor's values (n, width) at the samples nearest ``t``
+    (the sample times read from the sensor ``clock``); ``ok`` (n,) is True where a
+    sample lies within 1e-9 s of ``t``.  None when nothing was recorded."""
+    get = mbs.GetSensorStoredData
+    raw = np.atleast_2d(np.asarray(get(clock), dtype=float))
+    if not raw.size:
+        return None
+    ts = raw[:, 0]
+    t = np.asarray(t, dtype=float)
+    j = np.clip(np.searchsorted(ts, t - 1e-9), 0, len(ts) - 1)
+    ok = np.abs(ts[j] - t) < 1e-9
+
+    def data(sensor):
+        return np.asarray(get(sensor), dtype=float).reshape(len(ts), -1)[j, 1:]
+
+    return data, ok
+
+
 def history(system, t: np.ndarray) -> dict:
     """The recorded values at the times ``t`` (n,): ``{"points": {name: (n, 3) global
     acceleration}, "q": (n, modes), "p": (n, 3), "R": (n, 3, 3), "ok": (n,) bool}``;
     ``ok`` is False (and the rows NaN) where no sample lies within 1e-9 s of ``t``; None
     when nothing was recorded."""
     points, modal, s_p, s_R = system._output_sensors
-    get = system.mbs.GetSensorStoredData
-    raw_R = np.asarray(get(s_R), dtype=float).reshape(-1, 10)
-    ts = raw_R[:, 0]
-    t = np.asarray(t, dtype=float)
-    if not len(ts):
+    got = stored_reader(system.mbs, s_R, t)
+    if got is None:
         return None
-    j = np.clip(np.searchsorted(ts, t - 1e-9), 0, len(ts) - 1)
-    ok = np.abs(ts[j] - t) < 1e-9
+    read, ok = got
 
-    def data(raw):
-        out = raw.reshape(len(ts), -1)[j, 1:]
+    def data(sensor):
+        out = np.array(read(sensor), dtype=float)
         out[~ok] = np.nan
         return out
 
-    acc = {name: data(np.asarray(get(s), dtype=float)) for name, s in points.items()}
-    q = data(np.asarray(get(modal), dtype=float)) if modal is not None \
-        else np.zeros((len(t), 0))
-    return {"points": acc, "q": q, "p": data(np.asarray(get(s_p), dtype=float)),
-            "R": data(raw_R).reshape(len(t), 3, 3), "ok": ok}
+    q = data(modal) if modal is not None else np.zeros((len(ok), 0))
+    return {"points": {name: data(s) for name, s in points.items()}, "q": q,
+            "p": data(s_p), "R": data(s_R).reshape(-1, 3, 3), "ok": ok}
 
 
-__all__ = ["add", "history"]
+__all__ = ["add", "history", "stored_reader"]
