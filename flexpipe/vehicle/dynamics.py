@@ -29,6 +29,7 @@ import numpy as np
 
 from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.tires.contact import _cross
+from flexpipe.vehicle import sensor_rows
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.spec import CORNERS
 
@@ -346,8 +347,6 @@ class CarController:
     def fill_from_sensors(self) -> None:
         """The rows after the first from Exudyn's sensor records
         (:func:`flexpipe.vehicle.sensor_rows.fill`)."""
-        from flexpipe.vehicle import sensor_rows
-
         sensor_rows.fill(self)
 
     def _fail(self, t: float, why: str):
