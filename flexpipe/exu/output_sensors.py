@@ -40,9 +40,13 @@ def add(system) -> None:
     node = system.body_node
     modal = None if system.modal_node is None else mbs.AddSensor(eii.SensorNode(
         nodeNumber=system.modal_node, outputVariableType=OV.Coordinates, **kw))
+    # a linkage car's mount sensors already record the body node's rotation: shared
+    rotation = getattr(getattr(system, "linkage", None), "_body_sensor", None)
+    if rotation is None:
+        rotation = mbs.AddSensor(eii.SensorNode(
+            nodeNumber=node, outputVariableType=OV.RotationMatrix, **kw))
     system._output_sensors = (points, modal, mbs.AddSensor(eii.SensorNode(
-        nodeNumber=node, outputVariableType=OV.Position, **kw)), mbs.AddSensor(eii.SensorNode(
-            nodeNumber=node, outputVariableType=OV.RotationMatrix, **kw)))
+        nodeNumber=node, outputVariableType=OV.Position, **kw)), rotation)
 
 
 def stored_reader(mbs, clock, t):
@@ -67,9 +71,8 @@ def stored_reader(mbs, clock, t):
 
 def history(system, t: np.ndarray) -> dict:
     """The recorded values at the times ``t`` (n,): ``{"points": {name: (n, 3) global
-    acceleration}, "q": (n, modes), "p": (n, 3), "R": (n, 3, 3), "ok": (n,) bool}``;
-    ``ok`` is False (and the rows NaN) where no sample lies within 1e-9 s of ``t``; None
-    when nothing was recorded."""
+    acceleration}, "q": (n, modes), "p": (n, 3), "R": (n, 3, 3)}``, rows NaN where no
+    sample lies within 1e-9 s of ``t``; None when nothing was recorded."""
     points, modal, s_p, s_R = system._output_sensors
     got = stored_reader(system.mbs, s_R, t)
     if got is None:
@@ -83,7 +86,7 @@ def history(system, t: np.ndarray) -> dict:
 
     q = data(modal) if modal is not None else np.zeros((len(ok), 0))
     return {"points": {name: data(s) for name, s in points.items()}, "q": q,
-            "p": data(s_p), "R": data(s_R).reshape(-1, 3, 3), "ok": ok}
+            "p": data(s_p), "R": data(s_R).reshape(-1, 3, 3)}
 
 
 __all__ = ["add", "history", "stored_reader"]
