@@ -5,8 +5,10 @@ from __future__ import annotations
 import numpy as np
 
 
-def readonly_floats(a) -> np.ndarray:
-    """A float64 copy of ``a`` that cannot be written (frozen dataclass fields)."""
-    a = np.array(a, dtype=float, copy=True)
+def readonly(a, dtype=float) -> np.ndarray:
+    """A contiguous copy of ``a`` as ``dtype`` that cannot be written (frozen dataclass
+    fields): a copy, so freezing never makes the caller's own array read-only, nor does a
+    later change of it show through the field."""
+    a = np.array(a, dtype=dtype, copy=True, order="C")
     a.setflags(write=False)
     return a

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from flexpipe._arrays import readonly_floats
+from flexpipe._arrays import readonly
 from flexpipe.errors import InputError
 
 _SCALARS = (float, int, np.float64, np.float32)
@@ -104,7 +104,7 @@ class Path:
         else:
             heading = np.full(2, seg_heading[0])
             curvature = np.zeros(2)
-        x, y, s, heading, curvature = map(readonly_floats, (x, y, s, heading, curvature))
+        x, y, s, heading, curvature = map(readonly, (x, y, s, heading, curvature))
         return cls(x=x, y=y, s=s, heading=heading, curvature=curvature, name=name,
                    source=source)
 

@@ -22,6 +22,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from flexpipe._arrays import readonly
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
 from flexpipe.flexbody.invariants import FFRFInvariants
@@ -31,12 +32,6 @@ FORMAT = "flexpipe-modal-neutral-file"
 VERSION = 1
 _ARRAYS = ("nodes", "triangles", "modes", "frequencies_hz", "M", "K", "D", "damping_ratio",
            "center_of_mass", "inertia", "inertia_origin")
-
-
-def _ro(a, dtype=float):
-    a = np.array(a, dtype=dtype, copy=True)
-    a.setflags(write=False)
-    return a
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,10 +75,10 @@ class BodyInterface:
         object.__setattr__(self, "dofs", int(self.dofs))
         C = np.zeros((self.dofs, self.dofs)) if self.residual_compliance is None \
             else self.residual_compliance
-        object.__setattr__(self, "residual_compliance", _ro(C).reshape(self.dofs, self.dofs))
-        object.__setattr__(self, "point", _ro(self.point).reshape(3))
-        object.__setattr__(self, "nodes", _ro(self.nodes, np.int64).reshape(-1))
-        object.__setattr__(self, "shapes", _ro(self.shapes).reshape(6, -1))
+        object.__setattr__(self, "residual_compliance", readonly(C).reshape(self.dofs, self.dofs))
+        object.__setattr__(self, "point", readonly(self.point).reshape(3))
+        object.__setattr__(self, "nodes", readonly(self.nodes, np.int64).reshape(-1))
+        object.__setattr__(self, "shapes", readonly(self.shapes).reshape(6, -1))
 
 
 @dataclass(frozen=True, eq=False)
@@ -157,7 +152,7 @@ class FlexBody:
     def __post_init__(self):
         for name in _ARRAYS:
             dtype = np.int64 if name == "triangles" else float
-            object.__setattr__(self, name, _ro(getattr(self, name), dtype))
+            object.__setattr__(self, name, readonly(getattr(self, name), dtype))
         n, m = len(self.nodes), len(self.frequencies_hz)
         if self.modes.shape != (n, 3, m):
             raise ValueError(f"modes must have shape ({n}, 3, {m}), got {self.modes.shape}")
@@ -174,8 +169,8 @@ class FlexBody:
             raise ValueError(f"interface names must be unique, got {names}")
         object.__setattr__(self, "meta", MappingProxyType(dict(self.meta)))
         object.__setattr__(self, "checks", MappingProxyType(
-            {k: _ro(v) for k, v in dict(self.checks).items()}))
-        inv = {k: _ro(v) for k, v in self.invariants.as_dict().items()}
+            {k: readonly(v) for k, v in dict(self.checks).items()}))
+        inv = {k: readonly(v) for k, v in self.invariants.as_dict().items()}
         object.__setattr__(self, "invariants", FFRFInvariants(**inv))
 
     def __reduce__(self):

@@ -20,18 +20,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from flexpipe._arrays import readonly
 from flexpipe.errors import InputError
 
 #: element kinds and their component names
 from flexpipe.fem.stress import COMPONENTS, KIND
 
 _KEYS = ("ids", "cells", "centroids", "modes", "frames", "nodes", "nodal")
-
-
-def _ro(a, dtype=float):
-    a = np.array(a, dtype=dtype, copy=True)
-    a.setflags(write=False)
-    return a
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,11 +65,11 @@ class StressBlock:
     nodal: np.ndarray = field(default_factory=lambda: np.zeros((0, 6, 0)))
 
     def __post_init__(self):
-        object.__setattr__(self, "ids", _ro(self.ids, np.int64))
-        object.__setattr__(self, "cells", _ro(self.cells, np.int64))
-        object.__setattr__(self, "nodes", _ro(self.nodes, np.int64))
+        object.__setattr__(self, "ids", readonly(self.ids, np.int64))
+        object.__setattr__(self, "cells", readonly(self.cells, np.int64))
+        object.__setattr__(self, "nodes", readonly(self.nodes, np.int64))
         for k in ("centroids", "modes", "frames", "nodal"):
-            object.__setattr__(self, k, _ro(getattr(self, k)))
+            object.__setattr__(self, k, readonly(getattr(self, k)))
 
     @property
     def kind(self) -> str:
@@ -104,7 +99,7 @@ class StressModes:
 
     def __post_init__(self):
         object.__setattr__(self, "blocks", tuple(self.blocks))
-        object.__setattr__(self, "mode_index", _ro(self.mode_index, np.int64))
+        object.__setattr__(self, "mode_index", readonly(self.mode_index, np.int64))
 
     @property
     def n_elements(self) -> int:

@@ -17,6 +17,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from flexpipe._arrays import readonly
+
 #: nodes per cell for every supported element type
 NODES_PER_CELL = {
     "vertex": 1,
@@ -37,12 +39,6 @@ BEAM_TYPES = ("line",)
 #: springs/dampers (Nastran CELAS/CBUSH): element matrices carried in ``block.data``
 #: (``"K"``, optional ``"B"``, shape (n, 6 nn, 6 nn), global DOF); ``spring1`` is grounded
 SPRING_TYPES = ("spring", "spring1")
-
-
-def _ro(a, dtype) -> np.ndarray:
-    a = np.ascontiguousarray(a, dtype=dtype)
-    a.setflags(write=False)
-    return a
 
 
 @dataclass(frozen=True)
@@ -78,9 +74,9 @@ class CellBlock:
         n = len(cells)
         ids = np.arange(1, n + 1) if self.ids is None else self.ids
         tags = np.zeros(n, dtype=np.int64) if self.tags is None else self.tags
-        object.__setattr__(self, "cells", _ro(cells, np.int64))
-        object.__setattr__(self, "ids", _ro(ids, np.int64))
-        object.__setattr__(self, "tags", _ro(tags, np.int64))
+        object.__setattr__(self, "cells", readonly(cells, np.int64))
+        object.__setattr__(self, "ids", readonly(ids, np.int64))
+        object.__setattr__(self, "tags", readonly(tags, np.int64))
         object.__setattr__(self, "data", MappingProxyType(dict(self.data)))
 
     def __len__(self) -> int:
@@ -192,17 +188,17 @@ class Mesh:
         if pts.shape[1] == 2:
             pts = np.column_stack([pts, np.zeros(len(pts))])
         nid = np.arange(1, len(pts) + 1) if self.node_ids is None else self.node_ids
-        object.__setattr__(self, "points", _ro(pts, float))
-        object.__setattr__(self, "node_ids", _ro(nid, np.int64))
+        object.__setattr__(self, "points", readonly(pts, float))
+        object.__setattr__(self, "node_ids", readonly(nid, np.int64))
         object.__setattr__(self, "blocks", tuple(self.blocks))
         object.__setattr__(
             self, "node_sets",
-            MappingProxyType({k: _ro(v, np.int64) for k, v in dict(self.node_sets).items()}),
+            MappingProxyType({k: readonly(v, np.int64) for k, v in dict(self.node_sets).items()}),
         )
         object.__setattr__(
             self, "cell_sets",
             MappingProxyType({
-                k: MappingProxyType({int(b): _ro(c, np.int64) for b, c in dict(v).items()})
+                k: MappingProxyType({int(b): readonly(c, np.int64) for b, c in dict(v).items()})
                 for k, v in dict(self.cell_sets).items()
             }),
         )
@@ -211,7 +207,7 @@ class Mesh:
         object.__setattr__(self, "interpolations", tuple(self.interpolations))
         object.__setattr__(
             self, "dof_sets",
-            MappingProxyType({k: _ro(np.reshape(v, (-1, 2)), np.int64)
+            MappingProxyType({k: readonly(np.reshape(v, (-1, 2)), np.int64)
                               for k, v in dict(self.dof_sets).items()}),
         )
         object.__setattr__(self, "solution", MappingProxyType(dict(self.solution)))

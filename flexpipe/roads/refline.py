@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from flexpipe._arrays import readonly_floats
+from flexpipe._arrays import readonly
 from flexpipe.errors import InputError
 
 #: Relative heading spread below which a reference line counts as straight (OpenCRG check_eps).
@@ -52,7 +52,7 @@ class ReferenceLine:
     _cache: dict = dataclasses.field(default_factory=dict, repr=False, compare=False)
 
     def __post_init__(self):
-        x, y = readonly_floats(self.x), readonly_floats(self.y)
+        x, y = readonly(self.x), readonly(self.y)
         if x.ndim != 1 or x.size < 2 or y.shape != x.shape:
             raise InputError(f"a reference line needs >= 2 points, got shapes {x.shape}, "
                              f"{y.shape}")
@@ -72,7 +72,7 @@ class ReferenceLine:
             start = end = mean
         else:
             start, end = float(phi[0]), float(phi[-1])
-        object.__setattr__(self, "phi", readonly_floats(phi))
+        object.__setattr__(self, "phi", readonly(phi))
         object.__setattr__(self, "straight", straight)
         object.__setattr__(self, "phi_start", start)
         object.__setattr__(self, "phi_end", end)

@@ -29,7 +29,7 @@ import pathlib
 
 import numpy as np
 
-from flexpipe._arrays import readonly_floats
+from flexpipe._arrays import readonly
 from flexpipe._io import atomic_path, read_numeric_rows
 from flexpipe.errors import InputError
 from flexpipe.roads._plausible import check_heights
@@ -82,9 +82,9 @@ class Road:
 
     def __post_init__(self):
         where = self.source or self.name or None
-        x = readonly_floats(self.x)
-        left = readonly_floats(self.left)
-        right = readonly_floats(self.right)
+        x = readonly(self.x)
+        left = readonly(self.left)
+        right = readonly(self.right)
         if x.ndim != 1 or x.size < 2:
             raise InputError(f"a road needs at least 2 distance samples, got shape {x.shape}",
                              file=where)
@@ -111,8 +111,8 @@ class Road:
             raise InputError("give both the lateral grid y and the height grid z, or neither",
                              file=where)
         if self.y is not None:
-            y = readonly_floats(self.y)
-            z = readonly_floats(self.z)
+            y = readonly(self.y)
+            z = readonly(self.z)
             if y.ndim != 1 or y.size < 2 or np.any(np.diff(y) <= 0.0):
                 raise InputError("lateral grid y must hold >= 2 strictly increasing values",
                                  file=where)
@@ -126,7 +126,7 @@ class Road:
             object.__setattr__(self, "y", y)
             object.__setattr__(self, "z", z)
         if self.heading is not None:
-            heading = readonly_floats(self.heading)
+            heading = readonly(self.heading)
             if heading.shape != x.shape or not np.all(np.isfinite(heading)):
                 raise InputError("heading must be finite with one value per distance sample",
                                  file=where)
