@@ -463,3 +463,16 @@ def test_nastran_cbeam_pbeam_and_deck_suffixes(tmp_path, ext):
     assert (s["A"], s["Iz"], s["Iy"], s["J"]) == (6e-4, 2e-8, 4.5e-8, 3e-8)
     assert (s["E"], s["nu"], s["rho"]) == (2.1e11, 0.3, 7850.0)
     assert assemble(mesh).total_mass == pytest.approx(7850.0 * 6e-4 * 1.0, rel=1e-12)
+
+
+def test_a_mesh_copies_its_arrays_and_leaves_the_callers_writable():
+    """Frozen Mesh fields are read-only copies: the caller's arrays stay writable and a
+    later change of them does not show through the mesh."""
+    points = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    cells = np.array([[0, 1, 2, 3]], dtype=np.int64)
+    mesh = Mesh(points=points, blocks=[CellBlock("tetra", cells)])
+    assert points.flags.writeable and cells.flags.writeable
+    assert not mesh.points.flags.writeable and not mesh.blocks[0].cells.flags.writeable
+    points[1, 0] = 9.0
+    cells[0, 0] = 3
+    assert mesh.points[1, 0] == 1.0 and mesh.blocks[0].cells[0, 0] == 0
