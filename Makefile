@@ -1,6 +1,7 @@
 # flexpipe — the two commands a newcomer types are `make straight` and `make test`.
 # Every target that needs the environment depends on .venv/.installed (the `setup` target),
-# which creates the virtual environment and installs flexpipe with its dependencies once.
+# which creates the virtual environment, installs flexpipe with its dependencies and
+# compiles its Numba kernels with a few steps of the sample cars, once.
 
 PYTHON ?= python3
 VENV := .venv
@@ -15,6 +16,7 @@ $(STAMP): pyproject.toml
 	@test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e ".[dev]"
+	$(PY) -m flexpipe.vehicle.warmup cars/sedan.toml cars/sedan_linkage.toml
 	@touch $(STAMP)
 
 straight: setup

@@ -31,7 +31,7 @@ import numpy as np
 from flexpipe._io import absolute
 from flexpipe.errors import InputError
 from flexpipe.flexbody.invariants import MAX_MEAN_AXIS_COSINE, mean_axis_cosine
-from flexpipe.vehicle import bodymodel
+from flexpipe.vehicle import bodymodel, warmup
 from flexpipe.vehicle.corners import GRAVITY, corner_arrays
 from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
     FULL_CUTOFF_HZ,
@@ -258,6 +258,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     car, speed, t_end, h, every = a.car, a.speed, a.t_end, a.h, a.every
     max_mode_hz, f_max, rates, start = a.max_mode_hz, a.f_max, a.rates, a.start
     road_obj, path_obj, steering, speed_pi = a.road, a.path, a.steering, a.speed_pi
+    if log is not None and warmup.pending():  # the first run after installing: say why
+        log(warmup.MESSAGE)                     # it takes half a minute longer
     prep = prepared or prepare(car, body=body, speed=speed, road=road_obj, f_max=f_max,
                                cache=cache, log=log)
     rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]

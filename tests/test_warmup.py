@@ -1,0 +1,64 @@
+"""Numba kernels of a car run (flexpipe.vehicle.warmup): a run on an empty kernel cache
+says it compiles, the warm-up compiles every kernel a run calls, and a run after it
+compiles nothing (Numba's own cache statistics are the reference)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from flexpipe.tires import _fast
+
+ROOT = Path(__file__).resolve().parents[1]
+CARS = [str(ROOT / "cars" / "sedan.toml"), str(ROOT / "cars" / "sedan_linkage.toml")]
+
+FIRST = """
+import json, sys
+from flexpipe.vehicle import load_car, simulate, warmup
+pending = warmup.pending()
+logs = []
+simulate(load_car(sys.argv[1]), speed=10.0, t_end=0.003, body="rigid", log=logs.append)
+warmup.warm_up(sys.argv[1:])
+print(json.dumps({"pending": pending, "said": warmup.MESSAGE in logs,
+                  "pending_after": warmup.pending()}))
+"""
+
+AFTER = """
+import json, sys
+from flexpipe.vehicle import load_car, simulate, warmup
+pending = warmup.pending()
+logs = []
+for path in sys.argv[1:]:
+    simulate(load_car(path), speed=10.0, t_end=0.003, body="rigid", log=logs.append)
+misses = {k.py_func.__name__: sum(k.stats.cache_misses.values()) for k in warmup.kernels()}
+hits = {k.py_func.__name__: sum(k.stats.cache_hits.values()) for k in warmup.kernels()}
+print(json.dumps({"pending": pending, "said": warmup.MESSAGE in logs, "misses": misses,
+                  "hits": hits}))
+"""
+
+
+def _run(script, env):
+    p = subprocess.run([sys.executable, "-c", script, *CARS], capture_output=True,
+                       text=True, cwd=ROOT, env=env, timeout=600)
+    assert p.returncode == 0, p.stderr[-2000:]
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not _fast.enabled(), reason="numba not installed")
+def test_a_run_after_the_warm_up_compiles_nothing(tmp_path):
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"),
+               FLEXPIPE_CACHE=str(tmp_path / "bodies"))
+    first = _run(FIRST, env)
+    assert first == {"pending": True, "said": True, "pending_after": False}
+    after = _run(AFTER, env)
+    assert not after["pending"] and not after["said"]
+    assert set(after["misses"]) == {"correct_group", "predict_group", "applied_force",
+                                    "element", "node_states"}
+    assert all(n == 0 for n in after["misses"].values()), after
+    assert all(n > 0 for n in after["hits"].values()), after
