@@ -7,8 +7,9 @@ A car run calls compiled kernels in every step: the PAC2002 wheel forces
 (:mod:`flexpipe.exu._node_state`).  Numba compiles them at their first call and keeps the
 machine code on disk (``cache=True``: in ``__pycache__`` next to the sources, or under
 ``NUMBA_CACHE_DIR``), so only the first run after installing or updating flexpipe pays
-for it: a 0.02 s rigid run of ``cars/sedan.toml`` on a fresh clone took 22.8 s, and 1.1 s
-once the kernels were cached (2026-12-02).
+for it: ``flexpipe run cars/sedan.toml --body rigid --t-end 0.02`` on a fresh clone took
+28.0 s with the kernels still to compile and 6.0 s with them cached (empty body cache,
+2026-12-02); compiling them with both sample cars took 24 s.
 
 :func:`pending` tells :func:`flexpipe.vehicle.simulate` to say so before such a run
 starts; ``python -m flexpipe.vehicle.warmup CAR.toml ...`` compiles them ahead with a
