@@ -62,3 +62,13 @@ def test_a_run_after_the_warm_up_compiles_nothing(tmp_path):
                                     "element", "node_states"}
     assert all(n == 0 for n in after["misses"].values()), after
     assert all(n > 0 for n in after["hits"].values()), after
+
+
+def test_the_warm_up_names_a_bad_car_file(tmp_path, capsys):
+    from flexpipe.vehicle.warmup import main
+
+    assert main([str(tmp_path / "nope.toml")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error:") and "nope.toml" in err and "cannot read" in err
+    assert main([]) == 2
+    assert "usage" in capsys.readouterr().err

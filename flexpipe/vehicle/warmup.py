@@ -57,29 +57,38 @@ def pending() -> bool:
     return not all(_ready(k) for k in kernels())
 
 
-def warm_up(car_files, *, speed: float = 10.0, steps: int = 5) -> None:
-    """Compile the kernels by running each car (rigid body, flat road) a few steps."""
-    from flexpipe.vehicle import load_car, simulate
+def warm_up(cars, *, speed: float = 10.0, steps: int = 5) -> None:
+    """Compile the kernels by running each car (a Car or car file; rigid body, flat road)
+    a few steps."""
+    from flexpipe.vehicle import simulate
     from flexpipe.vehicle.simulation import DEFAULT_STEP
 
-    for path in car_files:
-        r = simulate(load_car(path), speed=speed, t_end=steps * DEFAULT_STEP, body="rigid")
+    for car in cars:
+        r = simulate(car, speed=speed, t_end=steps * DEFAULT_STEP, body="rigid")
         if r.status != 0:
-            raise RuntimeError(f"{path}: the warm-up run failed: {r.message}")
+            raise RuntimeError(f"{car}: the warm-up run failed: {r.message}")
 
 
 def main(argv=None) -> int:
-    cars = list(sys.argv[1:] if argv is None else argv)
-    if not cars:
+    from flexpipe.errors import FlexpipeError
+    from flexpipe.vehicle import load_car
+
+    files = list(sys.argv[1:] if argv is None else argv)
+    if not files:
         print("usage: python -m flexpipe.vehicle.warmup CAR.toml [CAR.toml ...]",
               file=sys.stderr)
         return 2
-    if not pending():
-        print("flexpipe's Numba kernels are compiled")
-        return 0
-    print(MESSAGE)
-    t0 = time.perf_counter()
-    warm_up(cars)
+    try:
+        cars = [load_car(f) for f in files]  # bad files are named whatever the cache holds
+        if not pending():
+            print("flexpipe's Numba kernels are compiled")
+            return 0
+        print(MESSAGE)
+        t0 = time.perf_counter()
+        warm_up(cars)
+    except (FlexpipeError, RuntimeError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
     print(f"compiled in {time.perf_counter() - t0:.0f} s")
     return 0
 
