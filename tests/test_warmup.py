@@ -72,3 +72,42 @@ def test_the_warm_up_names_a_bad_car_file(tmp_path, capsys):
     assert err.startswith("error:") and "nope.toml" in err and "cannot read" in err
     assert main([]) == 2
     assert "usage" in capsys.readouterr().err
+
+
+CALLER = """
+import sys
+sys.path.insert(0, sys.argv[1])
+import callee, caller
+if sys.argv[2] == "drop":
+    from flexpipe.tires._fast import drop_stale_caches
+    drop_stale_caches((caller.g,), callee.__file__)
+print(caller.g())
+"""
+
+
+@pytest.mark.skipif(not _fast.enabled(), reason="numba not installed")
+def test_a_cached_kernel_does_not_keep_an_edited_callee(tmp_path):
+    """Numba checks a cached kernel against its own file only: after the file of a
+    kernel it calls changes, it runs the old callee (shown here first, the hazard) unless
+    :func:`drop_stale_caches` empties its cache."""
+    src = tmp_path / "src"
+    src.mkdir()
+    head = "from numba import njit\n\n\n@njit(cache=True)\n"
+    (src / "callee.py").write_text(head + "def f():\n    return 1.0\n")
+    (src / "caller.py").write_text("from callee import f\n" + head + "def g():\n    return f()\n")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))
+
+    def g(mode):
+        p = subprocess.run([sys.executable, "-c", CALLER, str(src), mode], capture_output=True,
+                           text=True, cwd=ROOT, env=env, timeout=300)
+        assert p.returncode == 0, p.stderr[-2000:]
+        return float(p.stdout.split()[-1])
+
+    assert g("keep") == 1.0
+    callee = src / "callee.py"
+    callee.write_text(head + "def f():\n    return 2.0\n")
+    later = callee.stat().st_mtime + 10.0
+    os.utime(callee, (later, later))
+    assert g("keep") == 1.0  # Numba's own check: the caller's cache still holds f = 1
+    assert g("drop") == 2.0
+    assert g("keep") == 2.0  # recompiled and cached again

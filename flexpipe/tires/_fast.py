@@ -86,6 +86,26 @@ def _jit(fn):
     return njit(cache=True, error_model="numpy")(fn) if njit is not None else fn
 
 
+def drop_stale_caches(kernels, *sources) -> None:
+    """Empty the disk cache of ``kernels`` written before a file of ``sources`` changed.
+
+    Numba checks a cached kernel against its own source file only, but a kernel that
+    calls compiled functions of another file holds their machine code too: after an edit
+    or a ``git pull`` of that file alone, it would run the old code.  A cache index older
+    than one of ``sources`` is emptied, so the kernel compiles again at its next call.
+    """
+    if njit is None:
+        return
+    newest = max(os.path.getmtime(f) for f in sources)
+    for k in kernels:
+        try:
+            index = k._cache._cache_file._index_path
+            if os.path.exists(index) and os.path.getmtime(index) < newest:
+                k._cache.flush()
+        except (AttributeError, OSError):  # another Numba layout, or a read-only cache
+            pass
+
+
 @_jit
 def _mf(B, C, E, x):
     Bx = B * x

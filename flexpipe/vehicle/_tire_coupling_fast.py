@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from flexpipe.tires._fast import _cross3, _jit, wheel_kernel
+from flexpipe.tires import _fast
+from flexpipe.tires._fast import _cross3, _jit, drop_stale_caches, wheel_kernel
 
 #: columns of the wheel kernel's output
 _NOUT = 31
@@ -162,3 +163,7 @@ def applied_force(F0, Dv, dw, A, S, r, s0, w0, v0, om0, z0, R0, s, w, v, om, z, 
                          + Dv[i, j, 2] * dvP[2] + dw[i, j] * dom + A[i, j] * dz
                          + S[i, j, 0] * th[0] + S[i, j, 1] * th[1] + S[i, j, 2] * th[2])
     return out
+
+
+# these kernels compile the wheel kernel of flexpipe/tires/_fast.py into themselves
+drop_stale_caches((_own, correct_group, predict_group, applied_force), _fast.__file__)

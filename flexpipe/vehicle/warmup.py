@@ -43,7 +43,8 @@ def kernels() -> list:
 
 def _ready(kernel) -> bool:
     """Compiled in this process, or machine code for its current source is on disk
-    (Numba's cache index, which it drops when the source file's stamp changed)."""
+    (Numba's cache index, which Numba drops when the kernel's own file changed and
+    :func:`flexpipe.tires._fast.drop_stale_caches` when a file it calls changed)."""
     if kernel.signatures:
         return True
     try:
