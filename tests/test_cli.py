@@ -130,6 +130,33 @@ def test_registry_loads_commands_lazily(tmp_path, monkeypatch, capsys):
     assert cli.main(["ghost"]) == 2                     # unknown command: argparse error
 
 
+def test_a_reader_that_closes_the_pipe_is_no_error(tmp_path):
+    """``flexpipe info ... | head -1``: when the reader leaves, the command stops quietly
+    with the shell's code for SIGPIPE (141), not with an "error: Broken pipe" line."""
+    (tmp_path / "fp_chatty_cmd.py").write_text(textwrap.dedent("""
+        def add_arguments(p):
+            pass
+
+        def run(args):
+            for i in range(200000):
+                print("line", i)
+    """))
+    script = textwrap.dedent(f"""
+        import sys
+        sys.path.insert(0, {str(tmp_path)!r})
+        from flexpipe import cli
+        cli.COMMANDS = cli.COMMANDS + (("chatty", "fp_chatty_cmd", "many lines"),)
+        raise SystemExit(cli.main(["chatty"]))
+    """)
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline() == "line 0\n"
+    p.stdout.close()                                     # the reader leaves
+    err = p.stderr.read()
+    assert p.wait(timeout=120) == cli.EXIT_BROKEN_PIPE
+    assert err == ""
+
+
 SAMPLES = Path(__file__).resolve().parents[1] / "meshes"
 
 

@@ -38,7 +38,7 @@ def test_info_on_a_cut_deck_is_a_one_line_error(capsys, tmp_path):
 def test_info_text_of_an_empty_mesh():
     import numpy as np
 
-    from flexpipe.cli_info import mesh_text
+    from flexpipe.cli.info import mesh_text
     from flexpipe.mesh import Mesh
 
     text = mesh_text(Mesh(points=np.zeros((0, 3)), blocks=(), source="empty.msh"))

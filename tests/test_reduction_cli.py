@@ -8,8 +8,8 @@ import meshio
 import numpy as np
 import pytest
 
-from flexpipe import cli_reduce
 from flexpipe.cli import main
+from flexpipe.cli import reduce as cli_reduce
 from flexpipe.errors import InputError
 from flexpipe.mesh.generate import box
 from flexpipe.mesh.write import write_mesh

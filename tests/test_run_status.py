@@ -70,7 +70,7 @@ def test_hub_force_note_states_the_comparison_start_actually_used():
 def test_profile_table_names_the_clock_of_the_fast_module(monkeypatch, capsys):
     """The CPU-time label follows flexpipe.exu.MODULES['fast'], not a copy of its name."""
     import flexpipe.exu
-    from flexpipe.cli_run import _print_profile
+    from flexpipe.cli.run import _print_profile
 
     monkeypatch.setitem(flexpipe.exu.MODULES, "fast", "exudynRenamed")
     summary = {"exudyn_module": "exudynRenamed",

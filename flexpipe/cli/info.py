@@ -2,7 +2,7 @@
 a road also .crg) or a mesh file.
 
 For a FlexBody it prints the reduced-vs-full frequency table, the MAC matrix and mass
-properties (see :func:`flexpipe.cli_reduce.info_text`) and can write the mode shapes as
+properties (see :func:`flexpipe.cli.reduce.info_text`) and can write the mode shapes as
 .vtu; for a mesh it lists nodes, element blocks, named sets, carried properties, constraints,
 the solution set-up of a solver deck, and what the reader read, converted (e.g. CQUAD8
 into CQUAD4) and dropped (loads, output requests, unknown cards).  A TOML file is told by
@@ -19,7 +19,7 @@ from pathlib import Path
 
 def add_arguments(p) -> None:
     """Options of ``flexpipe info``."""
-    from flexpipe.cli_reduce import add_info_arguments
+    from flexpipe.cli.reduce import add_info_arguments
 
     add_info_arguments(p, what=f"file to describe: {TAKES}")
     p.add_argument("--scale", type=float, default=1.0, help="mesh length scale (mesh files)")
@@ -188,7 +188,7 @@ def run(args) -> int:
     """Run ``flexpipe info``."""
     path = Path(args.body)
     if path.suffix == ".npz":
-        from flexpipe.cli_reduce import run_info
+        from flexpipe.cli.reduce import run_info
 
         return run_info(args)
     if path.suffix.lower() == ".toml":

@@ -60,7 +60,7 @@ def add_arguments(p) -> None:
 def add_info_arguments(p, *, what: str = "FlexBody file written by flexpipe reduce (.npz)"
                        ) -> None:
     """Options of ``flexpipe info FILE``; ``what`` is the help of the file argument (the
-    argument's destination stays ``body``, which :mod:`flexpipe.cli_info` dispatches on)."""
+    argument's destination stays ``body``, which :mod:`flexpipe.cli.info` dispatches on)."""
     p.add_argument("body", metavar="FILE", help=what)
     p.add_argument("--vtu", help="write the mode shapes to this .vtu file (FlexBody files)")
     p.add_argument("--mac-size", type=int, default=12,
@@ -70,7 +70,7 @@ def add_info_arguments(p, *, what: str = "FlexBody file written by flexpipe redu
 def run(args) -> int:
     """Run ``flexpipe reduce``."""
     from flexpipe._io import check_output_file
-    from flexpipe.cli_modes import _check_file_materials, _material, _step
+    from flexpipe.cli.modes import _check_file_materials, _material, _step
     from flexpipe.fem import assemble
     from flexpipe.mesh import read_mesh
     from flexpipe.reduction import reduce

@@ -1,6 +1,8 @@
-"""The ``flexpipe`` command line: ``flexpipe COMMAND [options]``.
+"""The ``flexpipe`` command line: ``flexpipe COMMAND [options]`` (or ``python -m flexpipe``).
 
-Subcommands live in their own modules, listed in :data:`COMMANDS` as
+A thin layer over the API: each subcommand is a module of this package
+(``flexpipe.cli.run``, ``flexpipe.cli.reduce``, ...) that parses its options and calls
+the pipeline's functions.  Subcommands are listed in :data:`COMMANDS` as
 ``(name, module, one-line help)`` and imported only when used, so ``flexpipe --help``
 stays fast.  A command module provides
 
@@ -26,16 +28,18 @@ import warnings
 
 #: (name, module, help) of every subcommand; modules that are not installed are hidden
 COMMANDS = (
-    ("modes", "flexpipe.cli_modes", "natural frequencies and mode shapes of a mesh (.vtu)"),
-    ("info", "flexpipe.cli_info", "summary of a mesh, body, car, road or path file"),
-    ("reduce", "flexpipe.cli_reduce", "component mode synthesis of a mesh into a flexible body"),
-    ("run", "flexpipe.cli_run", "simulate a car scenario"),
-    ("kc", "flexpipe.cli_kc", "kinematics and compliance rig of a car's suspension"),
-    ("stress", "flexpipe.cli_stress", "stress recovery, hot spots and fatigue of a run"),
-    ("animate", "flexpipe.cli_animate", "ParaView animation (.pvd) of a run's flexible body"),
-    ("sweep", "flexpipe.cli_sweep", "many runs from one spec on Dask (table, channels, plots)"),
+    ("modes", "flexpipe.cli.modes", "natural frequencies and mode shapes of a mesh (.vtu)"),
+    ("info", "flexpipe.cli.info", "summary of a mesh, body, car, road or path file"),
+    ("reduce", "flexpipe.cli.reduce", "component mode synthesis of a mesh into a flexible body"),
+    ("run", "flexpipe.cli.run", "simulate a car scenario"),
+    ("kc", "flexpipe.cli.kc", "kinematics and compliance rig of a car's suspension"),
+    ("stress", "flexpipe.cli.stress", "stress recovery, hot spots and fatigue of a run"),
+    ("animate", "flexpipe.cli.animate", "ParaView animation (.pvd) of a run's flexible body"),
+    ("sweep", "flexpipe.cli.sweep", "many runs from one spec on Dask (table, channels, plots)"),
 )
 EXIT_ERROR = 2
+#: exit code when the reader of the output closed the pipe (128 + SIGPIPE, as a shell's)
+EXIT_BROKEN_PIPE = 141
 
 
 def _available():
@@ -81,6 +85,17 @@ def _notes(exc: BaseException) -> str:
     return f" ({'; '.join(notes)})" if notes else ""
 
 
+def _quiet_stdout() -> None:
+    """Point stdout at /dev/null, so that the interpreter's final flush of a closed pipe
+    does not print a second error."""
+    import os
+
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError):  # no real stdout (e.g. captured in a test)
+        pass
+
+
 def main(argv=None) -> int:
     """Entry point of the ``flexpipe`` console script; returns the exit code."""
     from flexpipe.errors import FlexpipeError
@@ -116,6 +131,9 @@ def main(argv=None) -> int:
         with warnings.catch_warnings(), interrupts_as_exceptions():
             warnings.showwarning = show_warning
             code = module.run(args)
+    except BrokenPipeError:  # the reader of the output left (``flexpipe info ... | head``)
+        _quiet_stdout()
+        return EXIT_BROKEN_PIPE
     except (FlexpipeError, OSError) as exc:
         print(f"flexpipe {name}: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR
@@ -124,6 +142,3 @@ def main(argv=None) -> int:
         return interrupt_info(exc)[0]
     return int(code or 0)
 
-
-if __name__ == "__main__":
-    sys.exit(main())
