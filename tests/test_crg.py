@@ -159,7 +159,7 @@ def test_border_nan_is_filled_and_interior_nan_rejected(tmp_path):
     ok = _text_crg(tmp_path, [" 0.0100000 0.0200000 0.0300000",
                               " *missing* 0.0200000 0.0300000",
                               " 0.0100000 0.0200000 0.0300000"])
-    road = read_crg(ok)
+    road = read_crg(ok, modifiers=False)      # the grid as written (no default placement)
     assert road.z[1, 0] == pytest.approx(0.02)
     bad = _text_crg(tmp_path, [" 0.0100000 0.0200000 0.0300000",
                                " 0.0100000 *missing* 0.0300000",
@@ -205,7 +205,7 @@ def test_curved_reference_line_from_heading_channel(tmp_path):
     rows = [f"{p:10.7f} 0.0100000 0.0300000" for p in phi]
     f = tmp_path / "arc.crg"
     f.write_text("\n".join(head + rows) + "\n")
-    road = read_crg(f)
+    road = read_crg(f, modifiers=False)       # as written (no default placement)
     assert road.height(2.0, 0.0) == pytest.approx(0.02)
     X, Y = road.reference_line()
     # segment i runs from point i-1 to i along heading phi[i] (OpenCRG convention)

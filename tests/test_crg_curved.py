@@ -19,15 +19,18 @@ crg = pytest.importorskip("pyopencrg")
 REF = pathlib.Path(__file__).resolve().parents[2] / "shared" / "reference" / "roads"
 
 
-def _write_crg(path, u0, du, v, columns, names, *, fmt="KDBI", extra=()):
-    """An OpenCRG file with data ``columns`` (n_u, n_ch) named ``names`` (D: channels)."""
+def _write_crg(path, u0, du, v, columns, names, *, fmt="KDBI", extra=(), mods=None):
+    """An OpenCRG file with data ``columns`` (n_u, n_ch) named ``names`` (D: channels);
+    ``mods``: lines of a ``$ROAD_CRG_MODS`` section (``[]``: an empty one; ``None``:
+    none, so that OpenCRG's default modifiers apply)."""
     n_u = columns.shape[0]
     keys = {"REFERENCE_LINE_START_U": u0, "REFERENCE_LINE_END_U": u0 + (n_u - 1) * du,
             "REFERENCE_LINE_INCREMENT": du, "LONG_SECTION_V_RIGHT": v[0],
             "LONG_SECTION_V_LEFT": v[-1], "LONG_SECTION_V_INCREMENT": v[1] - v[0]}
     head = ["$CT", "hand-written test road", "$", "$ROAD_CRG",
             *[f"{k} = {float(x)!r}" for k, x in keys.items()],
-            *extra, "$", "$KD_DEFINITION", f"#:{fmt}", *[f"D:{n}" for n in names], "$", "$" * 72]
+            *extra, *([] if mods is None else ["$", "$ROAD_CRG_MODS", *mods]),
+            "$", "$KD_DEFINITION", f"#:{fmt}", *[f"D:{n}" for n in names], "$", "$" * 72]
     body = ("\n".join(head) + "\n").encode()
     if fmt == "KDBI":
         flat = columns.ravel()
@@ -55,14 +58,20 @@ def _curved_road(tmp_path, fmt="KDBI"):
     z = rng.normal(0.0, 0.002, (u.size, v.size))
     bump = np.abs(u - 60.0) < 0.25
     z[bump] += 0.05
+    return curved_file(tmp_path / f"s_bend_{fmt}.crg", u0, du, v, phi, slope, bank, z,
+                       fmt=fmt)
+
+
+def curved_file(path, u0, du, v, phi, slope, bank, z, *, fmt="KDBI", mods=None):
+    """A road file with heading, slope and banking channels and the grid ``z``, its
+    reference line starting at (100, -40), 2.5 m up (``mods``: see :func:`_write_crg`)."""
     cols = np.column_stack([phi, slope, bank, z])
     cols[0, 0] = cols[0, 1] = np.nan
     names = ["reference line phi,rad", "reference line slope,m/m",
              "reference line banking,m/m"] + [f"long section {j + 1},m" for j in range(v.size)]
     extra = ("REFERENCE_LINE_START_X = 100.0", "REFERENCE_LINE_START_Y = -40.0",
              "REFERENCE_LINE_START_Z = 2.5")
-    return _write_crg(tmp_path / f"s_bend_{fmt}.crg", u0, du, v, cols, names, fmt=fmt,
-                      extra=extra)
+    return _write_crg(path, u0, du, v, cols, names, fmt=fmt, extra=extra, mods=mods)
 
 
 def _random_points(ref, n, rng, margin=1.0):
@@ -72,13 +81,11 @@ def _random_points(ref, n, rng, margin=1.0):
     return ref.uv_to_xy(u, v)
 
 
-@pytest.mark.parametrize("fmt", ["KDBI", "LDFI"])
-def test_curved_crg_heights_equal_pyopencrg(tmp_path, fmt):
-    path = _curved_road(tmp_path, fmt)
-    ref = crg.read(path)
-    assert not ref.is_straight
-    road = read_crg(path)
-    x, y = _random_points(ref, 10_000, np.random.default_rng(1))
+def assert_same_as_pyopencrg(road, ref, *, n=10_000, seed=1, margin=1.0):
+    """flexpipe's ``road`` against pyopencrg's ``ref`` at ``n`` random points over the road
+    and ``margin`` beyond it: heights, the (x, y) -> (u, v) map and the reference line in
+    the plane, within 1e-9 m; returns the points and pyopencrg's heights."""
+    x, y = _random_points(ref, n, np.random.default_rng(seed), margin=margin)
     z_ref = ref.xy_to_z(x, y)
     assert np.all(np.isfinite(z_ref))
     dz = np.abs(road.height_xy(x, y) - z_ref)
@@ -87,10 +94,19 @@ def test_curved_crg_heights_equal_pyopencrg(tmp_path, fmt):
     u, v = road.to_uv(x, y)
     np.testing.assert_allclose(u, u_ref, atol=1e-9)
     np.testing.assert_allclose(v, v_ref, atol=1e-9)
-    # reference line in the plane, as pyopencrg integrates it
     X, Y = road.reference_line()
     np.testing.assert_allclose(X, ref.x, atol=1e-9)
     np.testing.assert_allclose(Y, ref.y, atol=1e-9)
+    return x, y, z_ref
+
+
+@pytest.mark.parametrize("fmt", ["KDBI", "LDFI"])
+def test_curved_crg_heights_equal_pyopencrg(tmp_path, fmt):
+    path = _curved_road(tmp_path, fmt)
+    ref = crg.read(path, apply_mods=True)     # as a simulator loads it: OpenCRG's defaults
+    assert not ref.is_straight
+    road = read_crg(path)
+    x, y, z_ref = assert_same_as_pyopencrg(road, ref)
     # scalar queries give the same as arrays
     assert road.height_xy(float(x[0]), float(y[0])) == pytest.approx(z_ref[0], abs=1e-9)
 
@@ -98,7 +114,7 @@ def test_curved_crg_heights_equal_pyopencrg(tmp_path, fmt):
 def test_bump_at_its_true_global_position(tmp_path):
     """The issue's case: the 5 cm bump is where the curved line puts it, not at x = u."""
     road = read_crg(_curved_road(tmp_path))
-    ref = crg.read(road.source)
+    ref = crg.read(road.source, apply_mods=True)
     xb, yb = ref.uv_to_xy(60.0, 0.0)
     flat_ref = ref.copy()
     z_with = road.height_xy(xb, yb)
@@ -124,7 +140,7 @@ def test_reference_files_equal_pyopencrg(name):
     path = REF / name
     if not path.is_file():
         pytest.skip(f"reference road {path} not available")
-    ref = crg.read(path)
+    ref = crg.read(path, apply_mods=True)
     road = read_crg(path)
     x, y = _random_points(ref, 10_000, np.random.default_rng(5), margin=0.5)
     assert np.abs(road.height_xy(x, y) - ref.xy_to_z(x, y)).max() < 1e-9
@@ -137,7 +153,8 @@ def test_straight_line_placed_by_start_position_and_heading(tmp_path):
     f = _write_crg(tmp_path / "rot.crg", 0.0, 1.0, v, z,
                    ["long section 1,m", "long section 2,m"],
                    extra=("REFERENCE_LINE_START_X = 10.0", "REFERENCE_LINE_START_Y = 5.0",
-                          f"REFERENCE_LINE_START_PHI = {float(np.pi / 2)!r}"))
+                          f"REFERENCE_LINE_START_PHI = {float(np.pi / 2)!r}"),
+                   mods=[])                   # an empty section: no default placement
     road = read_crg(f)
     assert road.height_xy(10.0, 10.0) == pytest.approx(0.1)      # u = 5 lies north
     assert road.height_xy(15.0, 5.0) == pytest.approx(0.0)

@@ -30,8 +30,11 @@ positions, :meth:`Road.height` at ``(u, v)``. Heights equal pyopencrg's (tested 
 random points of a curved, sloped, banked road and of the reference files). NaNs at the
 lateral borders of a cross section are replaced by the nearest valid value of that cross
 section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last"); NaNs between valid values, or cross
-sections without any valid value, are errors. ``$ROAD_CRG_MODS`` / ``$ROAD_CRG_OPTS``
-sections are not applied (a warning says so).
+sections without any valid value, are errors (other ``GRID_NAN_MODE`` s: below).
+``$ROAD_CRG_MODS`` (scaling, NaN filling, placement; without that section OpenCRG's
+default modifiers, which put the start of the reference line at the origin) is applied
+as a simulator applies it (:mod:`flexpipe.roads.crg_mods`); ``$ROAD_CRG_OPTS`` is not (a
+warning says so).
 """
 
 from __future__ import annotations
@@ -52,6 +55,7 @@ from flexpipe.roads.crg_data import (
     parse_text_values,
     reject_text_as_binary,
 )
+from flexpipe.roads.crg_mods import key_values, moved, nan_rule, placement, read_mods, scale
 from flexpipe.roads.crg_write import write_crg  # noqa: F401 (re-exported)
 from flexpipe.roads.refline import ReferenceLine
 from flexpipe.roads.road import Road
@@ -105,31 +109,7 @@ ROAD_CRG_KEYS = tuple(f"REFERENCE_LINE_{k}" for k in (
 
 
 def _road_params(section, path):
-    params = {}
-    for k, body in section["_items"]:
-        if "=" not in body:
-            raise InputError(f"expected 'KEY = value' in $ROAD_CRG, got {body!r}", file=path,
-                             line=k)
-        key, value = (t.strip() for t in body.split("=", 1))
-        key = key.upper()
-        if key not in ROAD_CRG_KEYS:
-            close = difflib.get_close_matches(key, ROAD_CRG_KEYS, n=2, cutoff=0.7)
-            hint = f" (did you mean {' or '.join(close)}?)" if close else ""
-            raise InputError(f"unknown $ROAD_CRG key {key}{hint}; valid: "
-                             f"{', '.join(ROAD_CRG_KEYS)}", file=path, line=k, key=key)
-        if key in params:
-            raise InputError(f"{key} is given twice (first on line {params[key][1]})",
-                             file=path, line=k, key=key)
-        try:
-            number = float(value.replace("D", "E").replace("d", "e"))
-        except ValueError:
-            raise InputError(f"value of {key} is not a number: {value!r}", file=path,
-                             line=k, key=key) from None
-        if not math.isfinite(number):
-            raise InputError(f"value of {key} must be a finite number, got {value!r}",
-                             file=path, line=k, key=key)
-        params[key] = (number, k)
-    return params
+    return key_values(section, path, "ROAD_CRG", ROAD_CRG_KEYS)
 
 
 def _u_channel(section, path):
@@ -205,7 +185,8 @@ def _channels(section, path):
     return fmt, channels
 
 
-def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road:
+def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
+             modifiers: bool = True) -> Road:
     """Read an OpenCRG file (formats KRBI, KDBI, LRFI, LDFI and the other combinations).
 
     Parameters
@@ -216,6 +197,11 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         Lateral distance between the two wheel tracks used for ``Road.left/right`` (m).
     name : str, optional
         Road name (default: the file stem).
+    modifiers : bool
+        Apply the file's ``$ROAD_CRG_MODS`` (or, without that section, OpenCRG's default
+        modifiers, which put the start of the reference line at the origin), as a
+        simulator loading the file does (:mod:`flexpipe.roads.crg_mods`); ``False``
+        keeps the grid and the placement the file's ``$ROAD_CRG`` gives.
 
     Returns
     -------
@@ -243,7 +229,8 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
             hint = (f"; ${close[0]} on line {sections[close[0]]['_line']} is misspelt?"
                     if close else f"; sections found: {', '.join(sections) or 'none'}")
             raise InputError(f"no ${missing} section{hint}", file=path)
-    for ignored in ("ROAD_CRG_MODS", "ROAD_CRG_OPTS", "ROAD_CRG_FILE"):
+    mods = read_mods(sections, path) if modifiers else {}
+    for ignored in ("ROAD_CRG_OPTS", "ROAD_CRG_FILE"):
         if ignored in sections and sections[ignored]["_items"]:
             warnings.warn(f"{path}: ${ignored} is not applied by flexpipe", stacklevel=2)
     p = _road_params(sections["ROAD_CRG"], path)
@@ -311,16 +298,30 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         row_line = None
     u = u0 + du * np.arange(n_u)
     z = vals[:, sec_idx][:, order]
-    z = fill_border_nans(z, u, row_line, path)
     v = v[order]
     plan, z_ref, bank = _reference_line(p, kinds, vals, u, path, get)
-    z = z + z_ref[:, None] + bank[:, None] * v[None, :]
-    heading = None
-    if not plan.straight or plan.phi_start != 0.0:
-        heading = np.concatenate([[plan.phi[0]], plan.phi])
-    road = Road.from_grid(u, v, z, track_width=track_width, heading=heading, plan=plan,
-                          name=path.stem if name is None else name, source=str(path))
-    check_heights(u, z, file=path, labels=[f"long section at v = {vj:g} m" for vj in v],
+    # $ROAD_CRG_MODS (flexpipe.roads.crg_mods): scaling, NaN filling, placement
+    du, v, z, plan, z_ref, bank = scale(mods, du=du, v=v, z_grid=z, plan=plan, z_ref=z_ref,
+                                        bank=bank)
+    u = u0 + du * np.arange(n_u)
+    mode, offset = nan_rule(mods)
+    z = fill_border_nans(z, u, row_line, path, mode=mode, offset=offset)
+
+    def build(plan, z_ref):
+        heading = None
+        if not plan.straight or plan.phi_start != 0.0:
+            heading = np.concatenate([[plan.phi[0]], plan.phi])
+        return Road.from_grid(u, v, z + z_ref[:, None] + bank[:, None] * v[None, :],
+                              track_width=track_width, heading=heading, plan=plan,
+                              name=path.stem if name is None else name, source=str(path))
+
+    road = build(plan, z_ref)
+    place = placement(mods, plan, road.height, v_min=float(v[0]), v_max=float(v[-1]))
+    if place is not None:
+        dx, dy, dz, dphi, center = place
+        road = build(moved(plan, dx, dy, dphi, center), z_ref + dz)
+    check_heights(u, z + z_ref[:, None] + bank[:, None] * v[None, :], file=path,
+                  labels=[f"long section at v = {vj:g} m" for vj in v],
                   lines=None if row_line is None else [int(k) for k in row_line],
                   cause="heights look like millimetres (or a slope or banking like per "
                         "cent); OpenCRG heights are in metres, slopes and banking in m/m")

@@ -90,7 +90,11 @@ def reject_text_as_binary(data: bytes, fmt: str, first_line: int, path):
                          f"{'K' + fmt[1] + 'FI'})", file=path, line=first_line)
 
 
-def fill_border_nans(z, u, row_line, path):
+def fill_border_nans(z, u, row_line, path, *, mode: int = 2, offset: float = 0.0):
+    """The grid ``z`` (n_u, n_v) with its NaNs filled by OpenCRG's ``GRID_NAN_MODE``:
+    2, a NaN at a border of a cross section takes the last valid value plus ``offset``
+    (NaNs between valid values, or a cross section without any, are errors); 1, every NaN
+    becomes ``offset``; 0, NaNs are an error (a car needs a height everywhere)."""
     if np.isinf(z).any():
         i, j = np.argwhere(np.isinf(z))[0]
         raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}), long section "
@@ -100,7 +104,17 @@ def fill_border_nans(z, u, row_line, path):
     bad = ~np.isfinite(z)
     if not bad.any():
         return z
+    if mode == 0:
+        i, j = np.argwhere(bad)[0]
+        raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}), long section "
+                         f"{j + 1} is NaN and GRID_NAN_MODE = 0 keeps it: a car needs a "
+                         "height everywhere; use GRID_NAN_MODE 1 (NaN -> GRID_NAN_OFFSET) "
+                         "or 2 (the last valid value)", file=path,
+                         line=None if row_line is None else int(row_line[i]))
     z = z.copy()
+    if mode == 1:
+        z[bad] = offset
+        return z
     for i in np.flatnonzero(bad.any(axis=1)):
         good = np.flatnonzero(~bad[i])
         where = dict(file=path, line=None if row_line is None else int(row_line[i]))
@@ -112,6 +126,6 @@ def fill_border_nans(z, u, row_line, path):
             raise InputError(f"cross section at u = {u[i]:g} m (row {i + 1}) has a NaN "
                              "between valid heights; NaN is only allowed at the borders",
                              **where)
-        z[i, :lo] = z[i, lo]
-        z[i, hi + 1:] = z[i, hi]
+        z[i, :lo] = z[i, lo] + offset
+        z[i, hi + 1:] = z[i, hi] + offset
     return z

@@ -71,7 +71,11 @@ def write_crg(road: Road, path, *, fmt: str = "KRBI", comment: str = "") -> None
                  f"{'REFERENCE_LINE_START_Y':<26}= {plan.y[0]:.16e}"]
         if not curved:
             head.append(f"{'REFERENCE_LINE_START_PHI':<26}= {plan.phi_start:.16e}")
-    head += ["$", "$KD_DEFINITION", f"#:{fmt}", f"U:reference line u,m,{road.x[0]:.3f},{du:.3f}"]
+    # an empty modifier section: a reader keeps the placement written above (without one,
+    # OpenCRG's default modifiers would move the start to the origin)
+    head += ["$", "$ROAD_CRG_MODS", "* no modifiers: the road stays where it is written",
+             "$", "$KD_DEFINITION", f"#:{fmt}",
+             f"U:reference line u,m,{road.x[0]:.3f},{du:.3f}"]
     if curved:
         head.append("D:reference line phi,rad")
         z = np.column_stack([np.r_[np.nan, plan.phi], z])
