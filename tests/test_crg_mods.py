@@ -142,3 +142,17 @@ def test_both_placements_warn_and_the_reference_point_wins(tmp_path):
         road = read_crg(_road(tmp_path, both))
     assert road.reference_line()[0][0] == pytest.approx(5.0)
     _same_as_pyopencrg(tmp_path / "m.crg")
+
+
+def test_durability_road_strip_of_a_placed_road_equals_pyopencrg(tmp_path):
+    """The road surface saved with a run's body motion (``road_strip``) is taken at global
+    positions: on a curved road placed at (100, -40) it equals pyopencrg's heights along
+    the driven track (before, it read the grid as if x were the distance along the road)."""
+    from flexpipe.durability.rundir import road_strip
+
+    path = _road(tmp_path, [])
+    ref = crg.read(path, apply_mods=True)
+    u = np.linspace(5.0, 50.0, 200)
+    x, y = ref.uv_to_xy(u, np.zeros_like(u))
+    X, Y, Z = road_strip(read_crg(path), x, y)
+    np.testing.assert_allclose(Z, ref.xy_to_z(X, Y), atol=1e-9)

@@ -160,6 +160,9 @@ def scenario_outputs(out, results: dict, *, car, road, title: str = "", log=prin
     r = results.get("flexible")
     if r is None or r.motion is None or r.motion.n_modes == 0:
         return files
+    if r.status != 0:  # stopped early (e.g. diverged): its motion is no load history
+        log(f"durability outputs skipped: the flexible run did not complete ({r.message})")
+        return files
     band = r.info.get("band_hz")
     from flexpipe.vehicle.linkage_setup import reduce_car_body
 

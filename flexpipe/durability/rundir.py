@@ -73,7 +73,7 @@ def road_strip(road, x, y, *, width: float = 3.0, ds: float = 0.25):
     off = np.linspace(-width / 2, width / 2, 13)
     X = cx[:, None] + off[None] * nx_[:, None]
     Y = cy[:, None] + off[None] * ny_[:, None]
-    Z = np.asarray(road.height(X.ravel(), Y.ravel()), dtype=float).reshape(X.shape)
+    Z = np.asarray(road.height_xy(X.ravel(), Y.ravel()), dtype=float).reshape(X.shape)
     return X, Y, Z
 
 

@@ -336,6 +336,10 @@ def _durability(out, results, summary, *, car, road, log, progress=False, final=
     desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log,
                             progress=progress, final=final)
     summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
+    flexible = results.get("flexible")
+    if flexible is not None and flexible.status != 0:
+        summary["durability"] = ("skipped: the flexible run did not complete "
+                                 f"({flexible.message})")
     summary["files"] = sorted(set(summary["files"]) | set(desc))
     summary["file_descriptions"] = dict(sorted(desc.items()))
 

@@ -29,7 +29,7 @@ import numpy as np
 
 from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.tires.contact import _cross
-from flexpipe.vehicle import sensor_rows
+from flexpipe.vehicle import sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.spec import CORNERS
 
@@ -61,10 +61,13 @@ class Recorder:
         self.rows = 0
 
     def add(self, t: float, values: np.ndarray) -> None:
-        if self.rows < len(self.t):
-            self.t[self.rows] = t
-            self.data[self.rows] = values
-            self.rows += 1
+        if self.rows == len(self.t):  # more rows than planned (steps the solver cut): grow
+            self.t = np.concatenate([self.t, np.full(max(len(self.t), 1), np.nan)])
+            self.data = np.vstack([self.data, np.full((len(self.t) - len(self.data),
+                                                       self.data.shape[1]), np.nan)])
+        self.t[self.rows] = t
+        self.data[self.rows] = values
+        self.rows += 1
 
     def channels(self) -> dict:
         return {n: self.data[: self.rows, i].copy() for i, n in enumerate(self.names)}
@@ -100,6 +103,9 @@ class CarController:
     driver_dt : float
         Driver (steering and speed controller) sampling period, s, independent of ``h``;
         the driver acts at the first step at or after each sampling instant.
+    weight_N : float, optional
+        The car's weight, N: a tyre normal force beyond ten times it stops the run
+        (:func:`flexpipe.vehicle.watch.tire_problem`); ``None`` checks nothing.
     """
 
     #: linkage cars: hub forces from Exudyn's sensor records (see ``_record``)
@@ -112,7 +118,7 @@ class CarController:
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
                  preview_time=0.3, linkage=None,
-                 body_motion=None, output_history=None):
+                 body_motion=None, output_history=None, weight_N=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -122,6 +128,7 @@ class CarController:
         self.h = float(h)
         self.output_every = int(output_every)
         self.linkage = linkage  # LinkageModel of a linkage car (None: prismatic corners)
+        self.weight_N = weight_N  # the car's weight, for the tyre-load stop (watch)
         self._compiled = _jit_enabled()  # chosen once per run, as the state reader does
         self.driver_dt = float(driver_dt)
         self._next_driver_t = 0.0
@@ -238,22 +245,11 @@ class CarController:
 
     # ------------------------------------------------------------------ step
     def __call__(self, st):
-        if not (np.all(np.isfinite(st.body_p)) and np.all(np.isfinite(st.wheel_p))
-                and np.all(np.isfinite(st.jounce))):
-            return self._fail(st.t, "the state became non-finite (NaN/inf): numerical "
-                                    "divergence; try a smaller step h")
         R = st.body_R
         roll, pitch, yaw = _rpy(R)
-        if abs(roll) > 1.0 or abs(pitch) > 1.0:
-            return self._fail(st.t, f"roll {math.degrees(roll):.0f} deg / pitch "
-                                    f"{math.degrees(pitch):.0f} deg: the car overturned "
-                                    "(speed or manoeuvre too severe)")
-        if np.abs(st.jounce).max() > 0.5:
-            i = int(np.argmax(np.abs(st.jounce)))
-            return self._fail(st.t, f"suspension travel {st.jounce[i]:.2f} m at corner "
-                                    f"{CORNERS[i]}: the wheel left its travel range - "
-                                    "numerical divergence (try a smaller step h) or "
-                                    "missing bump/rebound stops")
+        why = watch.state_problem(st, roll, pitch)
+        if why is not None:
+            return self._fail(st.t, why)
         v = float(R[:, 0] @ st.body_v)
         if self.v_target == 0.0:
             self.torque = 0.0  # parked: no driver, wheels braked below
@@ -279,6 +275,9 @@ class CarController:
                "w": st.wheel_w + st.spin_rate[:, None] * s_axis,
                "h_road": h_road, "n_road": n_road}
         now = self.tires.correct(kin, self.h)
+        why = watch.tire_problem(now["Fz"], self.weight_N)
+        if why is not None:
+            return self._fail(st.t, why)
         Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
         F_applied = self._applied_tire_force(st, s_axis, omega)
         ts = self.tires.predict(dict(kin, n_road=n_ahead), self.h, road_ahead)

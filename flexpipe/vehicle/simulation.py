@@ -167,7 +167,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     road : Road, str, Path or None
         Road (file: ``.toml`` spec, ``.crg``, ``.csv``); ``None`` for a flat road.  Heights
         are taken at global positions (:meth:`Road.height_xy`): OpenCRG roads lie where
-        their reference line puts them (curved, sloped, banked); others along the x axis.
+        their reference line and modifiers put them (curved, sloped, banked;
+        :mod:`flexpipe.roads.crg_mods`); others along the x axis.
     path : flexpipe.driver.Path, str, Path or None
         Path the driver follows (file ``.csv``/``.toml``); ``None`` or ``"straight"`` for
         the x axis; ``"road"`` for the road's reference line (:meth:`Road.reference_path`).
@@ -364,7 +365,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                              wheel_acc=system.wheel_accelerations, gravity=GRAVITY,
                              linkage=getattr(system, "linkage", None),
                              body_motion=system.body_motion_sample,
-                             output_history=system.output_history)
+                             output_history=system.output_history,
+                             weight_N=total_mass * GRAVITY)
 
     start = settled_start(build, make_system, make_controller) if settle else None
     system = make_system(build)

@@ -1,0 +1,107 @@
+"""Runs that leave what a car can do stop with what, where and when
+(:mod:`flexpipe.vehicle.watch`), and a stopped run's files are still whole.
+
+The cars are the sample sedan with one value changed in code (``dataclasses.replace``),
+so that the load-time range checks of the car file do not stop them first: the point
+here is what a run does when the model diverges anyway.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from flexpipe.vehicle import load_car, simulate
+from flexpipe.vehicle.dynamics import Recorder
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True)
+def _cache(tmp_path_factory, monkeypatch):
+    monkeypatch.setenv("FLEXPIPE_CACHE", str(tmp_path_factory.getbasetemp() / "watch_cache"))
+
+
+def _sedan(**corner_fl):
+    car = load_car(ROOT / "cars" / "sedan.toml")
+    if corner_fl:
+        corners = list(car.corners)
+        corners[0] = dataclasses.replace(corners[0], **corner_fl)
+        car = dataclasses.replace(car, corners=tuple(corners) if isinstance(
+            car.corners, tuple) else corners)
+    return car
+
+
+def _stiff_bar(car):
+    bars = dict(car.anti_roll_bars)
+    bars["front"] = dataclasses.replace(bars["front"], rate=1e12) if dataclasses.is_dataclass(
+        bars["front"]) else 1e12
+    return dataclasses.replace(car, anti_roll_bars=bars)
+
+
+def test_recorder_keeps_rows_beyond_the_planned_number():
+    """The solver may cut steps (adaptive step) and so record more rows than planned: the
+    recorder grows instead of dropping the end of the run."""
+    rec = Recorder(["a", "b"], 2)
+    for k in range(5):
+        rec.add(0.1 * k, np.array([k, -k], dtype=float))
+    ch = rec.channels()
+    assert rec.rows == 5
+    np.testing.assert_array_equal(ch["a"], [0, 1, 2, 3, 4])
+    np.testing.assert_allclose(rec.t[:5], 0.1 * np.arange(5))
+
+
+def test_a_wheel_spinning_away_stops_the_run_naming_the_wheel():
+    """A spin inertia of 1e-9 kg m^2 (a real wheel: about 1 kg m^2) makes the spin
+    coupling diverge; before, the run finished 'completed' with 3e10 rad/s."""
+    r = simulate(_sedan(spin_inertia=1e-9), speed=30 / 3.6, t_end=0.3,
+                 body="rigid")
+    assert r.status == -1
+    assert "wheel fl spins at" in r.message and "numerical divergence" in r.message
+    assert r.t[-1] < 0.05
+
+
+def test_a_stiff_bar_blowing_up_is_divergence_not_an_overturn():
+    r = simulate(_stiff_bar(_sedan()), speed=30 / 3.6, t_end=0.3, body="rigid")
+    assert r.status == -1
+    assert "the body turns at" in r.message and "overturned" not in r.message
+    assert "anti-roll bar" in r.message
+
+
+def test_a_1_m_road_step_stops_with_the_tyre_force(tmp_path):
+    """A 1 m step under the front wheels: the point-contact tyre's force reaches 28 times
+    the car's weight, which the run reports instead of finishing 'completed'."""
+    from flexpipe.roads import load_road
+
+    f = tmp_path / "step.csv"
+    f.write_text("distance_m,left_m,right_m\n0,0,0\n9.999,0,0\n10.0,1.0,1.0\n40,1.0,1.0\n")
+    car = _sedan()
+    r = simulate(car, road=load_road(f), speed=30 / 3.6, t_end=1.5, body="rigid")
+    assert r.status == -1
+    assert "tyre normal force" in r.message and "times the car's weight" in r.message
+    front_x = float(max(c.wheel_center[0] for c in car.corners))
+    # the stop comes when a front wheel meets the step (the body origin starts ~6 m in)
+    assert "corner fl" in r.message or "corner fr" in r.message
+    assert r.t[-1] < 1.0 and front_x > -1.0
+
+
+def test_a_diverged_flexible_run_reports_the_stop_not_a_durability_error(tmp_path):
+    """Before, the durability step ran on the diverged motion and the run ended in
+    'ValueError: arange: cannot compute length' with a traceback."""
+    from flexpipe.scenarios.runner import run_pair
+
+    out = tmp_path / "out"
+    summary = run_pair(_stiff_bar(_sedan()), road=None, path="straight", speed=30 / 3.6,
+                       t_end=0.02, out=out, title="diverging", bodies=("flexible",),
+                       log=lambda *a: None, progress=False)
+    assert summary["status"] != 0 and summary["state"] == "stopped early"
+    assert "the body turns at" in summary["messages"]["flexible"]
+    assert summary["durability"].startswith("skipped: the flexible run did not complete")
+    failed = Path(str(out) + ".failed")
+    on_disk = json.loads((failed / "summary.json").read_text())
+    assert on_disk["durability"] == summary["durability"]
+    assert not out.exists()
