@@ -149,3 +149,61 @@ def test_info_help_lists_every_kind_of_file_it_takes(capsys):
     assert "car file (.toml" in out and "road" in out and ".crg" in out and "path" in out
     for suffix in (".msh", ".inp", ".bdf", ".vtu"):
         assert suffix in out
+
+
+TIR = Path(__file__).resolve().parents[1] / "tires" / "sedan_205_55R16.tir"
+
+
+def _tir_numbers(path):
+    """Raw keys of a .tir file (key = value lines), read here without flexpipe."""
+    out = {}
+    for line in Path(path).read_text().splitlines():
+        line = line.split("$", 1)[0]
+        if "=" in line:
+            k, v = (t.strip() for t in line.split("=", 1))
+            try:
+                out[k.upper()] = float(v)
+            except ValueError:
+                pass
+    return out
+
+
+def test_info_tir_prints_the_magic_formula_at_the_nominal_load(capsys):
+    """At Fz = FNOMIN (dfz = 0, no camber) PAC2002 gives mu_y = PDY1 LMUY, mu_x = PDX1 LMUX
+    and a cornering stiffness PKY1 FNOMIN sin(2 atan(1/PKY2)) LKY (the MF 5.2 formulas);
+    the loaded radius is within 1 mm of R0 - FNOMIN / Kz."""
+    import math
+
+    k = _tir_numbers(TIR)
+    assert main(["info", str(TIR)]) == 0
+    out = capsys.readouterr().out
+    mux = float(re.search(r"mu_x ([0-9.]+)", out).group(1))
+    muy = float(re.search(r"mu_y ([0-9.]+)", out).group(1))
+    ky = float(re.search(r"cornering stiffness ([0-9.e+]+) N/deg", out).group(1))
+    r = float(re.search(r"loaded radius at FNOMIN ([0-9.]+) mm", out).group(1))
+    assert mux == pytest.approx(k["PDX1"] * k.get("LMUX", 1.0), abs=5e-4)
+    assert muy == pytest.approx(k["PDY1"] * k.get("LMUY", 1.0), abs=5e-4)
+    want = (k["PKY1"] * k["FNOMIN"] * math.sin(2 * math.atan(1 / k["PKY2"]))
+            * k.get("LKY", 1.0) * math.pi / 180)
+    assert ky == pytest.approx(abs(want), rel=1e-3)
+    linear = 1e3 * (k["UNLOADED_RADIUS"] - k["FNOMIN"] / k["VERTICAL_STIFFNESS"])
+    assert abs(r - linear) < 1.0 and r < 1e3 * k["UNLOADED_RADIUS"]
+
+
+def test_info_csv_road_and_path(capsys, tmp_path):
+    road = tmp_path / "road.csv"
+    road.write_text("distance_m,left_m,right_m\n0,0,0\n10,0.01,0.02\n20,0,0\n")
+    assert main(["info", str(road)]) == 0
+    out = capsys.readouterr().out
+    assert "20 m long" in out and "max 20.00" in out
+    path = tmp_path / "path.csv"
+    path.write_text("x_m,y_m\n0,0\n10,0\n20,5\n30,5\n")
+    assert main(["info", str(path)]) == 0
+    length = 10.0 + (10.0 ** 2 + 5.0 ** 2) ** 0.5 + 10.0  # the three segments
+    out = capsys.readouterr().out
+    assert ": path " in out and f"{length:.6g} m long, 4 points" in out
+    bad = tmp_path / "bad.csv"
+    bad.write_text("distance_m,left_m,right_m\n0,0,0\n0,0,0\n")
+    assert main(["info", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "bad.csv" in err and "Traceback" not in err

@@ -29,8 +29,9 @@ def add_arguments(p) -> None:
 
 #: what ``flexpipe info`` describes (for --help and errors)
 TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [car] "
-         "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg) or path "
-         "(.toml with a [path] table) file, or a mesh (.bdf, .inp, .msh, .vtu, ...)")
+         "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg, .csv) or "
+         "path (.toml with a [path] table, .csv) file, a tyre (.tir), or a mesh (.bdf, "
+         ".inp, .msh, .vtu, ...)")
 
 #: TOML files info does not describe: (tables that tell them, what they are, their use),
 #: tried in order.  Any file with a [sweep] table is a sweep, whatever its design (a grid
@@ -125,6 +126,56 @@ def road_text(road, *, file=None, table: dict | None = None) -> str:
     return "\n".join(lines)
 
 
+def tire_text(path) -> str:
+    """Summary of a ``.tir`` tyre file as flexpipe reads it (PAC2002): size, vertical
+    model, and at the nominal load FNOMIN the peak friction, slip stiffnesses, relaxation
+    lengths and the loaded radius."""
+    import numpy as np
+
+    from flexpipe.tires import read_tir, tire_from_file
+    from flexpipe.vehicle.corners import static_loaded_radius
+
+    props = read_tir(path)
+    tire = tire_from_file(path)
+    mf, fz = tire.mf, props.fnomin
+    mux, muy = (float(np.asarray(m)) for m in mf.peak_friction(fz))
+    kx, ky = (float(np.asarray(k)) for k in mf.slip_stiffness(fz))
+    sk, sa = (float(np.asarray(x)) for x in mf.relaxation_lengths(fz))
+    relax = ("no relaxation data" if np.isnan(sk) and np.isnan(sa) else
+             f"relaxation lengths {sk * 1e3:.0f} mm (longitudinal), {sa * 1e3:.0f} mm "
+             "(lateral)")
+    return "\n".join([
+        f"{path}: tyre ({props.property_file_format}, USE_MODE {props.use_mode}, "
+        f"TYRESIDE {props.tyre_side})",
+        f"  unloaded radius {props.unloaded_radius * 1e3:.1f} mm, width "
+        f"{props.width * 1e3:.0f} mm; vertical stiffness {props.vertical_stiffness:.4g} N/m, "
+        f"damping {props.vertical_damping:.4g} N s/m",
+        f"  at FNOMIN = {fz:.0f} N: peak friction mu_x {mux:.3f}, mu_y {muy:.3f}; slip "
+        f"stiffness {kx:.4g} N, cornering stiffness {abs(ky) * np.pi / 180:.4g} N/deg; "
+        f"{relax}",
+        f"  loaded radius at FNOMIN {static_loaded_radius(tire, fz) * 1e3:.1f} mm"])
+
+
+def csv_text(path) -> str:
+    """Summary of a ``.csv`` road profile (``distance_m, left_m, right_m`` or
+    ``distance_m, height_m``) or driver path (``x_m, y_m``), told by its header."""
+    from flexpipe.errors import InputError
+
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            header = f.readline()
+    except OSError as exc:
+        raise InputError(f"cannot read the file ({exc.strerror})", file=path) from None
+    columns = [c.strip().lower() for c in header.split(",")]
+    if "x_m" in columns and "y_m" in columns:
+        from flexpipe.driver import read_path
+
+        return path_text(read_path(path), file=path)
+    from flexpipe.roads import load_road
+
+    return road_text(load_road(path), file=path)
+
+
 def path_text(path, *, file=None, table: dict | None = None) -> str:
     """Human-readable summary of a driver :class:`~flexpipe.driver.Path` read from
     ``file`` (``table``: its ``[path]`` spec)."""
@@ -198,6 +249,12 @@ def run(args) -> int:
         from flexpipe.roads import load_road
 
         print(road_text(load_road(path), file=path))
+        return 0
+    if path.suffix.lower() == ".tir":
+        print(tire_text(path))
+        return 0
+    if path.suffix.lower() == ".csv":
+        print(csv_text(path))
         return 0
     from flexpipe.mesh import read_mesh
 
