@@ -105,3 +105,21 @@ def test_a_diverged_flexible_run_reports_the_stop_not_a_durability_error(tmp_pat
     on_disk = json.loads((failed / "summary.json").read_text())
     assert on_disk["durability"] == summary["durability"]
     assert not out.exists()
+
+
+def test_every_corner_off_its_ride_height_is_named_in_one_message():
+    """Before, the ride-height check stopped at the first corner, so fixing a car took a
+    run per corner."""
+    from flexpipe.errors import InputError
+    from flexpipe.vehicle.simulation import prepare
+
+    car = _sedan()
+    corners = [dataclasses.replace(c, wheel_center=np.asarray(c.wheel_center) + [0, 0, 0.02])
+               for c in car.corners]
+    car = dataclasses.replace(car, corners=type(car.corners)(corners))
+    with pytest.raises(InputError) as info:
+        prepare(car, body="rigid", speed=0.0)
+    text = str(info.value)
+    for name in ("fl", "fr", "rl", "rr"):
+        assert f"corners.{name}.wheel_center_m z = " in text
+    assert text.count("set z to") == 4 and "sedan.toml" in text

@@ -116,16 +116,22 @@ def corner_arrays(car: Car, body_mass: float, body_cg, *, tires=None,
     mu = np.array([c.unsprung_mass for c in cs])
     given = np.array([np.nan if c.spring_preload is None else c.spring_preload for c in cs])
     preload = np.where(np.isnan(given), N - mu * g, given)
-    if tires is not None:
+    if tires is not None:  # every corner that is off, in one message
+        off = []
         for c, tire, Nz in zip(cs, tires, N, strict=True):
             z_static = static_loaded_radius(tire, Nz)
             if abs(c.wheel_center[2] - z_static) > RIDE_HEIGHT_TOL:
-                raise InputError(
-                    f"wheel_center_m z = {c.wheel_center[2]:.4f} m does not match the tyre's "
-                    f"static loaded radius {z_static:.4f} m under the static wheel load "
-                    f"{Nz:.0f} N (tyre {c.tire.name}); set z to {z_static:.4f} so the design "
-                    "position is the ride height at rest", file=car.file,
-                    key=f"corners.{c.name}.wheel_center_m")
+                off.append((c, z_static, Nz))
+        if off:
+            what = "; ".join(
+                f"corners.{c.name}.wheel_center_m z = {c.wheel_center[2]:.4f} m, the tyre's "
+                f"static loaded radius under the static wheel load {Nz:.0f} N is "
+                f"{z_static:.4f} m (tyre {c.tire.name}): set z to {z_static:.4f}"
+                for c, z_static, Nz in off)
+            raise InputError(
+                f"{what}; the design position must be the ride height at rest (within "
+                f"{RIDE_HEIGHT_TOL * 1e3:g} mm)", file=car.file,
+                key=f"corners.{off[0][0].name}.wheel_center_m")
     arb = np.array([car.anti_roll_bars.get("front", 0.0), car.anti_roll_bars.get("rear", 0.0)])
     return CornerArrays(
         hardpoint=np.array([c.hardpoint for c in cs]),
