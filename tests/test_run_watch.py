@@ -123,3 +123,21 @@ def test_every_corner_off_its_ride_height_is_named_in_one_message():
     for name in ("fl", "fr", "rl", "rr"):
         assert f"corners.{name}.wheel_center_m z = " in text
     assert text.count("set z to") == 4 and "sedan.toml" in text
+
+
+def test_a_car_off_its_ride_height_is_refused_before_the_output_folder(tmp_path, capsys):
+    """``flexpipe run --help``: bad files are reported before DIR is created or touched;
+    the ride-height check ran inside the run and left DIR.failed behind."""
+    from flexpipe.cli import main
+
+    text = (ROOT / "cars" / "sedan.toml").read_text().replace('"../', f'"{ROOT}/')
+    old = "wheel_center_m = [0.0, 0.775, 0.2983]"
+    assert old in text
+    car = tmp_path / "car.toml"
+    car.write_text(text.replace(old, "wheel_center_m = [0.0, 0.775, 0.33]"))
+    out = tmp_path / "out"
+    assert main(["run", str(car), "--speed", "30", "--t-end", "0.05", "--body", "rigid",
+                 "--out", str(out), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "corners.fl.wheel_center_m z = 0.3300 m" in err and "car.toml" in err
+    assert not out.exists() and not Path(str(out) + ".failed").exists()

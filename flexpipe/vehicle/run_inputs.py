@@ -192,6 +192,20 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         except (TypeError, ValueError):
             raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file",
                              key="driver") from None
+    if car.suspension is None:  # tyres and ride height at rest, before a run writes anything
+        _check_ride_height(car)  # (last: it may fill the body cache)
     return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,
                         max_mode_hz=max_mode_hz, f_max=f_max, rates=rates, start=start,
                         road=road_obj, path=path_obj, steering=steering, speed_pi=speed_pi)
+
+
+def _check_ride_height(car) -> None:
+    """The tyre files and the design wheel-centre heights of a prismatic-corner car against
+    the tyres' static loaded radius (:func:`flexpipe.vehicle.corners.corner_arrays`), as
+    the run itself checks them; the body's mass properties come from the cache."""
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.corners import corner_arrays
+    from flexpipe.vehicle.simulation import _tires
+
+    rb = bodymodel.rigid_properties(car)
+    corner_arrays(car, rb.mass, rb.center_of_mass, tires=_tires(car))
