@@ -68,7 +68,10 @@ def _step(text: str, quiet: bool):
 
 
 def _material(args):
-    from flexpipe.fem.material import Material
+    """The material of ``--material`` / ``--E --nu --rho``, checked as a MAT1 card is."""
+    from dataclasses import replace
+
+    from flexpipe.fem.material import Material, check_plausible
 
     over = {k: getattr(args, k) for k in ("E", "nu", "rho") if getattr(args, k) is not None}
     if args.material is None and not over:
@@ -78,13 +81,18 @@ def _material(args):
             base = Material.named(args.material)
         except InputError as exc:
             raise InputError(str(exc), key="--material") from None
+        if not over:
+            return base
         vals = {"E": base.E, "nu": base.nu, "rho": base.rho, **over}
-        return Material(vals["E"], vals["nu"], vals["rho"], base.name)
+        keys = tuple(f"--{k}" if k in over else f"--material {base.name} {k}"
+                     for k in ("E", "nu", "rho"))
+        mat = check_plausible(vals["E"], vals["nu"], vals["rho"], keys=keys, given=set(over))
+        return replace(mat, name=base.name)
     if len(over) < 3:
         missing = [f"--{k}" for k in ("E", "nu", "rho") if k not in over]
         raise InputError(f"give --material NAME or all of --E, --nu, --rho (missing "
                          f"{', '.join(missing)})")
-    return Material(over["E"], over["nu"], over["rho"])
+    return check_plausible(over["E"], over["nu"], over["rho"], keys=("--E", "--nu", "--rho"))
 
 
 def _check_file_materials(mesh) -> None:

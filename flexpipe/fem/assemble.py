@@ -232,7 +232,10 @@ def _check_connectivity(mesh: Mesh, *, allow_disconnected: bool):
         )
         raise ModelError(
             f"{mesh.source or 'mesh'}: the structure falls into {ncomp} disconnected parts "
-            f"({parts}); connect them (shared nodes, RBE2) or pass allow_disconnected=True"
+            f"({parts}); connect them (shared nodes, RBE2, springs): a flexible body (flexpipe "
+            "reduce) must be one connected structure; for the modes of separate parts give "
+            "flexpipe modes --allow-disconnected (in Python: assemble(..., "
+            "allow_disconnected=True))"
         )
 
 

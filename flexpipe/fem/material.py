@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from flexpipe.errors import InputError
 
 
@@ -59,3 +61,61 @@ LIBRARY = {
     "aluminum": Material(70e9, 0.33, 2700.0, "aluminium"),
     "magnesium": Material(45e9, 0.35, 1800.0, "magnesium"),
 }
+
+
+def check_plausible(E: float, nu: float, rho: float, *, keys=("E", "nu", "rho"),
+                    given=None) -> Material:
+    """The material, with the checks a Nastran MAT1 card's values get.
+
+    E > 0, -1 < nu < 0.5, rho >= 0, and (for rho > 0) a bar wave speed ``sqrt(E / rho)``
+    within :data:`flexpipe.mesh.units.WAVE_SPEED_RANGE`, the range of solid materials
+    (soft rubber ~30 m/s, steel 5200, diamond 18000).
+
+    Parameters
+    ----------
+    E, nu, rho : float
+        SI values (Pa, -, kg/m^3).
+    keys : tuple of str
+        How the user gave E, nu and rho (e.g. ``("--E", "--nu", "--rho")``): the
+        messages name them.
+    given : set of str, optional
+        Which of ``"E"``, ``"nu"``, ``"rho"`` the user gave (the others came from a
+        library material); default all.
+
+    Raises
+    ------
+    InputError
+        With ``key`` the offending option and what would be valid (and the likely unit
+        slip, e.g. E in MPa or GPa).
+    """
+    from flexpipe.mesh.units import _SLIPS, _STEEL_C, WAVE_SPEED_RANGE
+
+    key = dict(zip(("E", "nu", "rho"), keys, strict=True))
+    for name, value in (("E", E), ("nu", nu), ("rho", rho)):
+        if not np.isfinite(value):
+            raise InputError(f"{name} must be a finite number, got {value}", key=key[name])
+    if not E > 0:
+        raise InputError(f"E must be > 0 Pa (steel: 2.1e11), got {E:g}", key=key["E"])
+    if not -1.0 < nu < 0.5:
+        raise InputError(f"nu must lie in (-1, 0.5) (steel: 0.3), got {nu:g}", key=key["nu"])
+    if not rho >= 0:
+        raise InputError(f"rho must be >= 0 kg/m^3 (steel: 7850), got {rho:g}",
+                         key=key["rho"])
+    lo, hi = WAVE_SPEED_RANGE
+    c = float(np.sqrt(E / rho)) if rho > 0 else None
+    if c is not None and not lo <= c <= hi:
+        given = {"E", "nu", "rho"} if given is None else set(given)
+        blame = [n for n in ("E", "rho") if n in given] or ["E", "rho"]
+        r = float(np.log10(c / _STEEL_C))
+        f, hint = min(_SLIPS, key=lambda fs: abs(np.log10(fs[0]) - r))
+        hint = hint if abs(np.log10(f) - r) < 1.0 else "check the units of E and rho"
+        hint = hint.replace("RHO", "rho")
+        if hint.startswith("rho") and "rho" in given:
+            blame = ["rho"]
+        raise InputError(
+            f"{key['E']} {E:g} Pa and {key['rho']} {rho:g} kg/m^3 give a bar wave speed "
+            f"sqrt(E/rho) = {c:.3g} m/s; valid: {lo:g} to {hi:g} m/s, the range of solid "
+            f"materials (soft rubber ~30, steel 5200, diamond 18000); {hint}",
+            key=key[blame[0]])
+    return Material(E, nu, rho)
+

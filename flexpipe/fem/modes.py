@@ -2,11 +2,20 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from flexpipe.errors import InputError, ModelError
+from flexpipe.fem.mechanism import (
+    MechanismWarning,
+    element_scale_hz,
+    extra_directions,
+    n_parts,
+    zero_mode_warning,
+)
 from flexpipe.fem.model import FEModel
 from flexpipe.fem.solver import factorize
 
@@ -253,14 +262,24 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
         Ascending natural frequencies in Hz (rigid-body modes ~0).
     shapes : ndarray, shape (n_dof, n)
         Mass-normalized mode shapes over all DOF (node-major numbering).
+
+    Warns
+    -----
+    MechanismWarning
+        When more modes lie below :data:`~flexpipe.fem.mechanism.ZERO_RATIO` times the
+        first elastic frequency than the supports leave rigid-body motions free (6 for a
+        free body): a mechanism.  The message names the file, the count, the nodes the
+        extra motion moves most and the likely cause (e.g. ``--thickness``).
+
+    Raises
+    ------
+    ModelError
+        When the model has no mass (:func:`check_mass`).
     """
     if not isinstance(n, (int, np.integer)) or n < 1:
         raise InputError(f"n must be a positive integer, got {n!r}")
     Kr, Mr = fe.Kr, fe.Mr
-    where = f"{fe.mesh.source}: " if fe.mesh is not None and fe.mesh.source else ""
-    if not (Mr.diagonal() > 0).any():
-        raise ModelError(f"{where}the model has no mass (every density and point mass is "
-                         "zero, e.g. MAT1 without RHO); give densities to compute modes")
+    check_mass(fe)
     keep = np.arange(Kr.shape[0])
     R = rigid_body_modes(fe) if deflate_rigid else None
     if fixed_dofs is not None and len(np.atleast_1d(fixed_dofs)):
@@ -287,4 +306,31 @@ def eigenmodes(fe: FEModel, n: int, fixed_dofs=None, *, sigma: float = DEFAULT_S
     Q[keep] = X if Z is None else Z @ X
     shapes = fe.expand(Q)
     freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
+    supported = Kr.shape[0] < fe.Kr.shape[0] or Z is not None
+    n_expected = rigid.shape[1] if rigid is not None else (0 if supported else 6)
+    n_expected += 6 * (n_parts(fe) - 1)   # allow_disconnected: each part moves freely
+
+    def extra_motion(r):   # zero modes M-orthogonal to the free rigid-body motions
+        C = extra_directions(None if rigid is None else Mr @ rigid, X[:, :r])
+        return shapes[:, :r] @ C
+
+    text = zero_mode_warning(fe, freqs, n_expected, supported=supported,
+                             extra_motion=extra_motion, scale_hz=element_scale_hz(fe))
+    if text:
+        warnings.warn(MechanismWarning(text), stacklevel=2)
     return freqs, shapes
+
+
+def check_mass(fe: FEModel) -> None:
+    """Refuse a model without any mass (every density and point mass zero).
+
+    Raises
+    ------
+    ModelError
+        Naming the mesh file and the likely cause (a MAT1 without RHO).
+    """
+    where = f"{fe.mesh.source}: " if fe.mesh is not None and fe.mesh.source else ""
+    if not (fe.Mr.diagonal() > 0).any():
+        raise ModelError(f"{where}the model has no mass (every density and point mass is "
+                         "zero, e.g. MAT1 without RHO, or --rho 0); give densities to "
+                         "compute modes")

@@ -33,6 +33,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 from flexpipe.errors import InputError, ModelError
+from flexpipe.fem.mechanism import count_zero_modes
 from flexpipe.reduction.eigen import DENSE_LIMIT, factor_spd, lowest_modes, modes_up_to
 
 #: a mode is rigid when its frequency is below this fraction of the first elastic one
@@ -101,11 +102,7 @@ def detect_rigid_modes(omega, *, ratio: float = RIGID_RATIO, max_rigid: int = MA
     ModelError
         When more than ``max_rigid`` zero-frequency modes are found (a mechanism).
     """
-    w = np.sqrt(np.clip(np.asarray(omega, dtype=float) ** 2, 0.0, None))
-    r = 0
-    for k in range(1, len(w)):
-        if w[k] > 0 and w[:k].max() < ratio * w[k]:
-            r = k
+    r = count_zero_modes(omega, ratio=ratio)
     if r > max_rigid:
         raise ModelError(
             f"{r} zero-frequency modes found but a free body has at most {max_rigid}: the "

@@ -36,7 +36,16 @@ import numpy as np
 import scipy.sparse as sp
 
 from flexpipe.errors import InputError, ModelError
+from flexpipe.fem.mechanism import (
+    count_zero_modes,
+    describe_motion,
+    extra_directions,
+    likely_cause,
+    node_amplitude,
+    thickness_note,
+)
 from flexpipe.fem.model import FEModel
+from flexpipe.fem.modes import check_mass
 from flexpipe.flexbody.body import BodyInterface, FlexBody
 from flexpipe.flexbody.invariants import (
     ffrf_invariants,
@@ -184,6 +193,7 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         f_max = DEFAULT_F_MAX_HZ
     if n_modes is not None and (not isinstance(n_modes, (int, np.integer)) or n_modes < 0):
         raise InputError(f"n_modes must be an integer >= 0, got {n_modes!r}", key="n_modes")
+    check_mass(fe)   # as eigenmodes: names the file, not LAPACK's words
     resolved = resolve_interfaces(fe, interfaces)
     system = interface_system(fe, resolved)
     b = np.concatenate(system.active)
@@ -203,11 +213,14 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
                 inertia_f_max=None if f_max is None else INERTIA_FACTOR * f_max,
                 factor=factor_out[0] if factor_out else None)
     except ModelError as exc:
-        raise ModelError(f"{exc}{_diagnose(fe, system)}") from None
+        raise ModelError(_explain(fe, system, exc)) from None
     timings["basis_s"] = time.perf_counter() - t
     t = time.perf_counter()
     Psi, omega = cms.orthonormalize(system.M, system.K, Psi)
-    n_rigid = cms.detect_rigid_modes(omega) if n_rigid_hint is None else n_rigid_hint
+    try:
+        n_rigid = cms.detect_rigid_modes(omega) if n_rigid_hint is None else n_rigid_hint
+    except ModelError as exc:
+        raise ModelError(_explain(fe, system, exc)) from None
     f_hz = omega / (2 * np.pi)
     f_hz[:n_rigid] = np.where(f_hz[:n_rigid] < 1e-300, 0.0, f_hz[:n_rigid])
 
@@ -292,30 +305,37 @@ def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_facto
     return Psi, n_rigid
 
 
+def _explain(fe, system, exc) -> str:
+    """The message of a failed basis: the mesh file, the error, and the diagnosis (extra
+    zero-energy modes and where they move, or the shells' ``--thickness``)."""
+    msg = str(exc)
+    src = fe.mesh.source if fe.mesh is not None and fe.mesh.source else ""
+    diag = _diagnose(fe, system)
+    if not diag:
+        thin = thickness_note(fe)
+        diag = f"; check the shell thickness: {thin}" if thin else ""
+    return f"{src + ': ' if src and not msg.startswith(src) else ''}{msg}{diag}"
+
+
 def _diagnose(fe, system) -> str:
-    """Where is the structure singular?  Zero-energy modes beyond the six rigid ones."""
+    """Where is the structure singular?  Zero-energy modes beyond the six rigid ones
+    (the test and words :func:`flexpipe.fem.eigenmodes` warns with)."""
     try:
         from flexpipe.reduction.eigen import lowest_modes
 
         lam, X = lowest_modes(system.K, system.M, min(19, system.K.shape[0]))
-        n_zero = cms.detect_rigid_modes(np.sqrt(np.clip(lam, 0, None)), max_rigid=18)
+        n_zero = count_zero_modes(np.sqrt(np.clip(lam, 0, None)))
         if n_zero <= 6:
             return ""
-        zero = np.arange(n_zero)
-        # a zero-energy mode M-orthogonal to the six exact rigid-body motions
+        # the zero-energy motions M-orthogonal to the six exact rigid-body motions
         MR = system.E.T @ (fe.M @ rigid_body_vectors(fe.nodes, fe.dofs_per_node))
-        Z = X[:, zero]
-        _, _, Vt = np.linalg.svd(MR.T @ Z)
-        u = np.asarray(system.E @ (Z @ Vt[-1])).reshape(fe.n_nodes, fe.dofs_per_node)[:, :3]
+        Z = X[:, :n_zero]
+        U = np.asarray(system.E @ (Z @ extra_directions(MR, Z)))
+        moved = describe_motion(fe, node_amplitude(fe, U))
     except Exception:  # noqa: BLE001 - the diagnosis must never hide the original error
         return ""
-    amp = np.linalg.norm(u, axis=1)
-    i = int(amp.argmax())
-    moving = int((amp > 0.5 * amp[i]).sum())
-    where = fe.mesh.describe_node(i) if fe.mesh is not None else f"node index {i}"
     return (f". Diagnosis: {n_zero} zero-energy modes where a free body has 6; "
-            f"the extra motion is largest at {where} ({moving} nodes move with it): a part "
-            "held by a single node or a hinge, or a disconnected part")
+            f"the extra motion is {moved}; likely cause: {likely_cause(fe)}")
 
 
 def mac(A: np.ndarray, B: np.ndarray) -> np.ndarray:
