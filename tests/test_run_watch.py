@@ -141,3 +141,19 @@ def test_a_car_off_its_ride_height_is_refused_before_the_output_folder(tmp_path,
     err = capsys.readouterr().err
     assert "corners.fl.wheel_center_m z = 0.3300 m" in err and "car.toml" in err
     assert not out.exists() and not Path(str(out) + ".failed").exists()
+
+
+@pytest.mark.parametrize("t_reached, words", [
+    (0.0, "at the first step, so the step is rarely the cause"),
+    (0.2, "a too large step h = 0.001 s"),
+])
+def test_a_solver_failure_at_the_start_does_not_blame_the_step(monkeypatch, t_reached, words):
+    """No step makes a car start that cannot (a locked or free linkage part): a Newton
+    failure at the first step points at the model, one later at the step."""
+    from flexpipe.exu.car import CarSystem
+    from flexpipe.exu.timeloop import RunOutcome
+
+    monkeypatch.setattr(CarSystem, "run", lambda self, step, **kw: RunOutcome(
+        False, t_reached, 0.0, 0.0, "SolveDynamic terminated", 0.0, {}))
+    r = simulate(_sedan(), speed=30 / 3.6, t_end=0.3, body="rigid", settle=False)
+    assert r.status == -1 and words in r.message

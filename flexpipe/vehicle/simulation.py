@@ -394,9 +394,16 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         status, message = -1, ctrl.message
     elif not completed:
         status = -1
+        cause = (f"likely causes: a too large step h = {h:g} s for the stiffness of the "
+                 "model, or a diverging state")
+        if t_reached < 1.5 * h:  # at the very start no step is small enough: the model
+            cause = ("at the first step, so the step is rarely the cause: the car cannot "
+                     "start from its initial state - look for a suspension joint or link "
+                     "that locks or leaves a part free (flexpipe kc CAR shows whether each "
+                     "corner assembles), a stiffness or mass far out of range in the car "
+                     f"file, or try a smaller step than h = {h:g} s")
         message = (f"simulation stopped at t = {t_reached:.4f} s: the implicit solver did not "
-                   f"converge ({solver_msg or 'Newton failure'}); likely causes: a too large "
-                   f"step h = {h:g} s for the stiffness of the model, or a diverging state")
+                   f"converge ({solver_msg or 'Newton failure'}); {cause}")
     else:
         status, message = 0, f"reached t_end = {t_end:g} s"
     ctrl.fill_from_sensors()
