@@ -207,3 +207,20 @@ def test_info_csv_road_and_path(capsys, tmp_path):
     assert main(["info", str(bad)]) == 2
     err = capsys.readouterr().err
     assert "bad.csv" in err and "Traceback" not in err
+
+
+def test_info_warns_of_what_run_would_refuse(capsys, tmp_path):
+    """A prismatic car whose wheel-centre height is off its tyre's loaded radius: info
+    still describes it, with the run's error as a warning."""
+    root = Path(__file__).resolve().parents[1]
+    text = (root / "cars" / "sedan.toml").read_text().replace('"../', f'"{root}/')
+    car = tmp_path / "car.toml"
+    car.write_text(text.replace("wheel_center_m = [0.0, 0.775, 0.2983]",
+                                "wheel_center_m = [0.0, 0.775, 0.33]"))
+    assert main(["info", str(car)]) == 0
+    cap = capsys.readouterr()
+    assert "static wheel loads" in cap.out
+    assert "warning: flexpipe run refuses this car" in cap.err
+    assert "corners.fl.wheel_center_m z = 0.3300 m" in cap.err
+    assert main(["info", str(root / "cars" / "sedan.toml")]) == 0
+    assert "warning" not in capsys.readouterr().err

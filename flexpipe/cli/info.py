@@ -82,7 +82,17 @@ def toml_text(path) -> str:
 
         car = load_car(path)
         check_mount_node_ids(car)  # mount node ids of the mesh, as a flexible run checks
-        return car_text(car)
+        text = car_text(car)
+        if car.suspension is None:  # what a run would refuse, as a warning under the text
+            import warnings
+
+            from flexpipe.vehicle.run_inputs import _check_ride_height
+
+            try:
+                _check_ride_height(car)
+            except InputError as exc:
+                warnings.warn(f"flexpipe run refuses this car: {exc}", stacklevel=2)
+        return text
     if kind == "road":
         from flexpipe.roads import load_road
 
