@@ -166,7 +166,7 @@ def test_divergence_gives_status_and_time(tmp_path):
     from flexpipe.roads import iso8608
 
     text = SEDAN.read_text().replace('"../', f'"{ROOT.as_posix()}/')
-    text = text.replace("rate_N_per_m = 18000.0", "rate_N_per_m = 1.0e8")
+    text = text.replace("rate_N_per_m = 18000.0", "rate_N_per_m = 1.0e6")
     path = tmp_path / "stiff_bar.toml"
     path.write_text(text)
     road = iso8608("C", length=200.0, dx=0.05, seed=3, track_width=1.55, fade=5.0)

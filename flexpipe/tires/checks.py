@@ -15,6 +15,8 @@ the line, the key and the valid range:
   dimensions the models do not use (``WIDTH``, ``BOTTOMING_RADIUS`` ...) are not checked;
 * radius, nominal load and vertical stiffness must be those of a road-vehicle tyre
   (0.05-5 m, 10 N-2 MN, 1e3-1e9 N/m): outside, a ``[UNITS]`` entry is usually wrong;
+  the reference speed ``LONGVL`` that of a tyre measurement (1-100 m/s; rigs run at
+  10-30 m/s, and PAC2002 divides the speed by it);
 * input ranges must be ordered and hold zero (``KPUMIN <= 0 <= KPUMAX``, ``KPUMIN <
   KPUMAX``; the same for ``ALPMIN/ALPMAX`` (within +-pi/2) and ``CAMMIN/CAMMAX``), since the
   model clips its inputs to them;
@@ -55,10 +57,16 @@ _NONNEGATIVE = {
     "VERTICAL_FORCE_RANGE": ("FZMIN",),
     "PARAMETER": ("ROLLING_RESISTANCE", "RELAX_LENGTH_X", "RELAX_LENGTH_Y"),
 }
-_PLAUSIBLE = (  # section, key, low, high (SI): any road-vehicle tyre, bicycle to mining truck
-    ("DIMENSION", "UNLOADED_RADIUS", 0.05, 5.0, "m"),
-    ("VERTICAL", "FNOMIN", 10.0, 2e6, "N"),
-    ("VERTICAL", "VERTICAL_STIFFNESS", 1e3, 1e9, "N/m"),
+_UNITS_HINT = "a tyre outside it usually means a wrong [UNITS] entry"
+_PLAUSIBLE = (  # section, key, low, high (SI), why: any road-vehicle tyre, bicycle to mining truck
+    ("DIMENSION", "UNLOADED_RADIUS", 0.05, 5.0, "m", _UNITS_HINT),
+    ("VERTICAL", "FNOMIN", 10.0, 2e6, "N", _UNITS_HINT),
+    ("VERTICAL", "VERTICAL_STIFFNESS", 1e3, 1e9, "N/m", _UNITS_HINT),
+    # the reference speed of the measurement: tyre rigs and trailers run at 10-30 m/s (the
+    # published files: 16.6-16.7); PAC2002 divides the speed by it (rolling resistance), so
+    # 0 has no meaning, and no tyre is measured below walking pace or above 360 km/h
+    ("MODEL", "LONGVL", 1.0, 100.0, "m/s", "the reference speed of the tyre measurement, "
+     "10-30 m/s on tyre rigs; the model divides the speed by it"),
 )
 _RANGES = (  # section, low key, high key, default low, default high, absolute limit
     ("LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", -1.5, 1.5, math.inf),
@@ -118,11 +126,10 @@ def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
             v = value(sec, key)
             if v is not None and not v >= 0.0:
                 fail(sec, key, v, ">= 0")
-    for sec, key, lo, hi, unit in _PLAUSIBLE:
+    for sec, key, lo, hi, unit, why in _PLAUSIBLE:
         v = value(sec, key)
         if v is not None and not lo <= v <= hi:
-            fail(sec, key, v, f"{lo:g} .. {hi:g} {unit} after the [UNITS] conversion (a tyre "
-                              "outside it usually means a wrong [UNITS] entry)")
+            fail(sec, key, v, f"{lo:g} .. {hi:g} {unit} after the [UNITS] conversion ({why})")
     r0, rim = value("DIMENSION", "UNLOADED_RADIUS"), value("DIMENSION", "RIM_RADIUS")
     if r0 is not None and rim is not None and rim > 0.0 and rim >= r0:
         fail("DIMENSION", "RIM_RADIUS", rim, f"< UNLOADED_RADIUS = {r0:g} m")

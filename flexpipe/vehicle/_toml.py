@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.vehicle.limits import INERTIA_TRIANGLE_TOL
 
 _MISSING = object()
 
@@ -223,3 +224,37 @@ class Table:
             hint = f" (did you mean '{close[0]}'?)" if close else ""
             raise self.error(k, f"unknown key{hint}; valid keys in [{self.name or 'top level'}]"
                                 f": {', '.join(sorted(self._known))}")
+
+
+def check_principal_moments(t: Table, key: str, J: np.ndarray,
+                            tol: float = INERTIA_TRIANGLE_TOL) -> None:
+    """Refuse an inertia tensor whose principal moments break the triangle inequality.
+
+    Every rigid body has ``I1 <= I2 + I3`` for its principal moments (``I2 + I3 - I1 = 2 sum
+    m x1^2 >= 0``); a flat body meets it with equality.
+
+    Parameters
+    ----------
+    t : Table
+        The table of ``key`` (for the message).
+    key : str
+        Key of the inertia (``"unsprung_inertia_kg_m2"``).
+    J : (3, 3) array
+        The tensor read, kg m^2 (positive semi-definite).
+    tol : float
+        Margin for rounded moments, relative to the largest one
+        (:data:`flexpipe.vehicle.limits.INERTIA_TRIANGLE_TOL`).
+
+    Raises
+    ------
+    InputError
+        Naming the largest moment, the sum of the other two and the rule.
+    """
+    moments = np.sort(np.linalg.eigvalsh(np.asarray(J, dtype=float)))
+    if moments[2] <= (moments[0] + moments[1]) + tol * max(moments[2], 0.0):
+        return
+    raise t.error(key, f"principal moments {', '.join(f'{m:.4g}' for m in moments)} kg m^2 "
+                       "are no rigid body's: the largest must not exceed the sum of the "
+                       f"other two ({moments[2]:.4g} > {moments[0] + moments[1]:.4g}); a flat "
+                       "body has equality (a wheel about its axle: twice the moment about a "
+                       "diameter)")

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 
+from flexpipe.errors import SolverError
 from flexpipe.vehicle.spec import CORNERS, Car
 
 
@@ -44,10 +45,13 @@ def car_text(car: Car) -> str:
         from flexpipe.vehicle.linkage_setup import linkage_statics
         from flexpipe.vehicle.suspension.statics import point_masses
 
-        susp, N = linkage_statics(car, rb)
-        lines.append(f"  suspension: linkage templates, time runs in {susp.mode} mode")
-        for name, axle in susp.axles.items():
-            lines += _axle_lines(car, name, axle, N[CORNERS.index(axle.left.corner)])
+        try:
+            susp, N = linkage_statics(car, rb)
+            lines.append(f"  suspension: linkage templates, time runs in {susp.mode} mode")
+            for name, axle in susp.axles.items():
+                lines += _axle_lines(car, name, axle, N[CORNERS.index(axle.left.corner)])
+        except SolverError as exc:  # name the file: the corner's [suspension.<axle>]
+            raise SolverError(f"{car.file}: static suspension figures: {exc}") from None
         dofs = susp.mount_dofs()
         mounts = susp.mounts()
         lines.append(f"  body mounts ({len(mounts)}; interface DOF 3 = forces, 6 = forces "

@@ -52,7 +52,7 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.vehicle import limits as lim
-from flexpipe.vehicle._toml import Table, parse
+from flexpipe.vehicle._toml import Table, check_principal_moments, parse
 from flexpipe.vehicle.body_spec import (  # noqa: F401  (re-exported)
     AddedMass,
     BodySpec,
@@ -60,6 +60,7 @@ from flexpipe.vehicle.body_spec import (  # noqa: F401  (re-exported)
     read_body,
     read_inertia,
 )
+from flexpipe.vehicle.suspension.checks import WHEEL_CENTER_BOX_M
 
 CORNERS = ("fl", "fr", "rl", "rr")
 AXLE_OF = {"fl": "front", "fr": "front", "rl": "rear", "rr": "rear"}
@@ -208,8 +209,10 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
             ("rebound_stop_rate_N_per_m", spec.rebound_stop_rate, lim.STOP_RATE_N_PER_M, "N/m",
              "a rebound stop (0: none)", lim.SPRING_RATE_SLIPS),
             ("unsprung_mass_kg", spec.unsprung_mass, lim.WHEEL_MASS_KG, "kg",
-             "the unsprung mass of a wheel", lim.MASS_SLIPS)):
-        if v != 0 or key == "spring_rate_N_per_m":  # 0: no damper / stop
+             "the unsprung mass of a wheel", lim.MASS_SLIPS),
+            ("wheel_spin_inertia_kg_m2", spec.spin_inertia, lim.WHEEL_SPIN_INERTIA_KG_M2,
+             "kg m^2", "the spin inertia of a wheel", lim.INERTIA_SLIPS)):
+        if v != 0 or key in ("spring_rate_N_per_m", "wheel_spin_inertia_kg_m2"):  # 0: none
             c.magnitude(key, v, *bounds, unit=unit, what=what, slips=slips)
     side = 1 if name[1] == "l" else -1
     for key, p in (("hardpoint_m", spec.hardpoint), ("wheel_center_m", spec.wheel_center)):
@@ -219,7 +222,33 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
     if spec.wheel_center[2] <= 0:
         raise c.error("wheel_center_m", f"wheel centre height {spec.wheel_center[2]:g} m must "
                                         "be > 0 (z = 0 is the ground in the design position)")
+    check_principal_moments(c, "unsprung_inertia_kg_m2", spec.unsprung_inertia)
+    _check_corner_envelope(c, spec)
     return spec
+
+
+def _check_corner_envelope(c: Table, spec: CornerSpec) -> None:
+    """The wheel centre within a road vehicle's envelope (the linkage car's
+    :data:`~flexpipe.vehicle.suspension.checks.WHEEL_CENTER_BOX_M`) and the hardpoint within
+    :data:`~flexpipe.vehicle.limits.HARDPOINT_TO_WHEEL_CENTER_M` of it."""
+    wc = spec.wheel_center
+    for i, (lo, hi) in WHEEL_CENTER_BOX_M.items():
+        if not lo < wc[i] <= hi:
+            axis = "xyz"[i]
+            mm = ("; the values look like millimetres, but the key's unit is metres"
+                  if lo < wc[i] / 1e3 <= hi and abs(wc[i]) >= 50 else "")
+            raise c.error("wheel_center_m", f"wheel centre {axis} = {wc[i]:g} m is outside any "
+                                            f"road vehicle ({lo:g} < {axis} <= {hi:g} m in "
+                                            "body coordinates: z = 0 the ground, |y| half the "
+                                            f"track, at most 1.3 m in the 2.6 m width limit){mm}")
+    d = float(np.linalg.norm(spec.hardpoint - wc))
+    if d > lim.HARDPOINT_TO_WHEEL_CENTER_M:
+        raise c.error("hardpoint_m", f"the suspension mount {spec.hardpoint.tolist()} lies "
+                                     f"{d:.3g} m from the wheel centre {wc.tolist()} "
+                                     f"(wheel_center_m); valid: at most "
+                                     f"{lim.HARDPOINT_TO_WHEEL_CENTER_M:g} m (a strut top mount "
+                                     "or spring seat sits in the wheel house or above the "
+                                     "axle, 0.3-0.7 m from the wheel centre in cars)")
 
 
 def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> CornerSpec:
@@ -247,6 +276,8 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> Corn
         spin_inertia=c.number("wheel_spin_inertia_kg_m2", lo=0, lo_open=True),
         tire=tire)
     c.finish()
+    c.magnitude("wheel_spin_inertia_kg_m2", spec.spin_inertia, *lim.WHEEL_SPIN_INERTIA_KG_M2,
+                unit="kg m^2", what="the spin inertia of a wheel", slips=lim.INERTIA_SLIPS)
     return spec
 
 
@@ -331,6 +362,9 @@ def _read_car(doc: Table) -> Car:
     name = ct.string("name", path.stem)
     ct.finish()
     body = read_body(doc, base)
+    if body.rigid is not None:
+        check_principal_moments(doc.sub("body").sub("rigid"), "inertia_kg_m2",
+                                body.rigid.inertia)
     corners_t = doc.sub("corners")
     suspension = None
     if doc.has("suspension"):
@@ -367,6 +401,10 @@ def _read_car(doc: Table) -> Car:
                 arbs[axle] = a.number("rate_N_per_m", lo=0,
                                       doc="force at the wheel per metre of left-right travel "
                                           "difference")
+                if arbs[axle] != 0:  # 0: no bar
+                    a.magnitude("rate_N_per_m", arbs[axle], *lim.ARB_RATE_N_PER_M, unit="N/m",
+                                what="an anti-roll bar (0: none)",
+                                slips=lim.SPRING_RATE_SLIPS)
                 a.finish()
         at.finish()
     dt = doc.sub("drive")

@@ -13,6 +13,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 SEDAN = ROOT / "cars" / "sedan.toml"
+LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
 #: keys whose deletion must be an error
 REQUIRED = {"hardpoint_m", "wheel_center_m", "spring_rate_N_per_m", "unsprung_mass_kg",
             "wheel_radius_m", "wheel_spin_inertia_kg_m2", "tire", "mass_kg", "position_m",
@@ -22,8 +23,8 @@ MAY_LOAD = {("body.fatigue", "name", "empty-string")}
 KEY_LINE = re.compile(r"^(\s*)([A-Za-z_][A-Za-z0-9_]*)(\s*=\s*)(.*?)(\s*#.*)?$")
 
 
-def base_text() -> str:
-    text = SEDAN.read_text()
+def base_text(car: Path = SEDAN) -> str:
+    text = car.read_text()
     text = text.replace('"../meshes/', f'"{(ROOT / "meshes").as_posix()}/')
     return text.replace('"../tires/', f'"{(ROOT / "tires").as_posix()}/')
 
@@ -136,3 +137,51 @@ def cases():
     yield "wheel-under-ground", "car.toml", text.replace(
         "wheel_center_m = [0.0, 0.775, 0.2983]", "wheel_center_m = [0.0, 0.775, -0.3]", 1)\
         .encode(), "error"
+
+    yield from _bounds(text)
+
+
+def _bounds(text: str):
+    """Values outside the physical bounds of flexpipe/vehicle/limits.py (one case each, the
+    first occurrence of the line), and values at the edge of what is valid."""
+    lk = base_text(LINKAGE)
+    for car, label, old, new, expect in (
+            (text, "spin-inertia-tiny", "wheel_spin_inertia_kg_m2 = 1.0",
+             "wheel_spin_inertia_kg_m2 = 1.0e-9", "error"),
+            (text, "spin-inertia-kg-cm2", "wheel_spin_inertia_kg_m2 = 1.0",
+             "wheel_spin_inertia_kg_m2 = 1.0e4", "error"),
+            (text, "spin-inertia-small-wheel", "wheel_spin_inertia_kg_m2 = 1.0",
+             "wheel_spin_inertia_kg_m2 = 0.1", "ok"),
+            (text, "arb-huge", "rate_N_per_m = 18000.0", "rate_N_per_m = 1.0e12", "error"),
+            (text, "arb-n-per-mm", "rate_N_per_m = 18000.0", "rate_N_per_m = 18.0", "error"),
+            (text, "arb-none", "rate_N_per_m = 18000.0", "rate_N_per_m = 0.0", "ok"),
+            (text, "wheel-center-y-5m", "wheel_center_m = [0.0, 0.775, 0.2983]",
+             "wheel_center_m = [0.0, 5.0, 0.2983]", "error"),
+            (text, "wheel-center-mm", "wheel_center_m = [0.0, 0.775, 0.2983]",
+             "wheel_center_m = [0.0, 775.0, 298.3]", "error"),
+            (text, "hardpoint-far-from-wheel", "hardpoint_m = [0.0, 0.65, 0.85]",
+             "hardpoint_m = [0.0, 0.65, 2.5]", "error"),
+            (text, "unsprung-inertia-triangle", "unsprung_inertia_kg_m2 = [0.9, 1.3, 0.9]",
+             "unsprung_inertia_kg_m2 = [0.1, 0.1, 5.0]", "error"),
+            (lk, "linkage-spin-inertia-tiny", "wheel_spin_inertia_kg_m2 = 1.0",
+             "wheel_spin_inertia_kg_m2 = 1.0e-9", "error"),
+            (lk, "linkage-rack-tiny", "travel_per_rev_m = 0.055",
+             "travel_per_rev_m = 1.0e-9", "error"),
+            (lk, "linkage-rack-mm", "travel_per_rev_m = 0.055", "travel_per_rev_m = 55.0",
+             "error"),
+            (lk, "linkage-arb-torsion-huge", "torsion_rate_N_m_per_rad = 6300.0",
+             "torsion_rate_N_m_per_rad = 1.0e12", "error"),
+            (lk, "linkage-bushing-rigid", "stiffness = [8.0e6, 8.0e6, 1.0e6, 500.0, 500.0, 150.0]",
+             "stiffness = [1.0e13, 1.0e13, 1.0e13, 1.0e9, 1.0e9, 1.0e9]", "error"),
+            (lk, "linkage-bushing-kn-per-mm", "stiffness = [8.0e6, 8.0e6, 1.0e6,",
+             "stiffness = [8.0, 8.0, 1.0,", "error"),
+            (lk, "linkage-bushing-damping-huge", "damping = [800.0, 800.0, 100.0, 0.5, 0.5, 0.2]",
+             "damping = [800.0, 800.0, 100.0, 1.0e6, 0.5, 0.2]", "error"),
+            (lk, "linkage-bushing-at-bounds", "stiffness = [8.0e6, 8.0e6, 1.0e6, 500.0, 500.0, "
+             "150.0]", "stiffness = [1.0e8, 1.0e8, 1.0e4, 1.0e6, 1.0e6, 1.0e6]", "ok"),
+            (lk, "linkage-part-inertia-triangle", "inertia_kg_m2 = [0.0151, 0.0207, 0.0355]",
+             "inertia_kg_m2 = [0.0151, 0.0207, 0.0500]", "error"),
+            (lk, "linkage-wheel-inertia-triangle", "wheel_inertia_kg_m2 = [0.45, 0.0, 0.45]",
+             "wheel_inertia_kg_m2 = [0.45, 0.0, 1.45]", "error")):
+        assert old in car, old
+        yield f"bound-{label}", "car.toml", car.replace(old, new, 1).encode(), expect

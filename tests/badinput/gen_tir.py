@@ -105,9 +105,13 @@ def cases():
                        # reversed side force, misspelt or unknown mounting side
                        ("PKX1", "0.0"), ("PKX1", "-21.0"), ("PKY1", "18.0"),
                        ("PCX1", "-1.6"), ("PDY1", "-1.05"), ("QSY1", "-0.01"),
-                       ("TYRESIDE", "'RIGTH'"), ("TYRESIDE", "'MIDDLE'")):
+                       ("TYRESIDE", "'RIGTH'"), ("TYRESIDE", "'MIDDLE'"),
+                       # reference speed: PAC2002 divides the speed by it (was a raw
+                       # ZeroDivisionError); tyre rigs run at 10-30 m/s
+                       ("LONGVL", "0.0"), ("LONGVL", "-16.7"), ("LONGVL", "1000.0")):
         yield f"range_{key}_{value.strip(chr(39))}", f"range_{key}.tir", _set(
             base, key, value).encode(), "error"
+    yield "ok_LONGVL_25", "longvl.tir", _set(base, "LONGVL", "25.0").encode(), "ok"
     for side in ("'LEFT'", "'right'", "'Symmetric'"):
         yield f"ok_tyreside_{side.strip(chr(39))}", "side.tir", _set(
             base, "TYRESIDE", side).encode(), "ok"

@@ -1,5 +1,5 @@
-"""Checks of a linkage corner's hardpoints that need no kinematics: scale, side, distinct
-points.
+"""Checks of a linkage corner's hardpoints that need no kinematics (scale, side, distinct
+points) and of its bushings' rates (:func:`check_bushing`).
 
 Run by :func:`flexpipe.vehicle.suspension.spec.load_suspension` on the left corner as the
 car file gives it (after ``location_m``, before mirroring), so that a slip is named by its
@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table
+from flexpipe.vehicle.suspension.model import BUSHING_DOFS
 
 #: two hardpoints closer than this (m) are one point: arm pivots, link ends and spring
 #: seats lie tens to hundreds of millimetres apart and are given to 0.1 mm, so points this
@@ -133,3 +135,38 @@ def check_hardpoints(template: str, hp: dict, raw: dict, loc: np.ndarray, t: Tab
         raise hpt.error("arb_bushing", f"y = {hp['arb_bushing'][1]:g} m: the left bar bushing "
                                        "and its mirror image (the right one) coincide, so "
                                        "they define no bar axis; give y > 0")
+
+
+def check_bushing(t: Table, k: np.ndarray, c: np.ndarray) -> None:
+    """Stiffness and damping of a bushing within the bounds of
+    :mod:`flexpipe.vehicle.limits` (0 in a direction: free there).
+
+    Parameters
+    ----------
+    t : Table
+        The bushing's table, for the message.
+    k, c : (6,) array
+        Stiffness and damping, x y z [N/m, N s/m] then rx ry rz [N m/rad, N m s/rad].
+
+    Raises
+    ------
+    InputError
+        Naming the entry, its direction, the valid range and a likely unit slip.
+    """
+    for key, v, rows in (
+            ("stiffness", k, ((lim.BUSHING_STIFFNESS_N_PER_M, "N/m", lim.BUSHING_STIFFNESS_SLIPS),
+                              (lim.BUSHING_ROT_STIFFNESS_N_M_PER_RAD, "N m/rad", ()))),
+            ("damping", c, ((lim.BUSHING_DAMPING_N_S_PER_M, "N s/m", ()),
+                            (lim.BUSHING_ROT_DAMPING_N_M_S_PER_RAD, "N m s/rad", ())))):
+        for i, dof in enumerate(BUSHING_DOFS):
+            (lo, hi), unit, slips = rows[i // 3]
+            if v[i] == 0 or lo <= v[i] <= hi:
+                continue
+            hint = next((f"; it looks like {name} ({v[i]:g} {name} = {v[i] * f:g} {unit}), "
+                         f"but the key's unit is {unit}" for f, name in slips
+                         if lo <= v[i] * f <= hi), "")
+            valid = f"0 to {hi:g}" if lo == 0 else f"0 (free) or {lo:g} to {hi:g}"
+            raise t.error(key, f"entry {i} ({dof}) of '{key}' = {v[i]:g} {unit} is no plausible "
+                               f"bushing {key}: valid {valid} {unit} (rubber and hydro "
+                               "bushings lie well within; the reasons are in "
+                               f"flexpipe/vehicle/limits.py){hint}; got {v.tolist()}")

@@ -339,7 +339,11 @@ def solve_compliance(lk: Linkage, travel: float, *, rack: float = 0.0, patch_for
     where = f"{names[k]} residual {g[k]:.3g}" if k is not None else \
         f"force residual {np.max(np.abs(F)):.3g} N"
     raise SolverError(f"corner {lk.c.corner}: compliance solve at wheel travel "
-                      f"{travel * 1e3:.1f} mm did not converge ({where})")
+                      f"{travel * 1e3:.1f} mm did not converge ({where}); with the joints "
+                      "rigid the corner is checked at load to have one degree of freedom, "
+                      "so look at the bushings and compliant links (a stiffness of zero or "
+                      "a few N/m in a direction a joint does not hold) and at the hardpoints "
+                      "that place that joint")
 
 
 def travel_velocity(lk: Linkage, pose: Pose):

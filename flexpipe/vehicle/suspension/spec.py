@@ -13,8 +13,9 @@ import numpy as np
 
 from flexpipe.errors import InputError, ModelError
 from flexpipe.vehicle import limits as lim
-from flexpipe.vehicle._toml import Table, parse
-from flexpipe.vehicle.suspension.checks import check_hardpoints
+from flexpipe.vehicle._toml import Table, check_principal_moments, parse
+from flexpipe.vehicle.suspension.checks import check_bushing, check_hardpoints
+from flexpipe.vehicle.suspension.mobility import check_mobility
 from flexpipe.vehicle.suspension.model import (
     BUSHING_DOFS,
     AntiRollBar,
@@ -124,6 +125,7 @@ def _bushing(t: Table) -> Bushing:
     for key, v in (("stiffness", k), ("damping", c)):
         if np.any(v < 0):  # a passive bushing stores or dissipates energy, never gives it
             raise t.error(key, f"every '{key}' value must be >= 0, got {v.tolist()}")
+    check_bushing(t, k, c)
     if dofs == "translational":
         k, c = k.copy(), c.copy()
         k[3:] = c[3:] = 0.0
@@ -220,6 +222,7 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
                                      f"{', '.join(PARTS[template])}")
             p = pt.sub(name)
             inertia = p.vector("inertia_kg_m2", 3, np.zeros(3), doc="Ixx Iyy Izz about cm")
+            check_principal_moments(p, "inertia_kg_m2", np.diag(inertia))
             parts[name] = {"mass": p.number("mass_kg", lo=0),
                            "cm": p.vector("cm_m") + loc, "inertia": np.diag(inertia)}
             p.finish()
@@ -276,7 +279,12 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
             if k not in hp:
                 raise at.error(None, f"an anti-roll bar needs hardpoint '{k}' in "
                                      f"[{t.name}.hardpoints_m]")
-        arb = AntiRollBar(at.number("torsion_rate_N_m_per_rad", lo=0, lo_open=True),
+        k_t = at.magnitude("torsion_rate_N_m_per_rad",
+                           at.number("torsion_rate_N_m_per_rad", lo=0, lo_open=True),
+                           *lim.ARB_TORSION_RATE_N_M_PER_RAD, unit="N m/rad",
+                           what="an anti-roll bar's torsion rate",
+                           slips=lim.ARB_TORSION_SLIPS)
+        arb = AntiRollBar(k_t,
                           hp["arb_bushing"], hp["arb_arm_end"], hp["drop_link_lower"],
                           SPRING_PART[template],
                           mounts=((f"{axle}_arb_bushing_l", hp["arb_bushing"]),
@@ -286,6 +294,7 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
         at.finish()
     t.finish()
     _check_assembles(left, t, hpt)
+    check_mobility(left, t, hpt)  # one wheel-travel DOF: no arm, tie rod or link degenerate
     return Axle(axle, left, mirror_corner(left, axle[0] + "r"), anti_roll_bar=arb,
                 wheel_load=wheel_load)
 
@@ -323,7 +332,9 @@ def load_suspension(path, *, overrides=None) -> Suspension:
     ------
     InputError
         Naming file, line and key: unknown or missing hardpoint, bad table, a linkage that
-        does not assemble (the failing constraint and its residual).
+        does not assemble (the failing constraint and its residual) or that is not a
+        one-degree-of-freedom wheel travel at the design position
+        (:func:`~flexpipe.vehicle.suspension.mobility.check_mobility`).
     """
     path = Path(path)
     doc, lines = parse(path)
@@ -355,8 +366,12 @@ def read_suspension(top: Table) -> Suspension:
         mount = rt.vector("mount_m")
         rack = Rack({f"{rack_axle}_rack_mount_l": mount,
                      f"{rack_axle}_rack_mount_r": mount * [1, -1, 1]},
-                     rt.number("travel_per_rev_m", lo=0, lo_open=True,
-                               doc="rack travel per pinion revolution"),
+                     rt.magnitude("travel_per_rev_m",
+                                  rt.number("travel_per_rev_m", lo=0, lo_open=True,
+                                            doc="rack travel per pinion revolution"),
+                                  *lim.RACK_TRAVEL_PER_REV_M, unit="m",
+                                  what="the rack travel per pinion revolution",
+                                  slips=lim.LENGTH_SLIPS),
                      rt.number("ratio", None, lo=0, lo_open=True),
                      rt.number("column_stiffness_N_m_per_rad", None, lo=0, lo_open=True))
         rt.finish()
@@ -402,6 +417,7 @@ def _wheels(top: Table) -> dict:
                         slips=lim.MASS_SLIPS)
         J = read_inertia(c, "wheel_inertia_kg_m2") if c.has("wheel_inertia_kg_m2") else \
             np.zeros((3, 3))
+        check_principal_moments(c, "wheel_inertia_kg_m2", J)
         out[name] = (m, J)
     return out
 
