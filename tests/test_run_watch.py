@@ -157,3 +157,18 @@ def test_a_solver_failure_at_the_start_does_not_blame_the_step(monkeypatch, t_re
         False, t_reached, 0.0, 0.0, "SolveDynamic terminated", 0.0, {}))
     r = simulate(_sedan(), speed=30 / 3.6, t_end=0.3, body="rigid", settle=False)
     assert r.status == -1 and words in r.message
+
+
+@pytest.mark.parametrize("field, index", [("body_p", 1), ("wheel_p", (3, 2)),
+                                          ("jounce", 0), ("spin_rate", 2)])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_any_non_finite_state_value_stops_the_run(field, index, bad):
+    from types import SimpleNamespace
+
+    from flexpipe.vehicle import watch
+
+    st = SimpleNamespace(body_p=np.zeros(3), wheel_p=np.zeros((4, 3)), jounce=np.zeros(4),
+                         spin_rate=np.full(4, 50.0), body_w=np.zeros(3))
+    assert watch.state_problem(st, 0.0, 0.0) is None
+    getattr(st, field)[index] = bad
+    assert "non-finite" in watch.state_problem(st, 0.0, 0.0)

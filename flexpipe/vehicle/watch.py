@@ -45,27 +45,32 @@ _STIFF = ("numerical divergence: an element too stiff for the step (spring, anti
 
 
 def state_problem(st, roll: float, pitch: float) -> str | None:
-    """Why the run must stop at state ``st`` (roll and pitch in rad), or ``None``."""
-    if not (np.all(np.isfinite(st.body_p)) and np.all(np.isfinite(st.wheel_p))
-            and np.all(np.isfinite(st.jounce)) and np.all(np.isfinite(st.spin_rate))):
+    """Why the run must stop at state ``st`` (roll and pitch in rad), or ``None``.
+
+    Runs before every step, so it works on Python floats (a few microseconds; NumPy
+    calls on these 3- and 4-vectors cost several times more)."""
+    total = (float(st.body_p.sum()) + float(st.wheel_p.sum()) + float(st.jounce.sum())
+             + float(st.spin_rate.sum()))
+    if not math.isfinite(total):  # a NaN or inf anywhere makes the sum non-finite
         return "the state became non-finite (NaN/inf): numerical divergence; try a smaller step h"
-    w = float(math.sqrt(float(st.body_w @ st.body_w)))
+    wx, wy, wz = st.body_w.tolist()
+    w = math.sqrt(wx * wx + wy * wy + wz * wz)
     if w > MAX_BODY_RATE:
         return (f"the body turns at {w:.3g} rad/s (roll {math.degrees(roll):.0f} deg, pitch "
                 f"{math.degrees(pitch):.0f} deg), beyond the {MAX_BODY_RATE:g} rad/s no car "
                 f"reaches even when rolling over: {_STIFF}")
-    spin = np.abs(st.spin_rate)
-    if spin.max() > MAX_SPIN:
-        i = int(np.argmax(spin))
-        return (f"wheel {CORNERS[i]} spins at {st.spin_rate[i]:.3g} rad/s, beyond "
+    spin = st.spin_rate.tolist()
+    if max(map(abs, spin)) > MAX_SPIN:
+        i = max(range(4), key=lambda k: abs(spin[k]))
+        return (f"wheel {CORNERS[i]} spins at {spin[i]:.3g} rad/s, beyond "
                 f"{MAX_SPIN:g} rad/s: {_STIFF}")
     if abs(roll) > MAX_ATTITUDE or abs(pitch) > MAX_ATTITUDE:
         return (f"roll {math.degrees(roll):.0f} deg / pitch {math.degrees(pitch):.0f} deg: "
                 "the car overturned (speed or manoeuvre too severe)")
-    travel = np.abs(st.jounce)
-    if travel.max() > MAX_TRAVEL:
-        i = int(np.argmax(travel))
-        return (f"suspension travel {st.jounce[i]:.2f} m at corner {CORNERS[i]}: the wheel "
+    travel = st.jounce.tolist()
+    if max(map(abs, travel)) > MAX_TRAVEL:
+        i = max(range(4), key=lambda k: abs(travel[k]))
+        return (f"suspension travel {travel[i]:.2f} m at corner {CORNERS[i]}: the wheel "
                 "left its travel range - numerical divergence (try a smaller step h) or "
                 "missing bump/rebound stops")
     return None
@@ -76,9 +81,9 @@ def tire_problem(Fz, weight_N: float | None) -> str | None:
     weight; ``None`` checks nothing), or ``None``."""
     if weight_N is None:
         return None
-    Fz = np.asarray(Fz, dtype=float)
-    i = int(np.argmax(Fz))
-    if Fz[i] > MAX_TIRE_LOAD * weight_N:
+    Fz = np.asarray(Fz, dtype=float).tolist()
+    if max(Fz) > MAX_TIRE_LOAD * weight_N:
+        i = max(range(len(Fz)), key=Fz.__getitem__)
         return (f"tyre normal force {Fz[i]:.3g} N at corner {CORNERS[i]}, "
                 f"{Fz[i] / weight_N:.0f} times the car's weight ({weight_N:.0f} N): "
                 "a road step or edge the point-contact tyre cannot take (check the road "
