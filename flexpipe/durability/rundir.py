@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import json
 import re
+import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -44,17 +45,32 @@ def read_channels(out, body: str = "flexible"):
     out = Path(out)
     if (out / f"{body}.csv").is_file():
         return read_channels_csv(out / f"{body}.csv")
-    if (out / f"{body}.h5").is_file():
+    path = out / f"{body}.h5"
+    if path.is_file():
         import h5py
 
-        with h5py.File(out / f"{body}.h5", "r") as f:
-            return f["t"][()], {k: v[()] for k, v in f["channels"].items()}
-    if (out / f"{body}.mat").is_file():
+        try:
+            with h5py.File(path, "r") as f:
+                return f["t"][()], {k: v[()] for k, v in f["channels"].items()}
+        except (OSError, KeyError, ValueError, TypeError) as exc:
+            raise InputError(_damaged(exc), file=path) from None
+    path = out / f"{body}.mat"
+    if path.is_file():
         from scipy.io import loadmat
 
-        d = loadmat(out / f"{body}.mat", simplify_cells=True)
-        return np.ravel(d["t"]), {k: np.ravel(v) for k, v in d["channels"].items()}
+        try:
+            d = loadmat(path, simplify_cells=True)
+            return np.ravel(d["t"]), {k: np.ravel(v) for k, v in d["channels"].items()}
+        except (OSError, KeyError, ValueError, TypeError, AttributeError) as exc:
+            raise InputError(_damaged(exc), file=path) from None
     raise InputError(f"no {body}.csv, {body}.h5 or {body}.mat", file=out)
+
+
+def _damaged(exc: BaseException) -> str:
+    """The message for a run file that cannot be read (cut short or overwritten)."""
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    return (f"cannot read the file ({text}): it is damaged or cut short; rerun the "
+            "scenario to write it again")
 
 
 def road_strip(road, x, y, *, width: float = 3.0, ds: float = 0.25):
@@ -152,6 +168,11 @@ def _why_no_motion(summary: dict, body: str) -> str:
     if summary.get("state") in ("error", "interrupted"):
         return (f"the run ended with state '{summary['state']}' before writing it "
                 f"({summary.get('message', 'see summary.json')}): rerun the scenario")
+    if summary.get("state") == "stopped early":
+        why = (summary.get("messages") or {}).get(body) or summary.get("durability") or \
+            "see summary.json"
+        return (f"the {body} run stopped early ({why}), so it has no load history to "
+                "recover stresses from or animate: fix what the message names and rerun")
     ran = list(summary.get("messages") or {})
     if ran and body not in ran:
         return (f"the run simulated only the {' and '.join(ran)} body model"
@@ -172,16 +193,29 @@ def load_run(out, *, body: str = "flexible") -> RunData:
     summary_path = out / "summary.json"
     if not summary_path.is_file():
         raise InputError("no summary.json: not a flexpipe run folder", file=out)
-    summary = json.loads(summary_path.read_text())
+    try:
+        summary = json.loads(summary_path.read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise InputError(f"not valid JSON ({exc.msg} at line {exc.lineno}, column "
+                         f"{exc.colno}): the run folder is damaged; rerun the scenario",
+                         file=summary_path, line=exc.lineno) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(_damaged(exc), file=summary_path) from None
+    if not isinstance(summary, dict):
+        raise InputError("not a flexpipe run summary (a JSON object was expected)",
+                         file=summary_path)
     mpath = out / MOTION_FILE.format(body=body)
     if not mpath.is_file():
         raise InputError(f"no {mpath.name}: {_why_no_motion(summary, body)}", file=out)
     run_car_file(summary, out)  # before any work: stress and animate need the car
-    motion = BodyMotion.load(mpath)
-    with np.load(mpath, allow_pickle=False) as d:
-        body_file = Path(str(d["body_file"])) if "body_file" in d.files else Path()
-        band = float(d["band_hz"]) if "band_hz" in d.files else None
-        road = (d["road_x"], d["road_y"], d["road_z"]) if "road_x" in d.files else None
+    try:
+        motion = BodyMotion.load(mpath)
+        with np.load(mpath, allow_pickle=False) as d:
+            body_file = Path(str(d["body_file"])) if "body_file" in d.files else Path()
+            band = float(d["band_hz"]) if "band_hz" in d.files else None
+            road = (d["road_x"], d["road_y"], d["road_z"]) if "road_x" in d.files else None
+    except (OSError, EOFError, KeyError, ValueError, zipfile.BadZipFile) as exc:
+        raise InputError(_damaged(exc), file=mpath) from None
     t, ch = read_channels(out, body)
     if len(t) != len(motion.t):
         raise InputError(f"{body}.csv has {len(t)} rows but {mpath.name} {len(motion.t)} "

@@ -16,12 +16,14 @@ body damping and the linear suspension dampers ``D c D^T``.  Nonlinear laws add
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
 
+from flexpipe._arrays import readonly
 from flexpipe.errors import InputError
 from flexpipe.fem.beam2d import PlanarBeam, assemble_beam, rigid_body_modes, uniform_nodes
 from flexpipe.halfcar.params import HalfCarParams, load_params
@@ -76,6 +78,14 @@ class HalfCarModel:
     c_rebound: np.ndarray
     static_tire_force: np.ndarray
     x_attach: np.ndarray
+
+    def __post_init__(self):
+        # read-only copies: build_model caches one model per variant, which every caller
+        # shares (a caller scaling model.K in place changed every later result)
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray):
+                object.__setattr__(self, f.name, readonly(value))
 
     @property
     def n_dof(self) -> int:
