@@ -17,10 +17,12 @@ def add_arguments(parser) -> None:
     """Options of ``flexpipe sweep``."""
     parser.add_argument("spec", help="sweep file (.toml), e.g. sweeps/sample.toml")
     parser.add_argument("--out", default=None,
-                        help="output folder (default: the spec's out, else out/sweep-<name>)")
+                        help="output folder: new, empty or a previous sweep's (default: the "
+                             "spec's out, else out/sweep-<name>)")
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                        help="address of a running Dask scheduler, e.g. tcp://host:8786 "
-                             "(default: a local cluster)")
+                        help="address of a running Dask scheduler, e.g. tcp://host:8786 (the "
+                             "scheduler's port, not the dashboard's 8787; default: a local "
+                             "cluster)")
     parser.add_argument("--workers", type=int, default=None,
                         help="worker processes of the local cluster (default: one per core)")
     parser.add_argument("--retry-failed", action="store_true",
@@ -32,14 +34,17 @@ def add_arguments(parser) -> None:
 
 def run(args) -> int:
     """Run the sweep; exit code 0 when every run reached its end time, else 1."""
-    from flexpipe._io import check_output_folder
     from flexpipe.errors import InputError
     from flexpipe.sweeps import sweep
+    from flexpipe.sweeps.connect import check_scheduler_address
+    from flexpipe.sweeps.store import check_sweep_folder
 
     if args.workers is not None and args.workers < 1:
         raise InputError(f"--workers must be >= 1, got {args.workers}", key="workers")
+    if args.scheduler is not None:
+        check_scheduler_address(args.scheduler)  # before any work
     if args.out is not None:
-        check_output_folder(args.out, option="--out")  # before the sweep, not after
+        check_sweep_folder(args.out, option="--out")  # before the sweep, not after
     res = sweep(args.spec, out=args.out, scheduler=args.scheduler, n_workers=args.workers,
                 progress=not args.no_progress, retry_failed=args.retry_failed,
                 cache=not args.no_cache)

@@ -17,8 +17,6 @@ and a run that still cannot finish is recorded as lost and retried by the next r
 
 from __future__ import annotations
 
-import logging
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -71,17 +69,14 @@ class SweepResult:
 
 
 def _client(scheduler, n_workers):
-    from dask.distributed import Client, LocalCluster
+    from flexpipe.sweeps.connect import connect, local_cluster
 
     if scheduler is not None:
         if hasattr(scheduler, "submit"):
             return scheduler, None, False  # the caller's client: leave it open
-        return Client(scheduler), None, True
-    n = n_workers or os.cpu_count() or 1
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                           host="127.0.0.1", dashboard_address=":0",
-                           silence_logs=logging.ERROR)
-    return Client(cluster), cluster, True
+        return connect(scheduler), None, True
+    client, cluster = local_cluster(n_workers)
+    return client, cluster, True
 
 
 def _cars(runs):
@@ -110,10 +105,13 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
     spec : str, Path, dict or SweepSpec
         Sweep TOML file or the same structure as a dict (see :mod:`flexpipe.sweeps.spec`).
     out : str or Path, optional
-        Output folder (default: the spec's ``out``, else ``out/sweep-<spec name>``).
+        Output folder (default: the spec's ``out``, else ``out/sweep-<spec name>``): absent,
+        empty or a previous sweep's (:func:`flexpipe.sweeps.store.check_sweep_folder`).
     scheduler : str or dask.distributed.Client, optional
         Address of a running Dask scheduler (``tcp://host:8786``) or a client; default: a
-        local cluster with one single-threaded worker process per core.
+        local cluster with one single-threaded worker process per core.  An address is
+        checked before any work and connected with a deadline
+        (:func:`flexpipe.sweeps.connect.connect`).
     n_workers : int, optional
         Workers of the local cluster (default: number of cores).
     progress : bool
@@ -142,17 +140,20 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
     The local cluster starts worker processes by spawning: in a script, call ``sweep``
     under ``if __name__ == "__main__":``.
     """
-    from flexpipe._io import check_output_folder
     from flexpipe.sweeps.checks import check_plot_metrics, check_runs
+    from flexpipe.sweeps.connect import check_scheduler_address
+    from flexpipe.sweeps.store import check_sweep_folder
 
     t_start = time.perf_counter()
+    if scheduler is not None and not hasattr(scheduler, "submit"):
+        check_scheduler_address(scheduler)
     spec = load_sweep(spec)
     runs = spec.runs()
     option = "out" if out is not None else "sweep.out"
     if out is None:
         stem = spec.file.stem if spec.file is not None else "sweep"
         out = spec.out or Path("out") / f"sweep-{stem}"
-    check_output_folder(out, option=option)
+    check_sweep_folder(out, option=option)
     cars = _cars(runs)
     check_runs(spec, runs, cars)  # every run's arguments, before any run starts
     check_plot_metrics(spec, cars)
@@ -163,6 +164,7 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
     if todo:
         reductions = _execute(todo, store, scheduler=scheduler, n_workers=n_workers,
                               progress=progress, cache=cache)
+    store.mark()  # (also when no run was left to do)
     table = store.table([r.key for r in runs])
     store.write_table(table)
     n_failed = int((table["status"] < 0).sum()) if "status" in table else 0
@@ -195,6 +197,7 @@ def _execute(todo, store, *, scheduler, n_workers, progress, cache) -> list:
 
     client, cluster, own = _client(scheduler, n_workers)
     try:
+        store.mark()  # connected: the folder is the sweep's from now on
         mass_f, body_f, reductions = {}, {}, []
         futures = []
         for run, car in todo:
@@ -244,10 +247,9 @@ def _execute(todo, store, *, scheduler, n_workers, progress, cache) -> list:
                                    "error": f"{type(exc).__name__}: {exc}"})
         return reductions
     finally:
-        if own:
-            client.close()
-        if cluster is not None:
-            cluster.close()
+        from flexpipe.sweeps.connect import close_quietly
+
+        close_quietly(client if own else None, cluster)
 
 
 __all__ = ["SweepResult", "sweep"]

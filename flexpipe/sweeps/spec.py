@@ -165,17 +165,17 @@ class SweepSpec:
             else:
                 raise InputError(f"unknown parameter {name!r}; valid: {', '.join(SETTINGS)}, "
                                  "road.<key of the [road] table>, car.<dotted key of the car "
-                                 "file>", file=where, key=f"parameters.{name}")
+                                 "file>", file=where, key=key(name))
         road_base = self.road_base
         if "road" in point:
-            road = _file(point["road"], self.file, "parameters.road")
+            road = _file(point["road"], self.file, key("road"))
             road_base = road
         if road_over:
             if not isinstance(road, dict):
                 raise InputError("road.<key> parameters need a base road given as a .toml "
                                  "[road] table (file or inline); got "
                                  f"{road if road is not None else 'a flat road'}",
-                                 file=where, key=f"parameters.road.{next(iter(road_over))}")
+                                 file=where, key=key(f"road.{next(iter(road_over))}"))
             road = {**road, **road_over}
         body = s["body"]
         if body not in BODIES:

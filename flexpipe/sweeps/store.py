@@ -7,6 +7,11 @@ Layout (``out/``)::
     metrics.parquet, metrics.csv     the table of the sweep's runs, in run order
     plots/*.png                      chosen metrics against the swept parameters
     sweep.json                       what ran: spec, counts, reductions, timing
+    .flexpipe-sweep                  marker: this folder is a sweep's output
+
+The marker is written before the first run, so a sweep interrupted before ``sweep.json``
+is written is still recognised: :func:`check_sweep_folder` lets a sweep write only into an
+absent or empty folder or a previous sweep's, never into a folder of the user's files.
 
 Every file is written atomically (temporary name, then rename) and a run's channels are
 written before its record, so a record on disk means the run is complete: a rerun skips
@@ -26,6 +31,53 @@ import numpy as np
 from flexpipe._io import atomic_path, write_text_atomic
 from flexpipe.sweeps.tasks import STATUS_LOST
 
+MARKER = ".flexpipe-sweep"
+_OWN = {"runs", "channels", "plots", "metrics.parquet", "metrics.csv", "sweep.json", MARKER}
+
+
+def check_sweep_folder(out, *, option: str = "--out") -> Path:
+    """Check, before any work, that a sweep may write into ``out``.
+
+    ``out`` must be absent, an empty folder, or a previous sweep's output folder (it holds
+    the :data:`MARKER` file or ``sweep.json``, or only a sweep's files and ``runs/``), and
+    be creatable (:func:`flexpipe._io.check_output_folder`).
+
+    Parameters
+    ----------
+    out : str or Path
+        The sweep's output folder.
+    option : str
+        The option or key that gave it, named in the error.
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    InputError
+        ``out`` is a file, a folder holding other files (a run folder, the user's data),
+        or cannot be created.
+    """
+    from flexpipe._io import check_output_folder
+    from flexpipe.errors import InputError
+
+    out = check_output_folder(out, option=option)
+    if not out.is_dir():
+        return out
+    entries = {e.name for e in out.iterdir()}
+    if not entries or MARKER in entries or "sweep.json" in entries:
+        return out
+    if "runs" in entries and entries <= _OWN and (out / "runs").is_dir():
+        return out
+    names = sorted(entries)
+    shown = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    what = "a flexpipe run folder" if "summary.json" in entries else "not a sweep's output"
+    raise InputError(f"the folder holds other files ({shown}): {what} (no {MARKER} or "
+                     f"sweep.json); a sweep writes metrics.csv, runs/, channels/ and plots/ "
+                     f"there and would overwrite or mix with them: choose a new or empty "
+                     f"folder as {option}, or a previous sweep's", file=out, key=option)
+
 
 def _plain(v):
     if isinstance(v, np.generic):
@@ -42,6 +94,13 @@ class Store:
         self.out = Path(out)
         self.runs_dir = self.out / "runs"
         self.channels_dir = self.out / "channels"
+
+    def mark(self) -> None:
+        """Create the folder and its :data:`MARKER` file (before the first run)."""
+        self.out.mkdir(parents=True, exist_ok=True)
+        marker = self.out / MARKER
+        if not marker.exists():
+            write_text_atomic(marker, "flexpipe sweep output folder\n")
 
     def record_path(self, key: str) -> Path:
         """File of the record of run ``key``."""
@@ -108,4 +167,4 @@ class Store:
         return pq_path, csv_path
 
 
-__all__ = ["Store"]
+__all__ = ["MARKER", "Store", "check_sweep_folder"]
