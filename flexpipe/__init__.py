@@ -29,6 +29,7 @@ _EXPORTS = {
     "simulate": "flexpipe.vehicle",
     "compare": "flexpipe.vehicle",
     "Result": "flexpipe.vehicle",
+    "load_result": "flexpipe.vehicle",
     "kc": "flexpipe.vehicle.suspension.kc",
     "BodyMotion": "flexpipe.vehicle.result",
     "recover_stress": "flexpipe.durability",

@@ -18,12 +18,17 @@ def test_readme_python_example_runs(tmp_path, monkeypatch):
     monkeypatch.chdir(REPO)
     monkeypatch.setenv("FLEXPIPE_CACHE", str(tmp_path / "cache"))
     block = block.replace('"out/bar.npz"', repr(os.fspath(tmp_path / "bar.npz")))
+    block = block.replace('"out/run.mat"', repr(os.fspath(tmp_path / "run.mat")))
     ns: dict = {}
     exec(compile(block, "README.md", "exec"), ns)
     # independent checks on what the example computed
     assert np.all(ns["f_hz"][:6] < 1e-2 * ns["f_hz"][6])          # six rigid-body modes
     assert ns["body"].mass == pytest.approx(7850.0 * 1.0 * 0.1 * 0.1, rel=1e-9)
     assert ns["res"].status == 0
+    back, res = ns["back"], ns["res"]                              # the .mat read back
+    assert set(back.channels) == set(res.channels)
+    np.testing.assert_array_equal(back.t, res.t)
+    np.testing.assert_array_equal(back["hub_fl_z"], res["hub_fl_z"])
     # roads load from the top-level API, as load_car does
     from flexpipe.roads import Road, load_road
 

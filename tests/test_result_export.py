@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -153,7 +154,8 @@ def test_mat_names_matlab_cannot_use_as_fields_are_kept_in_the_cell_array(result
 
     long = "acc_" + "a_very_long_point_name_from_a_quoted_toml_key" * 2 + "_x"  # > 63
     odd = "acc_driver seat_x"  # a quoted TOML key with a space
-    result.channels.update({long: np.zeros(len(result.t)), odd: np.ones(len(result.t))})
+    result = dataclasses.replace(result, channels={
+        **result.channels, long: np.zeros(len(result.t)), odd: np.ones(len(result.t))})
     with pytest.warns(UserWarning, match="channel_names"):
         path = result.save(tmp_path / "r.mat", format="mat")
     d = loadmat(path, simplify_cells=True)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -172,3 +173,41 @@ def test_any_non_finite_state_value_stops_the_run(field, index, bad):
     assert watch.state_problem(st, 0.0, 0.0) is None
     getattr(st, field)[index] = bad
     assert "non-finite" in watch.state_problem(st, 0.0, 0.0)
+
+
+def test_the_cached_half_car_cannot_be_changed_by_a_caller():
+    """build_model caches one model per variant; before, scaling its K in place doubled
+    every later natural frequency of that variant in the process."""
+    from flexpipe.halfcar import build_model, natural_frequencies
+
+    f0 = np.array(natural_frequencies("complete")[:4])
+    m = build_model("complete", None)
+    with pytest.raises(ValueError, match="read-only"):
+        m.K[:] *= 4.0
+    np.testing.assert_array_equal(natural_frequencies("complete")[:4], f0)
+
+
+@pytest.mark.parametrize("kwargs, key, words", [
+    ({"t_end": 0.02, "h": 0.0015}, "t_end", "use t_end = 0.0195 or 0.021 s"),
+    ({"t_end": 0.0105, "h": 0.001}, "t_end", "10.5 steps"),
+    ({"t_end": 0.02, "output_step": 0.0015}, "output_step", "whole multiple of the step"),
+    ({"t_end": 0.02, "output_step": 1e-4}, "output_step", "whole multiple of the step"),
+    ({"t_end": 0.02, "output_step": 0.5}, "output_step", "at most t_end"),
+    ({"t_end": 0.02, "driver": (1, 2)}, "driver", "(PurePursuit, SpeedPI)"),
+    ({"t_end": 0.02, "initial_rates": "abc"}, "initial_rates", "3 finite numbers"),
+])
+def test_time_base_and_driver_arguments_are_checked(kwargs, key, words):
+    """Before: t_end = 0.02 s at h = 1.5 ms ran 13 steps of 1.54 ms with rows stamped on
+    a 1.5 ms grid (second row at 3.8e-5 s); output_step was rounded silently; a bad driver
+    or initial_rates raised AttributeError / ValueError from deep inside."""
+    from flexpipe.errors import InputError
+
+    with pytest.raises(InputError, match=re.escape(words)) as info:
+        simulate(_sedan(), speed=10.0, body="rigid", **kwargs)
+    assert info.value.key == key
+
+
+def test_a_whole_number_of_steps_gives_a_uniform_time_base():
+    r = simulate(_sedan(), speed=10.0, t_end=0.021, h=0.0015, body="rigid", settle=False)
+    assert r.status == 0
+    np.testing.assert_allclose(np.diff(r.t), 0.0015, rtol=1e-9)

@@ -191,3 +191,29 @@ def test_disconnected_message_says_what_to_do_on_the_command_line(cases, capsys)
     assert "flexpipe modes --allow-disconnected" in err
     assert "flexpipe reduce) must be one connected structure" in err
     assert "assemble(..., allow_disconnected=True)" in err
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({"E": 210.0, "nu": 0.3, "rho": 7850.0}, "E looks like GPa"),
+    ({"E": 210e9, "nu": 0.3, "rho": 7.85}, "rho looks like g/cm"),
+])
+def test_python_material_warns_of_a_unit_slip(kwargs, words):
+    """The command line refuses --E 210; in Python the same slip gave modes near 0 Hz
+    without a word.  A warning (not an error: a model may be scaled on purpose)."""
+    from flexpipe.fem.material import Material
+
+    with pytest.warns(UserWarning, match=words):
+        Material(**kwargs)
+
+
+def test_python_material_takes_only_numbers():
+    from flexpipe.errors import InputError
+    from flexpipe.fem.material import Material
+
+    with pytest.raises(InputError, match="E must be a number, got 'abc'"):
+        Material(E="abc", nu=0.3, rho=7850.0)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Material(E=210e9, nu=0.3, rho=7850.0)         # steel: no warning

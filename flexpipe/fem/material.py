@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,8 +29,15 @@ class Material:
     nu: float
     rho: float
     name: str = ""
+    _checked: bool = dataclasses.field(default=False, repr=False, compare=False)
 
     def __post_init__(self):
+        from flexpipe._args import checked_number
+
+        for key in ("E", "nu", "rho"):  # numbers (a str or None gave a raw TypeError)
+            object.__setattr__(self, key, checked_number(getattr(self, key),
+                                                         f"Material {self.name!r}: {key}",
+                                                         key=key))
         if not (self.E > 0):
             raise InputError(f"Material {self.name!r}: E must be > 0 Pa, got {self.E}", key="E")
         if not (-1.0 < self.nu < 0.5):
@@ -40,6 +48,13 @@ class Material:
             raise InputError(
                 f"Material {self.name!r}: rho must be >= 0 kg/m^3, got {self.rho}", key="rho"
             )
+        if self.rho > 0 and not self._checked:  # a unit slip (E in GPa, rho in g/cm^3) is a
+            import warnings  # warning in Python; the command line's options refuse it
+
+            try:
+                check_plausible(self.E, self.nu, self.rho)
+            except InputError as exc:
+                warnings.warn(f"Material {self.name!r}: {exc}", UserWarning, stacklevel=3)
 
     @property
     def G(self) -> float:
@@ -55,12 +70,6 @@ class Material:
         return LIBRARY[key]
 
 
-LIBRARY = {
-    "steel": Material(210e9, 0.3, 7850.0, "steel"),
-    "aluminium": Material(70e9, 0.33, 2700.0, "aluminium"),
-    "aluminum": Material(70e9, 0.33, 2700.0, "aluminium"),
-    "magnesium": Material(45e9, 0.35, 1800.0, "magnesium"),
-}
 
 
 def check_plausible(E: float, nu: float, rho: float, *, keys=("E", "nu", "rho"),
@@ -117,5 +126,13 @@ def check_plausible(E: float, nu: float, rho: float, *, keys=("E", "nu", "rho"),
             f"sqrt(E/rho) = {c:.3g} m/s; valid: {lo:g} to {hi:g} m/s, the range of solid "
             f"materials (soft rubber ~30, steel 5200, diamond 18000); {hint}",
             key=key[blame[0]])
-    return Material(E, nu, rho)
+    return Material(E, nu, rho, _checked=True)
 
+
+#: library materials
+LIBRARY = {
+    "steel": Material(210e9, 0.3, 7850.0, "steel"),
+    "aluminium": Material(70e9, 0.33, 2700.0, "aluminium"),
+    "aluminum": Material(70e9, 0.33, 2700.0, "aluminium"),
+    "magnesium": Material(45e9, 0.35, 1800.0, "magnesium"),
+}

@@ -22,6 +22,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from flexpipe._args import as_path
 from flexpipe._arrays import readonly
 from flexpipe._io import atomic_path
 from flexpipe.errors import InputError
@@ -234,7 +235,7 @@ class FlexBody:
     # ------------------------------------------------------------------ storage
     def save(self, path) -> Path:
         """Write the body to ``path`` (``.npz``) atomically; returns the path."""
-        path = Path(path)
+        path = as_path(path, "path")
         if path.suffix != ".npz":
             raise InputError("a FlexBody file must end in .npz", file=path)
         with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
@@ -305,7 +306,7 @@ def load_body(path) -> FlexBody:
         version, a missing or malformed entry (named by its key), a content-hash
         mismatch or an inconsistent body (named by key).
     """
-    path = Path(path)
+    path = as_path(path, "path")
     if not path.is_file():
         raise InputError("file not found (or not a regular file)", file=path)
     try:

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe._args import as_path
 from flexpipe.errors import FlexpipeError, InputError, MeshError
 from flexpipe.mesh.mesh import SHELL_TYPES, Mesh
 from flexpipe.mesh.units import check_wave_speeds, convert, resolve
@@ -134,7 +135,7 @@ def read_mesh(path, scale: float = 1.0, *, units: str | None = None, thickness=N
         :func:`~flexpipe.mesh.units.check_wave_speeds`); the message names the file, the
         line where known, and the node or element id.
     """
-    path = Path(path)
+    path = as_path(path, "path")
     if not path.is_file():
         raise MeshError("file not found" if not path.exists() else "not a file",
                         file=str(path))

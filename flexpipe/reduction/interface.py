@@ -73,21 +73,41 @@ class Interface:
                              f"(with rotations, forces and moments), got {self.dofs!r}",
                              key=f"{self.name or 'interface'}.dofs")
         object.__setattr__(self, "dofs", int(self.dofs))
-        p = np.asarray(self.point, dtype=float).reshape(-1)
-        if p.shape != (3,) or not np.all(np.isfinite(p)):
-            raise InputError(f"interface point must be 3 finite numbers, got {self.point!r}",
-                             key=self.name or "point")
+        for k in ("name", "node_set"):
+            v = getattr(self, k)
+            if v is not None and not isinstance(v, str):
+                raise InputError(f"interface {k} must be a string or None, got "
+                                 f"{type(v).__name__} {v!r}", key=k)
+        try:
+            p = np.asarray(self.point, dtype=float).reshape(-1)
+        except (TypeError, ValueError):
+            p = None
+        if p is None or p.shape != (3,) or not np.all(np.isfinite(p)):
+            raise InputError(f"interface point must be 3 finite numbers (x, y, z in m), got "
+                             f"{self.point!r}", key=self.name or "point")
         object.__setattr__(self, "point", tuple(float(v) for v in p))
         given = [k for k in ("radius", "nodes", "node_set") if getattr(self, k) is not None]
         if len(given) > 1:
             raise InputError(f"give only one of radius, nodes, node_set (got {given})",
                              key=self.name or "interface")
-        if self.radius is not None and not (np.isfinite(self.radius) and self.radius > 0):
-            raise InputError(f"radius must be a positive length in m, got {self.radius!r}",
-                             key=self.name or "radius")
+        if self.radius is not None:
+            from flexpipe._args import checked_number
+
+            object.__setattr__(self, "radius", checked_number(
+                self.radius, "radius", lo=0.0, unit="m", key=self.name or "radius"))
         if self.nodes is not None:
-            object.__setattr__(self, "nodes",
-                               tuple(int(i) for i in np.asarray(self.nodes).reshape(-1)))
+            object.__setattr__(self, "nodes", _node_positions(self.nodes, self.name))
+
+
+def _node_positions(nodes, name) -> tuple:
+    """``nodes`` as a tuple of ints: integers only (no float such as 1.5 or 1.0, no bool),
+    else an :class:`InputError` naming the interface; :func:`resolve_interfaces` checks
+    them against the model's node range."""
+    from flexpipe._args import checked_int
+
+    flat = np.asarray([nodes] if isinstance(nodes, (str, bytes)) else nodes, dtype=object)
+    return tuple(checked_int(i, "interface nodes (0-based node positions)",
+                             key=name or "nodes") for i in flat.reshape(-1))
 
 
 @dataclass(frozen=True)

@@ -191,8 +191,10 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         raise InputError("give n_modes or f_max, not both", key="n_modes")
     if n_modes is None and f_max is None:
         f_max = DEFAULT_F_MAX_HZ
-    if n_modes is not None and (not isinstance(n_modes, (int, np.integer)) or n_modes < 0):
-        raise InputError(f"n_modes must be an integer >= 0, got {n_modes!r}", key="n_modes")
+    f_max, cb_factor, tol, interface_f_max = _check_arguments(
+        n_modes=n_modes, f_max=f_max, cb_factor=cb_factor, tol=tol,
+        interface_f_max=interface_f_max, damping=damping, backend=backend, check=check,
+        stress=stress, log=log)
     check_mass(fe)   # as eigenmodes: names the file, not LAPACK's words
     resolved = resolve_interfaces(fe, interfaces)
     system = interface_system(fe, resolved)
@@ -285,6 +287,49 @@ def _reduce(fe, interfaces, method, n_modes, f_max, *, damping, check, backend, 
         method=method, source_hash=mesh_hash(mesh) if mesh is not None else "",
         meta=meta, checks=checks, stress=smodes,
     )
+
+
+def _check_arguments(*, n_modes, f_max, cb_factor, tol, interface_f_max, damping, backend,
+                     check, stress, log):
+    """Every argument of :func:`reduce` by its own name, before any work: returns the
+    numbers as floats (``f_max, cb_factor, tol, interface_f_max``; None stays None)."""
+    from flexpipe._args import checked_bool, checked_int, checked_number
+    from flexpipe.fem.solver import available_backends
+
+    if n_modes is not None:
+        checked_int(n_modes, "n_modes", lo=0)
+    if f_max is not None:
+        f_max = checked_number(f_max, "f_max", lo=0.0, unit="Hz")
+    cb_factor = checked_number(cb_factor, "cb_factor", lo=0.0)
+    if tol is not None:  # eigenvalue errors ~ tol^2: beyond 0.1 they exceed 1 %
+        tol = checked_number(tol, "tol", lo=0.0, hi=0.1)
+    if interface_f_max is not None:
+        interface_f_max = checked_number(interface_f_max, "interface_f_max", lo=0.0,
+                                         unit="Hz")
+    if damping is not None and not callable(damping):
+        try:
+            zeta = np.asarray(damping, dtype=float)
+        except (TypeError, ValueError):
+            zeta = None
+        if zeta is None or zeta.ndim > 1 or zeta.size == 0:
+            raise InputError("damping must be a ratio (e.g. 0.02), one ratio per mode or a "
+                             f"function f(f_hz) -> ratio, got {damping!r}", key="damping")
+        if not np.all(np.isfinite(zeta)) or np.any(zeta < 0):
+            raise InputError(f"damping ratios must be finite and >= 0, got {damping!r}",
+                             key="damping")
+    valid = available_backends()
+    if backend is not None and backend not in valid:
+        known = "'pardiso', 'superlu'"
+        raise InputError(f"backend must be None (default) or one of {known} (available "
+                         f"here: {', '.join(map(repr, valid))}), got {backend!r}",
+                         key="backend")
+    checked_bool(check, "check")
+    if stress is not None and not isinstance(stress, str):
+        raise InputError("stress must be None, 'none', 'all' or the name of a cell set of "
+                         f"the mesh, got {type(stress).__name__} {stress!r}", key="stress")
+    if log is not None and not callable(log):
+        raise InputError(f"log must be a function log(line) or None, got {log!r}", key="log")
+    return f_max, cb_factor, tol, interface_f_max
 
 
 def _basis(method, system, b, n_modes, f_max, *, backend, tol, timings, cb_factor,

@@ -41,12 +41,12 @@ from __future__ import annotations
 
 import difflib
 import math
-import pathlib
 import re
 import warnings
 
 import numpy as np
 
+from flexpipe._args import as_path, checked_number
 from flexpipe.errors import InputError
 from flexpipe.roads._plausible import check_heights
 from flexpipe.roads.crg_data import (
@@ -216,7 +216,8 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
         heights that change more than a drivable road can (likely millimetres; see
         :mod:`flexpipe.roads._plausible`).
     """
-    path = pathlib.Path(path)
+    path = as_path(path, "path")
+    track_width = checked_number(track_width, "track_width", lo=0.0, unit="m")
     try:
         raw = path.read_bytes()
     except OSError as exc:

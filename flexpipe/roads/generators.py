@@ -51,6 +51,7 @@ import math
 import numpy as np
 from scipy.special import k1
 
+from flexpipe._args import checked_number
 from flexpipe.errors import InputError
 from flexpipe.roads.road import Road
 
@@ -239,6 +240,7 @@ def iso8608(road_class: str, length: float, dx: float, seed: int, *,
     Road
     """
     what = "ISO 8608 road"
+    track_width = checked_number(track_width, "track_width", lo=0.0, unit="m")
     key = str(road_class).upper()
     if key not in ISO8608_GD0:
         raise InputError(f"{what}: road class {road_class!r} is not one of A..H")

@@ -29,6 +29,7 @@ import pathlib
 
 import numpy as np
 
+from flexpipe._args import as_path, checked_number
 from flexpipe._arrays import readonly
 from flexpipe._io import atomic_path, read_numeric_rows
 from flexpipe.errors import InputError
@@ -101,12 +102,11 @@ class Road:
             i = int(np.flatnonzero(step <= 0.0)[0]) + 1
             raise InputError(f"distance must increase strictly: sample {i} is {x[i]} m after "
                              f"{x[i - 1]} m", file=where)
-        if not (math.isfinite(self.track_width) and self.track_width > 0.0):
-            raise InputError(f"track_width must be > 0, got {self.track_width}", file=where)
+        tw = checked_number(self.track_width, "track_width", lo=0.0, unit="m", file=where)
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "left", left)
         object.__setattr__(self, "right", right)
-        object.__setattr__(self, "track_width", float(self.track_width))
+        object.__setattr__(self, "track_width", tw)
         if (self.y is None) != (self.z is None):
             raise InputError("give both the lateral grid y and the height grid z, or neither",
                              file=where)
@@ -155,6 +155,8 @@ class Road:
     def from_grid(cls, x, y, z, *, track_width: float = 1.5, heading=None, name: str = "",
                   source: str = "", plan: ReferenceLine | None = None) -> Road:
         """A road from a height grid; the tracks are read at ``±track_width/2``."""
+        track_width = checked_number(track_width, "track_width", lo=0.0, unit="m",
+                                     file=source or None)
         x = np.asarray(x, dtype=float)
         y = np.asarray(y, dtype=float)
         z = np.asarray(z, dtype=float)
@@ -401,7 +403,8 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
         heights that change more than a drivable road can (likely millimetres; see
         :mod:`flexpipe.roads._plausible`).
     """
-    path = pathlib.Path(path)
+    path = as_path(path, "path")
+    track_width = checked_number(track_width, "track_width", lo=0.0, unit="m")
     rows, line_no = [], []
     ncol = None
     columns = "'distance, left, right' in metres"

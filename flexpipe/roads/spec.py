@@ -24,6 +24,7 @@ import pathlib
 
 import numpy as np
 
+from flexpipe._args import as_path, checked_number
 from flexpipe.errors import InputError
 from flexpipe.roads import generators
 from flexpipe.roads._plausible import check_heights
@@ -119,9 +120,15 @@ def load_road(spec, *, track_width: float | None = None) -> Road:
     -------
     Road
     """
+    if track_width is not None:
+        track_width = checked_number(track_width, "track_width", lo=0.0, unit="m")
     if isinstance(spec, dict):
         return road_from_spec(spec)
-    path = pathlib.Path(spec)
+    if not isinstance(spec, (str, pathlib.Path)) and not hasattr(spec, "__fspath__"):
+        raise InputError("spec must be a road file (str or pathlib.Path: .crg, .csv, .toml) "
+                         f"or a [road] table (dict), got {type(spec).__name__} {spec!r:.60}",
+                         key="spec")
+    path = as_path(spec, "spec")
     suffix = path.suffix.lower()
     if suffix not in (".crg", ".csv", ".toml"):
         raise InputError(f"unknown road file type {path.suffix!r}; valid: .crg, .csv, .toml",

@@ -6,12 +6,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flexpipe._args import as_path, checked_bool, checked_choice
 from flexpipe.errors import InputError
 from flexpipe.tires import _fast
 from flexpipe.tires.checks import probe_forces
 from flexpipe.tires.contact import SlipState, TireModel, WheelForces
 from flexpipe.tires.fiala import FialaTire
-from flexpipe.tires.pac2002 import MagicFormula, SlipForces
+from flexpipe.tires.pac2002 import MagicFormula, SlipForces, checked_use_mode
 from flexpipe.tires.tir import TireProperties, read_tir
 from flexpipe.tires.vertical import VerticalModel
 
@@ -67,6 +68,8 @@ class Pac2002Tire(TireModel):
         vertical_law : {"auto", "linear", "duffing"}
             See :meth:`VerticalModel.from_properties`.
         """
+        if relaxation is not None:
+            relaxation = checked_bool(relaxation, "relaxation")
         if props.property_file_format != "PAC2002":
             raise InputError(f"PROPERTY_FILE_FORMAT is '{props.property_file_format}', the "
                              "PAC2002 model needs 'PAC2002'", file=props.path,
@@ -159,6 +162,25 @@ class Pac2002Tire(TireModel):
         return q
 
 
+#: keyword options of :func:`tire_from_file` per model
+_OPTIONS = {"pac2002": ("use_mode", "relaxation", "vertical_law"),
+            "fiala": ("relaxation", "vertical_law")}
+
+
+def _check_options(model: str, options: dict) -> None:
+    """The ``**options`` of :func:`tire_from_file`, before the file is read."""
+    for k in options:
+        if k not in _OPTIONS[model]:
+            raise InputError(f"unknown option {k!r} of the {model} tyre model; valid: "
+                             f"{', '.join(_OPTIONS[model])}", key=k)
+    if options.get("relaxation") is not None:
+        checked_bool(options["relaxation"], "relaxation")
+    if "vertical_law" in options:
+        checked_choice(options["vertical_law"], "vertical_law", ("auto", "linear", "duffing"))
+    if options.get("use_mode") is not None:
+        checked_use_mode(options["use_mode"])
+
+
 def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
     """Read a ``.tir`` file and build a tyre model.
 
@@ -170,19 +192,28 @@ def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
         ``pac2002`` needs a PAC2002 file; ``fiala`` accepts a FIALA file or derives
         its parameters from a PAC2002 file.
     **options
-        Passed to :meth:`Pac2002Tire.from_properties` / :meth:`FialaTire.from_properties`
-        (``relaxation``, ``vertical_law``, and ``use_mode`` for PAC2002).
+        Passed to :meth:`Pac2002Tire.from_properties` / :meth:`FialaTire.from_properties`:
+        ``relaxation`` (None or bool), ``vertical_law`` (``"auto"``, ``"linear"``,
+        ``"duffing"``), and for PAC2002 ``use_mode`` (None or 0-4, the slip part of
+        USE_MODE; see :mod:`flexpipe.tires`).
 
     Returns
     -------
     TireModel
         Checked to give finite forces over the normal operating range
         (:func:`flexpipe.tires.checks.probe_forces`).
+
+    Raises
+    ------
+    InputError
+        A bad argument (named, with the valid values), or a bad file.
     """
+    path = as_path(path, "path")
     builders = {"pac2002": Pac2002Tire.from_properties, "fiala": FialaTire.from_properties}
-    if model not in builders:
+    if not isinstance(model, str) or model not in builders:
         raise InputError(f"unknown tyre model {model!r}; valid: {sorted(builders)}", file=path,
                          key="model")
+    _check_options(model, options)
     props = read_tir(path)
     try:
         tire = builders[model](props, **options)

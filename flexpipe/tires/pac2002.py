@@ -35,6 +35,16 @@ _COEFF_SECTIONS = ("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS", "LATERAL
 _ALL = (_keys.SCALING + _keys.LONGITUDINAL + _keys.LATERAL + _keys.ALIGNING
         + _keys.OVERTURNING + _keys.ROLLING)
 
+def checked_use_mode(value) -> int:
+    """``value`` as the slip part of USE_MODE, an integer 0-4 (see :mod:`flexpipe.tires`),
+    else an :class:`~flexpipe.errors.InputError` naming ``use_mode``."""
+    from flexpipe._args import checked_int
+
+    return checked_int(value, "use_mode (the slip part of USE_MODE: 0 Fz only, 1 Fx and My, "
+                       "2 Fy, Mx and Mz, 3 all uncombined, 4 all combined)", lo=0, hi=4,
+                       key="use_mode")
+
+
 #: Flat, frozen record of every PAC2002 coefficient (missing ones: scaling 1, others 0).
 Pac2002Coefficients = make_dataclass(
     "Pac2002Coefficients",
@@ -114,8 +124,11 @@ class MagicFormula:
         props : TireProperties
             A ``PAC2002`` property file.
         use_mode : int, optional
-            Override of ``abs(USE_MODE) % 10`` (e.g. 3 to switch combined slip off).
+            Override of ``abs(USE_MODE) % 10``, 0-4 (e.g. 3 to switch combined slip off;
+            see :mod:`flexpipe.tires`).
         """
+        if use_mode is not None:
+            use_mode = checked_use_mode(use_mode)
         values = {}
         for sec in _COEFF_SECTIONS:
             for k, v in props.coefficients(sec).items():

@@ -3,11 +3,13 @@ CSV/HDF5/MAT export) and :func:`compare` (rigid-vs-flexible differences)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
+from flexpipe._arrays import readonly
 from flexpipe._io import atomic_path, write_matrix_csv
 from flexpipe.errors import InputError
 
@@ -15,6 +17,8 @@ from flexpipe.errors import InputError
 @dataclass(frozen=True, eq=False)
 class BodyMotion:
     """Pose and elastic modal coordinates of the car body at every output step.
+
+    The arrays are read-only copies of the ones given.
 
     Attributes
     ----------
@@ -40,12 +44,12 @@ class BodyMotion:
     def __post_init__(self):
         n = len(np.asarray(self.t))
         for name, shape in (("t", (n,)), ("position", (n, 3)), ("rotation", (n, 3, 3))):
-            a = np.array(getattr(self, name), dtype=float)
+            a = readonly(getattr(self, name))
             if a.shape != shape:
                 raise ValueError(f"BodyMotion.{name} must have shape {shape}, got {a.shape}")
             object.__setattr__(self, name, a)
-        mi = np.array(self.mode_index, dtype=np.int64).reshape(-1)
-        q = np.array(self.q, dtype=float).reshape(n, mi.size)
+        mi = readonly(np.reshape(self.mode_index, -1), dtype=np.int64)
+        q = readonly(np.reshape(np.asarray(self.q, dtype=float), (n, mi.size)))
         object.__setattr__(self, "q", q)
         object.__setattr__(self, "mode_index", mi)
 
@@ -80,11 +84,16 @@ class BodyMotion:
 class Result:
     """Outcome of :func:`flexpipe.simulate` (solve_ivp-like).
 
+    A Result is read-only: ``t`` and the channel arrays cannot be written, ``channels``
+    and ``info`` are read-only mappings (all copies of what was given; build a changed
+    result with :func:`dataclasses.replace`).  :meth:`save` writes it to a file,
+    :meth:`load` (:func:`flexpipe.load_result`) reads it back.
+
     Attributes
     ----------
     t : ndarray (n,)
         Output times, s.
-    channels : dict of str to ndarray (n,)
+    channels : mapping of str to ndarray (n,)
         Named output channels (see :mod:`flexpipe.vehicle.dynamics` for the list).
     status : int
         0: reached ``t_end``; -1: stopped early (numerical failure or physical limit).
@@ -99,7 +108,7 @@ class Result:
         Wall-clock time of the time integration, s.
     simulated_time : float
         Simulated time reached, s.
-    info : dict
+    info : mapping
         Settings and model facts: step size, modes, band, reduction time, car name...
     motion : BodyMotion or None
         Body pose and elastic modal coordinates at every output step (for stress
@@ -116,6 +125,28 @@ class Result:
     simulated_time: float
     info: dict = field(default_factory=dict)
     motion: BodyMotion | None = None
+
+    def __post_init__(self):
+        t = readonly(self.t)
+        if t.ndim != 1:
+            raise InputError(f"Result.t must be one-dimensional, got shape {t.shape}", key="t")
+        channels = {}
+        for name, values in dict(self.channels).items():
+            if not isinstance(name, str):
+                raise InputError(f"channel names must be str, got {name!r}", key="channels")
+            a = readonly(values)
+            if a.shape != t.shape:
+                raise InputError(f"channel {name!r} has shape {a.shape}; every channel holds "
+                                 f"one value per time, shape {t.shape}", key="channels")
+            channels[name] = a
+        object.__setattr__(self, "t", t)
+        object.__setattr__(self, "channels", MappingProxyType(channels))
+        object.__setattr__(self, "info", MappingProxyType(dict(self.info)))
+
+    def __reduce__(self):
+        # standard pickle cannot take the read-only mapping proxies: rebuild from plain dicts
+        return (type(self), tuple(dict(v) if isinstance(v, MappingProxyType) else v
+                                  for v in (getattr(self, f.name) for f in fields(self))))
 
     @property
     def success(self) -> bool:
@@ -138,18 +169,21 @@ class Result:
         """Write ``t`` and the channels (all, or the names given) to a CSV file atomically.
 
         The header names the unit of every column (``t [s]``, ``hub_fl_z [N]``); time is
-        written with 12 significant digits (1e-8 s at 3600 s), channels with 7.
+        written with 12 significant digits (1e-8 s at 3600 s), channels with 7.  Any
+        suffix is accepted; a ``path`` that cannot be written raises InputError first.
         """
-        from flexpipe.vehicle.export import channel_unit
+        from flexpipe.vehicle.export import channel_unit, check_output_path
 
+        path = check_output_path(path)
         names = self._names(channels)
         write_matrix_csv(path, ["t [s]"] + [f"{n} [{channel_unit(n)}]" for n in names],
                          np.column_stack([self.t] + [self.channels[n] for n in names]),
                          empty_nonfinite=False)
-        path = Path(path)
         return path
 
     def _names(self, channels):
+        if isinstance(channels, str):  # one name: a one-element list, not its letters
+            channels = [channels]
         names = list(self.channels) if channels is None else list(channels)
         for n in names:
             if n not in self.channels:
@@ -157,15 +191,47 @@ class Result:
                                  key="channels")
         return names
 
-    def save(self, path, *, format: str = "csv", channels=None) -> Path:  # noqa: A002
-        """Write the channels as ``csv``, ``hdf5`` (h5py) or ``mat`` (MATLAB, SciPy).
+    def save(self, path, *, format: str | None = None, channels=None) -> Path:  # noqa: A002
+        """Write ``t`` and the channels (all, or the names given) to a file atomically.
 
-        HDF5 and MAT files also hold the units, the run's ``info`` and, when recorded,
-        the body motion (``motion/t, q, position, rotation, mode_index``).
+        Parameters
+        ----------
+        path : str or Path
+            The file; its suffix picks the format: ``.csv``, ``.h5`` / ``.hdf5`` (h5py)
+            or ``.mat`` (MATLAB, SciPy).
+        format : {"csv", "hdf5", "mat"}, optional
+            When given, it must agree with the suffix.
+        channels : str or list of str, optional
+            Default: every channel.
+
+        Returns
+        -------
+        Path
+
+        Raises
+        ------
+        InputError
+            ``path`` is not a str or Path, is an existing folder, lies under a file or in
+            a folder that cannot be written, has a suffix of no format or of another
+            format than ``format``; naming the path.
+
+        Notes
+        -----
+        HDF5 and MAT files also hold the units, ``status``, ``message``, the run's
+        ``info`` and, when recorded, the body motion (``motion/t, q, position, rotation,
+        mode_index``); :meth:`load` reads any of the three back.  See
+        :mod:`flexpipe.vehicle.export` for the layouts.
         """
         from flexpipe.vehicle.export import save_result
 
         return save_result(self, path, format=format, channels=channels)
+
+    @classmethod
+    def load(cls, path) -> Result:
+        """Read a file written by :meth:`save` (see :func:`flexpipe.load_result`)."""
+        from flexpipe.vehicle.export import load_result
+
+        return load_result(path)
 
     def to_dataframe(self, channels=None):
         """The channels as a pandas DataFrame indexed by time (needs pandas installed).

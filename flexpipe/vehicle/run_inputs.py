@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe._args import checked_number
 from flexpipe.errors import InputError
 from flexpipe.vehicle.spec import Car, load_car
 
@@ -32,37 +33,6 @@ T_END_MAX = 3600.0
 H_MIN, H_MAX = 1e-5, 5e-3
 #: distance along the path of the body origin at t = 0, beyond the wheelbase, m
 START_MARGIN_M = 3.0
-
-
-def checked_number(value, name, *, lo=None, hi=None, lo_closed=False, unit: str = "",
-                   key: str | None = None):
-    """``float(value)`` when it is finite and in the range, else an :class:`InputError`.
-
-    Parameters
-    ----------
-    value : object
-        The value to check.
-    name : str
-        Its name in the message (an argument, or a command-line option like ``--speed``).
-    lo, hi : float, optional
-        Bounds; ``lo`` is excluded unless ``lo_closed``, ``hi`` is included.
-    unit : str
-        Unit appended to the range and the value in the message (e.g. ``"km/h"``).
-    key : str, optional
-        ``key`` of the error (default ``name``).
-    """
-    key = name if key is None else key
-    u = f" {unit}" if unit else ""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}", key=key) from None
-    below = lo is not None and (v < lo if lo_closed else v <= lo)
-    if not math.isfinite(v) or below or (hi is not None and v > hi):
-        left = "[" if lo_closed else "("
-        rng = f"in {left}{lo:g}, {hi:g}]" if hi is not None else f"> {lo:g}"
-        raise InputError(f"{name} must be finite and {rng}{u}, got {value!r}{u}", key=key)
-    return v
 
 
 def as_road(road, needed: float):
@@ -151,6 +121,19 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     if h > t_end:  # flexpipe#14 (robust): checked here, not by Exudyn
         raise InputError(f"h = {h:g} s is longer than t_end = {t_end:g} s; choose h <= t_end",
                          key="h")
+    # the integrator takes t_end / n steps: another step than h would make the channels'
+    # time base wrong (the controller and the output rows count steps of h)
+    n = t_end / h
+    if abs(n - round(n)) > 1e-6 * max(1.0, n):
+        lo, hi = math.floor(n) * h, math.ceil(n) * h
+        raise InputError(f"t_end = {t_end:g} s is not a whole number of steps h = {h:g} s "
+                         f"({n:.4g} steps); use t_end = {lo:.6g} or {hi:.6g} s, or another h",
+                         key="t_end")
+    k = output_step / h
+    if k < 1.0 - 1e-9 or abs(k - round(k)) > 1e-6 * max(1.0, k) or output_step > t_end:
+        raise InputError(f"output_step = {output_step:g} s must be a whole multiple of the "
+                         f"step h = {h:g} s (h, 2h, ...) and at most t_end = {t_end:g} s",
+                         key="output_step")
     if inertia_coupling not in ("auto", "constant", "full"):
         raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: auto, constant, full",
                          key="inertia_coupling")
@@ -167,7 +150,10 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         check_mount_node_ids(car)
     if f_max is not None:
         f_max = checked_number(f_max, "f_max", lo=0.0, hi=5000.0)
-    rates = np.asarray(initial_rates, dtype=float).reshape(-1)
+    try:
+        rates = np.asarray(initial_rates, dtype=float).reshape(-1)
+    except (TypeError, ValueError):
+        rates = np.full(1, np.nan)
     if rates.shape != (3,) or not np.all(np.isfinite(rates)):
         raise InputError(f"initial_rates must be 3 finite numbers, got {initial_rates!r}",
                          key="initial_rates")
@@ -187,11 +173,17 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
 
         steering, speed_pi = read_driver(driver)
     else:
+        from flexpipe.driver import PurePursuit, SpeedPI
+
         try:
             steering, speed_pi = driver
         except (TypeError, ValueError):
             raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file",
                              key="driver") from None
+        if not (isinstance(steering, PurePursuit) and isinstance(speed_pi, SpeedPI)):
+            raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file, got "
+                             f"({type(steering).__name__}, {type(speed_pi).__name__})",
+                             key="driver")
     if car.suspension is None:  # tyres and ride height at rest, before a run writes anything
         _check_ride_height(car)  # (last: it may fill the body cache)
     return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,

@@ -50,6 +50,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe._args import as_path, plain_value
 from flexpipe.errors import InputError
 from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, check_principal_moments, parse
@@ -325,7 +326,17 @@ def load_car(path, *, overrides=None) -> Car:
     InputError
         Missing, unknown or out-of-range keys, with the file, line, key and valid options.
     """
-    path = Path(path)
+    if isinstance(path, dict):
+        raise InputError("path must be a car file (str or pathlib.Path), got a dict; to "
+                         "change keys of a file give overrides={'dotted.key': value}",
+                         key="path")
+    path = as_path(path, "path")
+    if overrides is not None and not isinstance(overrides, dict):
+        raise InputError("overrides must be a dict of dotted key to value, e.g. "
+                         "{'corners.fl.spring_rate_N_per_m': 35000.0}, got "
+                         f"{type(overrides).__name__}", key="overrides")
+    if overrides:  # numpy scalars and arrays as the plain numbers and lists TOML gives
+        overrides = {k: plain_value(v) for k, v in overrides.items()}
     if path.suffix.lower() != ".toml":
         raise InputError(f"expected a .toml car file, got '{path.suffix}'", file=path)
     data, lines = parse(path)

@@ -182,38 +182,48 @@ def force_compliance(axle: Axle, direction: int, forces) -> Table:
 
 def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float = 0.03,
        force: float = 2000.0, axles=None) -> KCResult:
-    """Run the K&C rig on every axle of ``car`` (a car file path or a ``Suspension``).
+    """Run the K&C rig on every axle of ``car`` (a car file path, a ``Car`` or a
+    ``Suspension``).
 
     Parameters
     ----------
-    car : str, Path or Suspension
-        Car file with ``[suspension.*]`` tables, or its parsed suspension; the wheels its
-        ``[corners.<c>]`` tables give (``wheel_mass_kg``) hang on the knuckles.
+    car : str, Path, Car or Suspension
+        Car file with ``[suspension.*]`` tables, the :class:`~flexpipe.vehicle.spec.Car`
+        :func:`~flexpipe.load_car` returns for one, or its parsed suspension; the wheels
+        its ``[corners.<c>]`` tables give (``wheel_mass_kg``) hang on the knuckles.
     out : str or Path, optional
-        Folder for CSV tables, ``kc_summary.json`` and PNG plots.
+        Folder for CSV tables, ``kc_summary.json`` and PNG plots; checked before the
+        analysis (it must be a folder or creatable).
     travel : float
-        Wheel travel range +- (m).
+        Wheel travel range +- (m), > 0 and at most :data:`TRAVEL_MAX_M`.
     n : int
-        Points per sweep.
+        Points per sweep, >= :data:`N_MIN`.
     rack_travel : float
-        Rack travel range +- (m) of the static-steer analysis.
+        Rack travel range +- (m) of the static-steer analysis, > 0 and at most
+        :data:`RACK_TRAVEL_MAX_M`.
     force : float
-        Contact-patch force range +- (N) of the compliance analyses.
-    axles : list of str, optional
-        Axles to run (default all).
+        Contact-patch force range +- (N) of the compliance analyses, > 0.
+    axles : str or list of str, optional
+        Axles to run (default all), e.g. ``["front"]``; case-insensitive.
 
     Returns
     -------
     KCResult
-    """
-    from flexpipe.vehicle.suspension.spec import Suspension, load_suspension
 
-    given = car if isinstance(car, Suspension) else load_suspension(car)
+    Raises
+    ------
+    InputError
+        A bad argument, named with what would be valid (before any analysis).
+    """
+    from flexpipe.vehicle.suspension.kc_args import check_kc_arguments
+
+    given, travel, n, rack_travel, force, wanted = check_kc_arguments(
+        car, out=out, travel=travel, n=n, rack_travel=rack_travel, force=force, axles=axles)
     susp = rig_suspension(given)  # the wheels of [corners.<c>] on the knuckles
     res = KCResult()
     s = np.linspace(-travel, travel, n)
     for name, axle in susp.axles.items():
-        if axles is not None and name not in axles:
+        if wanted is not None and name not in wanted:
             continue
         par = parallel_travel(axle, s)
         res.tables[f"{name}_parallel_travel"] = par
