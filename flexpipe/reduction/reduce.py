@@ -303,7 +303,8 @@ def _check_arguments(*, n_modes, f_max, cb_factor, tol, interface_f_max, damping
     cb_factor = checked_number(cb_factor, "cb_factor", lo=0.0)
     if tol is not None:  # eigenvalue errors ~ tol^2: beyond 0.1 they exceed 1 %
         tol = checked_number(tol, "tol", lo=0.0, hi=0.1)
-    if interface_f_max is not None:
+    if interface_f_max is not None and not (  # inf keeps every characteristic mode
+            isinstance(interface_f_max, (int, float, np.number)) and interface_f_max == np.inf):
         interface_f_max = checked_number(interface_f_max, "interface_f_max", lo=0.0,
                                          unit="Hz")
     if damping is not None and not callable(damping):

@@ -84,9 +84,10 @@ class BodyMotion:
 class Result:
     """Outcome of :func:`flexpipe.simulate` (solve_ivp-like).
 
-    A Result is read-only: ``t`` and the channel arrays cannot be written, ``channels``
-    and ``info`` are read-only mappings (all copies of what was given; build a changed
-    result with :func:`dataclasses.replace`).  :meth:`save` writes it to a file,
+    A Result is read-only: ``t`` and the channel arrays cannot be written and
+    ``channels`` is a read-only mapping (copies of what was given; build a changed result
+    with :func:`dataclasses.replace`); ``info`` is a plain dict (a copy), so that it
+    dumps to JSON.  :meth:`save` writes it to a file,
     :meth:`load` (:func:`flexpipe.load_result`) reads it back.
 
     Attributes
@@ -141,7 +142,8 @@ class Result:
             channels[name] = a
         object.__setattr__(self, "t", t)
         object.__setattr__(self, "channels", MappingProxyType(channels))
-        object.__setattr__(self, "info", MappingProxyType(dict(self.info)))
+        # info stays a plain dict (a copy): users json.dump it, which a mapping proxy breaks
+        object.__setattr__(self, "info", dict(self.info))
 
     def __reduce__(self):
         # standard pickle cannot take the read-only mapping proxies: rebuild from plain dicts
