@@ -9,9 +9,7 @@ file it refers to, the band it was reduced for and a strip of the road surface).
 
 from __future__ import annotations
 
-import csv
 import json
-import re
 import zipfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,46 +21,22 @@ from flexpipe.errors import InputError
 MOTION_FILE = "motion_{body}.npz"
 
 
-def read_channels_csv(path) -> tuple[np.ndarray, dict]:
-    """``(t, {channel: values})`` of a result CSV (header ``name [unit]``)."""
-    path = Path(path)
-    if not path.is_file():
-        raise InputError("result CSV not found", file=path)
-    with open(path, newline="") as fh:
-        rows = list(csv.reader(fh))
-    if len(rows) < 2:
-        raise InputError("result CSV has no data rows", file=path)
-    names = [re.sub(r"\s*\[.*\]\s*$", "", h) for h in rows[0]]
-    try:
-        data = np.array(rows[1:], dtype=float)
-    except ValueError as exc:
-        raise InputError(f"non-numeric value in the result CSV ({exc})", file=path) from None
-    return data[:, 0], {n: data[:, i] for i, n in enumerate(names) if i > 0}
-
-
 def read_channels(out, body: str = "flexible"):
-    """``(t, channels)`` of a run's channel file: ``BODY.csv``, ``BODY.h5`` or ``BODY.mat``."""
+    """``(t, channels)`` of a run's channel file: ``BODY.csv``, ``BODY.h5`` or ``BODY.mat``
+    (read by :func:`flexpipe.vehicle.load_result`; a damaged file is an error naming it)."""
+    from flexpipe.vehicle.export import load_result
+
     out = Path(out)
-    if (out / f"{body}.csv").is_file():
-        return read_channels_csv(out / f"{body}.csv")
-    path = out / f"{body}.h5"
-    if path.is_file():
-        import h5py
-
-        try:
-            with h5py.File(path, "r") as f:
-                return f["t"][()], {k: v[()] for k, v in f["channels"].items()}
-        except (OSError, KeyError, ValueError, TypeError) as exc:
-            raise InputError(_damaged(exc), file=path) from None
-    path = out / f"{body}.mat"
-    if path.is_file():
-        from scipy.io import loadmat
-
-        try:
-            d = loadmat(path, simplify_cells=True)
-            return np.ravel(d["t"]), {k: np.ravel(v) for k, v in d["channels"].items()}
-        except (OSError, KeyError, ValueError, TypeError, AttributeError) as exc:
-            raise InputError(_damaged(exc), file=path) from None
+    for suffix in ("csv", "h5", "mat"):
+        path = out / f"{body}.{suffix}"
+        if path.is_file():
+            try:
+                r = load_result(path)
+            except InputError:
+                raise
+            except (OSError, KeyError, ValueError, TypeError, AttributeError) as exc:
+                raise InputError(_damaged(exc), file=path) from None
+            return np.asarray(r.t), {k: np.asarray(v) for k, v in r.channels.items()}
     raise InputError(f"no {body}.csv, {body}.h5 or {body}.mat", file=out)
 
 

@@ -322,6 +322,10 @@ def load_result(path):
         raise InputError(f"{exc.message}: {_NOT_RESULT}", file=path) from None
 
 
+#: the cure for a result file that cannot be read
+_DAMAGED = "it is damaged or cut short; write it again (rerun, or Result.save)"
+
+
 def _strip_unit(header: str) -> str:
     """``"hub_fl_z [N]"`` -> ``"hub_fl_z"`` (only the last ``" [unit]"``, as written)."""
     name, sep, unit = header.rpartition(" [")
@@ -426,7 +430,7 @@ def _read_hdf5(path: Path) -> dict:
             motion = ({k: v[()] for k, v in f["motion"].items()}
                       if isinstance(f.get("motion"), h5py.Group) else None)
     except OSError as exc:
-        raise InputError(f"cannot read the HDF5 file ({exc})", file=path) from None
+        raise InputError(f"cannot read the HDF5 file ({exc}): {_DAMAGED}", file=path) from None
     return _fields(path, t, channels, meta, motion)
 
 
@@ -436,7 +440,7 @@ def _read_mat(path: Path) -> dict:
     try:
         d = loadmat(path)
     except (ValueError, OSError, TypeError) as exc:
-        raise InputError(f"cannot read the MAT-file ({exc})", file=path) from None
+        raise InputError(f"cannot read the MAT-file ({exc}): {_DAMAGED}", file=path) from None
     if "t" not in d:
         raise InputError(f"a MAT-file without 't': {_NOT_RESULT}", file=path)
     n = np.size(d["t"])
