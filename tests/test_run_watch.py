@@ -211,3 +211,13 @@ def test_a_whole_number_of_steps_gives_a_uniform_time_base():
     r = simulate(_sedan(), speed=10.0, t_end=0.021, h=0.0015, body="rigid", settle=False)
     assert r.status == 0
     np.testing.assert_allclose(np.diff(r.t), 0.0015, rtol=1e-9)
+
+
+@pytest.mark.parametrize("output_step", [None, 0.002])
+def test_the_last_row_is_the_state_at_t_end(output_step):
+    """A completed run says "reached t_end"; before, its last row was at t_end - h (each
+    step records the state at its start, and the end state was never recorded)."""
+    r = simulate(_sedan(), speed=10.0, t_end=0.02, body="rigid", output_step=output_step)
+    assert r.status == 0 and r.t[-1] == pytest.approx(0.02, abs=1e-12)
+    np.testing.assert_allclose(np.diff(r.t), output_step or 0.001, rtol=1e-9)
+    assert np.all(np.isfinite(r["hub_fl_z"])) and np.all(np.isfinite(r["tire_fl_Fz"]))

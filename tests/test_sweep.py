@@ -174,8 +174,8 @@ body = ["rigid"]
     rows = len(dd.read_parquet(tmp_path / "out" / "channels").compute())
     from flexpipe.vehicle.simulation import DEFAULT_STEP
 
-    # every run's samples, t = h .. t_end, output every step by default
-    assert rows == 4 * round(0.4 / DEFAULT_STEP)
+    # every run's samples, t = 0 .. t_end, output every step by default
+    assert rows == 4 * (round(0.4 / DEFAULT_STEP) + 1)
 
 
 def test_runs_sharing_a_body_share_one_reduction_key():

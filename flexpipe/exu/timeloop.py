@@ -181,5 +181,7 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     cpu = time.thread_time() - cpu0
     wall = time.perf_counter() - wall0
     completed = ok and last["t"] >= t_end - 1.5 * h
+    if completed:  # the state at t_end: its output row (the steps record their start)
+        step(system.state(t_end))
     return RunOutcome(completed, last["t"], cpu, wall, message, last["cpu"], stats,
                       last["wall"])
