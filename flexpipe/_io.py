@@ -156,8 +156,8 @@ def _check_creatable(path: Path, start: Path, option: str, what: str) -> None:
 
     anc = _first_existing(start)
     if not anc.is_dir():
-        raise InputError(f"{anc} is a file, so the {what} {path} cannot be created in it; "
-                         f"choose another {option}", file=path, key=option)
+        raise InputError(f"{anc} is a file, not a folder: the {what} {path} cannot be "
+                         f"created in it; choose another {option}", file=path, key=option)
     if not os.access(anc, os.W_OK | os.X_OK):
         raise InputError(f"no permission to create the {what} in {anc}; choose another "
                          f"{option}", file=path, key=option)

@@ -112,17 +112,9 @@ def check_output_path(path) -> Path:
     if os.fspath(path) == "":
         raise InputError("the output path is empty; give a file name such as 'run.csv'",
                          key="path")
-    path = Path(path)
-    if path.is_dir():
-        raise InputError("is an existing folder; give a file name (in it, e.g. "
-                         f"{path / 'run.csv'})", file=path)
-    anc = next((p for p in path.parents if p.exists()), Path("."))
-    if not anc.is_dir():
-        raise InputError(f"cannot create it: {anc} is a file, not a folder", file=path)
-    if not os.access(anc, os.W_OK | os.X_OK):
-        raise InputError(f"cannot create it: no permission to write in the folder {anc}",
-                         file=path)
-    return path
+    from flexpipe._io import check_output_file
+
+    return check_output_file(path, option="path")
 
 
 def result_format(path, format=None) -> str:  # noqa: A002
