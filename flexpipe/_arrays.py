@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 
@@ -12,3 +14,43 @@ def readonly(a, dtype=float) -> np.ndarray:
     a = np.array(a, dtype=dtype, copy=True, order="C")
     a.setflags(write=False)
     return a
+
+
+def _frozen(v):
+    """``v`` with its arrays read-only: arrays, and arrays in plain tuples and dicts at any
+    depth (``v`` itself when there is nothing to freeze)."""
+    if isinstance(v, np.ndarray):
+        return readonly(v, v.dtype) if v.flags.writeable else v
+    if type(v) is tuple:
+        w = tuple(_frozen(x) for x in v)
+        return w if any(a is not b for a, b in zip(w, v, strict=True)) else v
+    if type(v) is dict:
+        w = {k: _frozen(x) for k, x in v.items()}
+        return w if any(w[k] is not v[k] for k in v) else v
+    return v
+
+
+def freeze_arrays(obj) -> None:
+    """Make the array fields of the frozen dataclass ``obj`` read-only (call it at the end
+    of ``__post_init__``): a frozen object whose arrays can be changed in place is not
+    frozen, and a cached result keyed on the object's file would no longer match it."""
+    for f in dataclasses.fields(obj):
+        v = getattr(obj, f.name)
+        w = _frozen(v)
+        if w is not v:
+            object.__setattr__(obj, f.name, w)
+
+
+def frozen_arrays(cls):
+    """Class decorator, placed below ``@dataclass(frozen=True)``: after the class's own
+    ``__post_init__`` (if any), its array fields are made read-only (:func:`freeze_arrays`)."""
+    own = cls.__dict__.get("__post_init__")
+
+    def __post_init__(self):
+        if own is not None:
+            own(self)
+        freeze_arrays(self)
+
+    __post_init__.__doc__ = own.__doc__ if own is not None else None
+    cls.__post_init__ = __post_init__
+    return cls

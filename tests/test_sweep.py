@@ -4,6 +4,7 @@ mid-sweep loses nothing and duplicates nothing, bad dotted keys are named up fro
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import threading
@@ -12,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow.parquet as pq
 import pytest
 from _rigidcar import rigid_sedan
 
@@ -68,6 +70,15 @@ def test_sweep_equals_serial_simulate_and_resumes(client, tmp_path):
             assert row[m] == pytest.approx(v, rel=1e-12, abs=1e-12), m
     # the stiffer front-left spring is a different car: a different hub force
     assert res.table["hub_fl_z_peak_N"].nunique() == 4
+    # every channel column carries the unit of the run's own CSV header
+    serial.save(tmp_path / "serial.csv")
+    header = (tmp_path / "serial.csv").read_text().splitlines()[0].split(",")
+    csv_units = dict(h[:-1].split(" [") for h in header)
+    files = sorted((tmp_path / "out" / "channels").glob("run=*/part-0.parquet"))
+    schema = pq.read_schema(files[0])
+    assert {f.name: f.metadata[b"unit"].decode() for f in schema} == csv_units
+    assert json.loads(schema.metadata[b"units"]) == csv_units
+    assert (csv_units["t"], csv_units["hub_fl_z"], csv_units["travel_fl"]) == ("s", "N", "m")
     again = fp.sweep(spec, out=tmp_path / "out", scheduler=client, progress=False)
     assert again.n_skipped == 4 and again.table.equals(res.table)
     assert (tmp_path / "out" / "metrics.parquet").is_file()

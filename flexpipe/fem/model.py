@@ -8,12 +8,14 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
+from flexpipe._arrays import frozen_arrays
 from flexpipe.mesh.mesh import Mesh
 
 COMPONENTS = ("ux", "uy", "uz", "rx", "ry", "rz")
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class FEModel:
     """Assembled linear finite-element model.
 

@@ -3,7 +3,8 @@
 Layout (``out/``)::
 
     runs/<key>.json                  one record per run (parameters, status, metrics)
-    channels/run=<key>/part-0.parquet  t and every channel of the run
+    channels/run=<key>/part-0.parquet  t and every channel of the run (SI units: field
+                                     metadata ``unit``; schema metadata ``units``)
     metrics.parquet, metrics.csv     the table of the sweep's runs, in run order
     plots/*.png                      chosen metrics against the swept parameters
     sweep.json                       what ran: spec, counts, reductions, timing
@@ -87,6 +88,20 @@ def _plain(v):
     return v
 
 
+
+def _channel_table(pa, channels: dict):
+    """Arrow table of a run's channels; every field carries its SI unit (field metadata
+    ``unit``, as :func:`flexpipe.vehicle.export.channel_unit` names it: the channel
+    files' headers) and the schema maps every name to its unit (metadata ``units``, JSON).
+    """
+    from flexpipe.vehicle.export import channel_unit
+
+    units = {k: channel_unit(k) for k in channels}
+    fields = [pa.field(k, pa.float64(), metadata={"unit": units[k]}) for k in channels]
+    schema = pa.schema(fields, metadata={"units": json.dumps(units)})
+    return pa.table({k: np.asarray(v, dtype=float) for k, v in channels.items()},
+                    schema=schema)
+
 class Store:
     """Records and channels of the runs of a sweep under ``out``."""
 
@@ -136,7 +151,7 @@ class Store:
 
         key = record["key"]
         if channels is not None and len(channels.get("t", ())) > 0:
-            table = pa.table({k: np.asarray(v, dtype=float) for k, v in channels.items()})
+            table = _channel_table(pa, channels)
             path = self.channels_path(key)
             with atomic_path(path) as tmp:
                 pq.write_table(table, tmp)

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe._arrays import frozen_arrays
 from flexpipe.errors import InputError
 from flexpipe.fem.material import LIBRARY, Material
 from flexpipe.mesh.units import unit_system
@@ -24,6 +25,7 @@ MIN_INTERFACE_BAND_HZ = 100.0
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class AddedMass:
     """A non-structural mass spread over the body nodes near ``position``.
 
@@ -38,6 +40,7 @@ class AddedMass:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class RigidProps:
     """Rigid mass properties: mass (kg), centre of gravity (m), inertia about it (kg m^2)."""
 
@@ -47,6 +50,7 @@ class RigidProps:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class BodySpec:
     """The car body: a mesh (flexible) and/or rigid mass properties, plus added masses."""
 

@@ -51,6 +51,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe._args import as_path, plain_value
+from flexpipe._arrays import frozen_arrays
 from flexpipe.errors import InputError
 from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, check_principal_moments, parse
@@ -69,6 +70,7 @@ DRIVE_LAYOUTS = ("front", "rear", "all")
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class CornerSpec:
     """One wheel corner: prismatic suspension along body z through ``hardpoint``."""
 
@@ -101,6 +103,7 @@ class CornerSpec:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class SteeringSpec:
     """Steering of one axle: steering-wheel to road-wheel ``ratio`` and limits (rad)."""
 
@@ -111,6 +114,7 @@ class SteeringSpec:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class DriveSpec:
     """Drive layout and torque limits (total at the wheels)."""
 
@@ -132,6 +136,7 @@ class DriveSpec:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Car:
     """A validated car specification (see module docstring for the file format)."""
 

@@ -16,6 +16,8 @@ from functools import cached_property
 
 import numpy as np
 
+from flexpipe._arrays import frozen_arrays
+
 BODY = "body"
 RACK = "rack"
 JOINT_KINDS = ("spherical", "revolute", "universal", "inline")
@@ -39,6 +41,7 @@ def _unit(v) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Part:
     """A rigid part: ``mass`` (kg), centre of mass ``cm`` (m), ``inertia`` about cm (kg m^2)."""
 
@@ -55,6 +58,7 @@ class Part:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Bushing:
     """Six-DOF linear bushing in a local frame, optional nonlinear tables.
 
@@ -92,6 +96,7 @@ class Bushing:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Joint:
     """A joint between part ``a`` and part ``b`` (either may be ``"body"``).
 
@@ -129,6 +134,7 @@ class Joint:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Link:
     """Massless two-force link with ball ends ``point_a`` on ``a`` and ``point_b`` on ``b``.
 
@@ -155,6 +161,7 @@ class Link:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class ForceElement:
     """Spring, damper or stop acting along the line from a part point to a body mount.
 
@@ -222,6 +229,7 @@ class ForceElement:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class CornerLinkage:
     """One corner's linkage: parts, joints, links and force elements around a knuckle.
 
@@ -278,6 +286,7 @@ class CornerLinkage:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Rack:
     """Steering rack sliding along ``axis`` (body y) in a housing on body ``mounts``.
 
@@ -312,6 +321,7 @@ class Rack:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class AntiRollBar:
     """Torsion bar turning in bushings at ``bushing`` (left; right mirrored), arms to
     ``arm_end``, drop links down to ``drop_link_lower`` on the corner's spring part.
@@ -333,6 +343,7 @@ class AntiRollBar:
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Axle:
     """Both corners of an axle with its optional rack and anti-roll bar."""
 

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe._arrays import frozen_arrays
 from flexpipe.errors import InputError, ModelError
 from flexpipe.vehicle import limits as lim
 from flexpipe.vehicle._toml import Table, check_principal_moments, parse
@@ -32,6 +33,7 @@ MODES = ("compliant", "kinematic")
 
 
 @dataclass(frozen=True)
+@frozen_arrays
 class Suspension:
     """The car's suspension: ``axles`` ``{"front": Axle, "rear": Axle}`` and the rack.
 
