@@ -76,6 +76,7 @@ def run() -> dict:
                 out[f"{key}_ms_per_step"] = round(1e3 * r.cpu_time / (T_RUN / h), 4)
                 out[f"{key}_newton_iterations_per_step"] = r.info.get(
                     "newton_iterations_per_step")
+                out[f"{key}_newton_jacobians"] = r.info.get("newton_jacobians")
                 if body == "flexible":
                     out[f"{key}_modes"] = r.info.get("n_elastic_modes")
         out[f"{tag}_cpu_ratio_flexible_to_rigid{suffix}"] = round(

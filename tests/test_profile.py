@@ -69,6 +69,8 @@ def test_profile_python_step_agrees_with_flexpipes_own_timing(profiled):
     assert 0.5 * ours < theirs < 2.0 * ours
     assert info["cpu_python_step_s"] <= info["wall_python_step_s"] * 1.01
     assert 1.0 <= info["newton_iterations_per_step"] <= 25.0  # Exudyn's limit is 25
+    # modified Newton: at least the first Jacobian, and far fewer than the Newton steps
+    assert 1 <= info["newton_jacobians"] <= info["newton_iterations_per_step"] * n
 
 
 def test_fast_module_profile_is_the_python_step_and_the_rest():

@@ -72,7 +72,8 @@ def solver_info(stats: dict, python_s: float, *, cpu_s: float) -> dict:
     n = stats.get("steps", 0)
     if not n:
         return {}
-    out = {"newton_iterations_per_step": round(stats["newton_iterations"] / n, 3)}
+    out = {"newton_iterations_per_step": round(stats["newton_iterations"] / n, 3),
+           "newton_jacobians": stats["jacobians"]}  # computed and factorized
     if "timers_s" in stats:
         timers = stats["timers_s"]
         if compiled_module() == MODULES["fast"]:  # no part timers in that module

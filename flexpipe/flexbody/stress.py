@@ -6,8 +6,13 @@ block, and keeps them in a :class:`StressModes` stored inside the body's ``.npz`
 stress recovery is then ``sigma(t) = S q(t)`` (:mod:`flexpipe.durability.recover`).
 
 Size switch (``reduce(..., stress=...)``): ``"all"`` elements, the name of a cell set of
-the mesh (only its elements), or ``None`` / ``"none"`` (no stress modes).  Stored as
-float64: ``n_elements x 6 x n_elastic`` numbers (8.6 MB for 5,244 shells and 34 modes).
+the mesh (only its elements), or ``None`` / ``"none"`` (no stress modes).  Stored, and
+held in memory, in single precision (float32): ``n_elements x 6 x n_elastic`` numbers.
+A stress mode is rounded to 6e-8 of itself, and a recovered stress ``S q`` (computed in
+double precision) to about 1e-7 of the largest modal term, far below the error of the
+finite elements; in float64 the sample linkage body's stress modes (6,271 shells and
+beams, 75 modes) took 22.6 MB and its body file 35.5 MB, past the 30 MB the durability
+issue sets, which single precision keeps it under (``bench/bench_durability.py``).
 Solids also store nodal stress modes (averaged over the elements sharing a node); for
 shells and beams, nodal averages for plots are derived on demand
 (:meth:`StressModes.nodal_average`) rather than stored, which keeps the file small.
@@ -45,14 +50,14 @@ class StressBlock:
     centroids : ndarray (ne, 3)
         Element centroids, body coordinates, m.
     modes : ndarray (ne, 6, m)
-        Stress per unit modal coordinate, Pa (components: :attr:`components`).
+        Stress per unit modal coordinate, Pa (components: :attr:`components`), float32.
     frames : ndarray (ne, 3, 3) or empty
         Shells: rows ``e1, e2, n`` of the element frame the components refer to.
     nodes : ndarray of int (k,)
         Solids: the nodes of the block's cells (empty for shells and beams).
     nodal : ndarray (k, 6, m)
         Solids: stress per unit modal coordinate at those nodes, averaged over the block's
-        elements that share the node (global axes), Pa.
+        elements that share the node (global axes), Pa, float32.
     """
 
     cell_type: str
@@ -68,8 +73,10 @@ class StressBlock:
         object.__setattr__(self, "ids", readonly(self.ids, np.int64))
         object.__setattr__(self, "cells", readonly(self.cells, np.int64))
         object.__setattr__(self, "nodes", readonly(self.nodes, np.int64))
-        for k in ("centroids", "modes", "frames", "nodal"):
+        for k in ("centroids", "frames"):
             object.__setattr__(self, k, readonly(getattr(self, k)))
+        for k in ("modes", "nodal"):  # single precision: see the module docstring
+            object.__setattr__(self, k, readonly(getattr(self, k), np.float32))
 
     @property
     def kind(self) -> str:
