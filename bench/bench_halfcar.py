@@ -44,7 +44,7 @@ def run() -> dict:
         res[f"sweep200_{case}_cpu_ratio_complete_to_reduced"] = (
             res[f"sweep200_{case}_complete_cpu_s"] / res[f"sweep200_{case}_reduced_cpu_s"])
     road = Road(p.road_amplitude_m, p.road_wavelength_m, p.irregularity_cycles)
-    v = 20.0 * p.road_wavelength_m
+    v = p.reference_speed_m_per_s
     for variant, m in models.items():  # best of 5: each run takes only tens of ms
         cpu = min(_timed(lambda m=m: simulate(m, CASES["dual_rate"], road, v, 1.5))[2]
                   for _ in range(5))

@@ -65,7 +65,7 @@ def write_deck(path: Path, n: int = N) -> dict:
                 lines.append(f"CTRIA3  {eid:>8d}       1{a:>8d}{a + n + 1:>8d}{a + n:>8d}")
             elif eid % 100 == 0:
                 lines.append(f"CQUAD4  {eid:>8d}       1{a:>8d}{a + 1:>8d}{a + n + 1:>8d}"
-                             f"{a + n:>8d}              .002")
+                             f"{a + n:>8d}            .002")
             else:
                 lines.append(f"CQUAD4  {eid:>8d}       1{a:>8d}{a + 1:>8d}{a + n + 1:>8d}"
                              f"{a + n:>8d}")

@@ -41,8 +41,8 @@ seat-back panel and wheelhouse walls (with a damper-top reinforcement) carry the
 arms, trailing links, spring and damper tops.  The engine cradle, formerly a 2.5 mm plate
 between the front rails, is now this beam frame.  Measured (``--check``): BIW 396.6 kg
 (358.1 kg before the mounts), first torsion 42.3 Hz (43.5), bending 46.1 Hz (46.5);
-trimmed with ``cars/sedan.toml`` 1362.6 kg (1324.1), torsion 22.8 Hz (23.6), bending
-23.8 Hz (23.6).
+trimmed with ``cars/sedan.toml`` 1335.1 kg (1324.1), torsion 22.8 Hz (23.6), bending
+24.0 Hz (23.6) (re-run 2026-12-02).
 
 Every mount and the four legacy corner hardpoints are written as comments
 ``$ HARDPOINT name x y z`` and as ``SET1`` node lists with a ``$ SET name`` comment (the

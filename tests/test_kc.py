@@ -12,7 +12,12 @@ import pytest
 import flexpipe as fp
 from flexpipe.cli import main
 from flexpipe.vehicle.spec import CORNERS
-from flexpipe.vehicle.suspension.kc import opposite_travel, parallel_travel, static_steer
+from flexpipe.vehicle.suspension.kc import (
+    WHEEL_CENTRE_FORCE,
+    opposite_travel,
+    parallel_travel,
+    static_steer,
+)
 from flexpipe.vehicle.suspension.kinematics import Linkage, solve_kinematics, travel_velocity
 from flexpipe.vehicle.suspension.spec import load_suspension
 
@@ -153,7 +158,7 @@ def test_info_and_kc_give_the_same_spring_figures_at_the_same_load(capsys):
         ds = np.diff(par["wheel travel [mm]"][[0, 2]])[0]
         dL = np.diff(par["spring length [mm]"][[0, 2]])[0]
         assert figs["kinematic"] == pytest.approx(k * (dL / ds) ** 2, rel=1e-4)
-        dF = np.diff(par["rig force [N]"][[0, 2]])[0]
+        dF = np.diff(par[WHEEL_CENTRE_FORCE][[0, 2]])[0]
         assert rate == pytest.approx(dF / ds * 1e3, rel=2e-3)
         # kc with its wheel load set to the time runs' static load gives info's figures
         load = N[CORNERS.index(car.suspension.axles[axle].left.corner)]

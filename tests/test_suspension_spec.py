@@ -322,7 +322,7 @@ def test_wheel_load_with_a_given_spring_preload_is_refused(tmp_path, spring):
         load_suspension(p)
     msg = str(e.value).replace(str(p), "<car>")
     assert str(p) in str(e.value) and "key 'suspension.front.wheel_load_N'" in msg
-    assert f"line {_line_of(p, 'wheel_load_N = 4220.0')}" in msg
+    assert f"line {_line_of(p, 'wheel_load_N = 3800.0')}" in msg
     assert "preload_N / free_length_m" in msg and "give one" in msg
 
 
@@ -340,7 +340,7 @@ def test_kc_of_a_suspension_only_file_has_no_wheel(tmp_path):
     s = kc(susp, n=3, travel=0.001, axles=["front"]).summary["front"]
     assert s["wheel mass [kg]"] == 0.0
     assert s["spring preload [N]"] == pytest.approx(
-        spring_preload(susp.axles["front"].left, 4220.0), rel=1e-12)
+        spring_preload(susp.axles["front"].left, 3800.0), rel=1e-12)
 
 
 def test_mount_dofs_follow_what_passes_a_moment_in_each_mode(tmp_path):

@@ -10,10 +10,17 @@ its tables (:func:`toml_kind`): a car (``[car]``) is described by
 :func:`flexpipe.vehicle.describe.car_text`, a road (``[road]``) and a path (``[path]``)
 by their length, samples and extent; any other TOML file (a sweep, a driver, the
 half-car parameters) is a one-line error saying what it is and what ``info`` takes.
+
+A road's track RMS is weighted by length over the profile the car drives (linear between
+samples, :func:`track_statistics`), so non-uniform sampling does not bias it; its
+reference line is told as straight along x, placed or curved.  A mesh's section
+properties carry their SI units, and its structural mass and centre of mass come from the
+properties it carries (:func:`flexpipe.fem.structural_mass.structural_mass`, no assembly).
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 
@@ -112,25 +119,107 @@ def _spec_line(table: dict) -> str:
     return "  spec: " + ", ".join(f"{k} = {v!r}" for k, v in table.items())
 
 
-def road_text(road, *, file=None, table: dict | None = None) -> str:
-    """Human-readable summary of a :class:`~flexpipe.roads.Road` read from ``file``
-    (``table``: its ``[road]`` spec, when it came from a TOML file)."""
+def track_statistics(x, z) -> tuple[float, float]:
+    """Mean and RMS about the mean of a road track, weighted by length.
+
+    The profile is the one the car drives: linear between the samples ``(x, z)``, over
+    ``x[0] .. x[-1]``.  Every interval counts by its length, so a densely sampled bump
+    weighs no more than its length (``np.std`` of the samples would weigh each sample
+    equally and over-weight dense regions of a non-uniformly sampled road).
+
+    Parameters
+    ----------
+    x : array_like, shape (n,)
+        Distance of the samples, strictly increasing (m).
+    z : array_like, shape (n,)
+        Height at the samples (m).
+
+    Returns
+    -------
+    mean : float
+        ``1/L int z dx`` (m), ``L = x[-1] - x[0]``.
+    rms : float
+        ``sqrt(1/L int (z - mean)^2 dx)`` (m), exact for the piecewise-linear profile.
+    """
     import numpy as np
 
+    x = np.asarray(x, dtype=float)
+    z = np.asarray(z, dtype=float)
+    h = np.diff(x)
+    length = float(x[-1] - x[0])
+    mean = float(np.sum(h * (z[:-1] + z[1:])) / (2.0 * length))
+    d = z - mean  # about the mean first: no cancellation for roads far above z = 0
+    a, b = d[:-1], d[1:]
+    var = float(np.sum(h * (a * a + a * b + b * b)) / (3.0 * length))
+    return mean, math.sqrt(max(var, 0.0))
+
+
+def _spacing_text(x) -> str:
+    """``"uniform, every d m"`` or ``"spacing min .. max m (not uniform)"`` of samples ``x``
+    (uniform within the tolerance :class:`~flexpipe.roads.Road` uses)."""
+    import numpy as np
+
+    step = np.diff(np.asarray(x, dtype=float))
+    d = float((x[-1] - x[0]) / (len(x) - 1))
+    if np.all(np.abs(step - d) <= 1e-9 * max(1.0, abs(float(x[-1])))):
+        return f"uniform, every {d:.4g} m"
+    return f"spacing {step.min():.4g} .. {step.max():.4g} m (not uniform)"
+
+
+def _reference_line_text(road) -> str:
+    """Where a road lies in the plane: along x, or the OpenCRG plan's placement/curve."""
+    plan = road.plan
+    if plan is None:
+        return "straight along x (s = x, lateral = y)"
+    scale = max(1.0, abs(float(road.x[-1])), abs(float(road.x[0])))
+    start = f"({plan.x[0]:.6g}, {plan.y[0]:.6g}) m"
+    if abs(plan.u0) > 1e-9 * scale:  # s of the reference line's first point
+        start = f"{start} (s = {plan.u0:.6g} m)"
+    if not plan.straight:
+        return (f"curved (heading channel): from {start}, heading "
+                f"{math.degrees(plan.phi_start):.4g} deg, to ({plan.x[-1]:.6g}, "
+                f"{plan.y[-1]:.6g}) m, heading {math.degrees(plan.phi_end):.4g} deg; "
+                "--path road follows it")
+    along_x = (abs(plan.phi_start) <= 1e-12 and abs(plan.y[0]) <= 1e-9 * scale
+               and abs(plan.x[0] - plan.u0) <= 1e-9 * scale)
+    if along_x:
+        return "straight along x (s = x, lateral = y)"
+    return (f"straight, placed at {start}, heading {math.degrees(plan.phi_start):.4g} deg; "
+            "--path road follows it")
+
+
+def road_text(road, *, file=None, table: dict | None = None) -> str:
+    """Human-readable summary of a road.
+
+    Parameters
+    ----------
+    road : Road
+        The road (:class:`~flexpipe.roads.Road`).
+    file : str or Path, optional
+        The file it was read from.
+    table : dict, optional
+        Its ``[road]`` spec, when it came from a TOML file.
+
+    Returns
+    -------
+    str
+        Length, samples and their spacing, track width, per track the height range and
+        the length-weighted RMS about the mean (:func:`track_statistics`), the height
+        grid and where the reference line lies.
+    """
     lines = [f"{file or road.source or road.name}: road {road.source or road.name}",
              f"  {road.length:.6g} m long "
-             f"(x {road.x[0]:.6g} .. {road.x[-1]:.6g} m), {road.x.size} samples every "
-             f"{road.dx:.4g} m, track width {road.track_width:.4g} m"]
+             f"(x {road.x[0]:.6g} .. {road.x[-1]:.6g} m), {road.x.size} samples, "
+             f"{_spacing_text(road.x)}, track width {road.track_width:.4g} m"]
     for side, z in (("left", road.left), ("right", road.right)):
+        rms = track_statistics(road.x, z)[1]
         lines.append(f"  {side} track height (mm): min {1e3 * z.min():.2f}, max "
-                     f"{1e3 * z.max():.2f}, RMS about the mean "
-                     f"{1e3 * np.std(z):.2f}")
+                     f"{1e3 * z.max():.2f}, RMS about the mean {1e3 * rms:.2f} (over the "
+                     "length, linear between samples)")
     if road.y is not None:
         lines.append(f"  height grid: {road.y.size} lateral samples, y {road.y[0]:.4g} .. "
                      f"{road.y[-1]:.4g} m")
-    lines.append("  reference line: " + ("curved or placed (OpenCRG plan); --path road "
-                                         "follows it" if road.plan is not None else
-                                         "straight along x"))
+    lines.append("  reference line: " + _reference_line_text(road))
     if table:
         lines.append(_spec_line(table))
     return "\n".join(lines)
@@ -204,8 +293,76 @@ def path_text(path, *, file=None, table: dict | None = None) -> str:
     return "\n".join(lines)
 
 
+#: printed name and meaning of section keys that are not plain quantities
+_SECTION_NAMES = {"bending": "bending_ratio", "k1": "k1", "k2": "k2", "theta": "theta"}
+#: SI units of the dimensioned section keys, by (length, mass, time) powers
+_UNITS = {(1, 0, 0): "m", (2, 0, 0): "m^2", (4, 0, 0): "m^4", (-1, 1, -2): "Pa",
+          (-3, 1, 0): "kg/m^3", (0, 1, -2): "N/m", (2, 1, -2): "N m"}
+#: the note printed under the sections for each dimensionless key they use
+_SECTION_NOTES = {
+    "bending": "bending_ratio: plate bending rigidity over that of a solid shell of the "
+               "thickness, PSHELL 12I/T^3 x E(MID2)/E(MID1) (1 solid shell, 0 membrane "
+               "only)",
+    "k1": "k1, k2: transverse-shear area factors of beams, PBAR/PBEAM K1, K2 (0 no shear "
+          "flexibility)",
+    "theta": "theta: angle of the principal section axes from the beam's y axis (from "
+             "PBAR I12)",
+}
+
+
+def _section_value(key: str, value) -> str:
+    """``key=value unit`` of one section property (SI; dimensionless values bare)."""
+    from flexpipe.mesh.units import SECTION_DIMENSIONS
+
+    name = _SECTION_NAMES.get(key, key)
+    v = float(value)
+    if key == "theta":
+        return f"{name}={math.degrees(v):.4g} deg"
+    unit = _UNITS.get(SECTION_DIMENSIONS.get(key))
+    return f"{name}={v:g} {unit}" if unit else f"{name}={v:g}"
+
+
+def _mass_line(mesh) -> str:
+    """The structural-mass line of :func:`mesh_text` ('' for a mesh without elements)."""
+    import numpy as np
+
+    from flexpipe.fem.structural_mass import structural_mass
+
+    if not any(len(b) for b in mesh.blocks) and not mesh.point_masses:
+        return ""
+    parts, total, com, missing = structural_mass(mesh)
+    size = float(np.ptp(mesh.points, axis=0).max()) if mesh.n_nodes else 1.0
+    com = np.where(np.abs(com) < 1e-12 * max(size, 1e-300), 0.0, com)
+    split = ", ".join(f"{k} {v:.5g} kg" for k, v in parts.items())
+    if missing:
+        known = f"; known: {split}" if split else ""
+        return (f"  structural mass: unknown, the file gives no mass for "
+                f"{'; '.join(missing)} (flexpipe reduce and modes take --material or "
+                f"--rho and --thickness){known}")
+    if total <= 0:
+        return "  structural mass 0 kg (no element or point carries mass)"
+    return (f"  structural mass {total:.5g} kg ({split}), centre of mass "
+            f"({', '.join(f'{c:.4g}' for c in com)}) m")
+
+
 def mesh_text(mesh) -> str:
-    """Human-readable summary of a :class:`~flexpipe.mesh.Mesh` (an empty one included)."""
+    """Human-readable summary of a mesh.
+
+    Parameters
+    ----------
+    mesh : Mesh
+        The mesh (:class:`~flexpipe.mesh.Mesh`; an empty one included).
+
+    Returns
+    -------
+    str
+        Nodes and bounding box, element blocks, sets, the carried section properties
+        with their SI units, the structural mass and centre of mass
+        (:func:`structural_mass`), point masses, constraints, the solution set-up and
+        what the reader read, converted and dropped.
+    """
+    from flexpipe.fem.structural_mass import plural as _plural
+
     def fmt(v):
         return tuple(round(float(c), 4) for c in v)
 
@@ -213,21 +370,30 @@ def mesh_text(mesh) -> str:
            if mesh.n_nodes else "no bounding box (empty mesh)")
     lines = [f"{mesh.source}: {mesh.n_nodes} nodes, {box}"]
     for b in mesh.blocks:
-        lines.append(f"  {b.type:<10} {len(b):>9} elements")
+        lines.append(f"  {b.type:<10} {len(b):>9} {'element' if len(b) == 1 else 'elements'}")
     if mesh.node_sets:
         lines.append("  node sets: " + ", ".join(
             f"{k} ({len(v)})" for k, v in sorted(mesh.node_sets.items())))
     if mesh.cell_sets:
         lines.append("  cell sets: " + ", ".join(sorted(mesh.cell_sets)))
+    used = set()
     for name, props in sorted(mesh.sections.items()):
-        lines.append(f"  section {name}: " + ", ".join(f"{k}={v:g}" for k, v in props.items()))
+        lines.append(f"  section {name}: " + ", ".join(
+            _section_value(k, v) for k, v in props.items()))
+        used.update(props)
+    lines += [f"    {note}" for key, note in _SECTION_NOTES.items() if key in used]
     if mesh.point_masses:
         total = sum(pm.mass for pm in mesh.point_masses)
-        lines.append(f"  {len(mesh.point_masses)} point masses, {total:.6g} kg in total")
+        lines.append(f"  {_plural(len(mesh.point_masses), 'point mass', 'point masses')}, "
+                     f"{total:.6g} kg in total")
+    mass = _mass_line(mesh)
+    if mass:
+        lines.append(mass)
     if mesh.rigid_links:
-        lines.append(f"  {len(mesh.rigid_links)} rigid links (RBE2)")
+        lines.append(f"  {_plural(len(mesh.rigid_links), 'rigid link')} (RBE2)")
     if mesh.interpolations:
-        lines.append(f"  {len(mesh.interpolations)} interpolation constraints (RBE3)")
+        lines.append(f"  {_plural(len(mesh.interpolations), 'interpolation constraint')} "
+                     "(RBE3)")
     for name, rows in sorted(mesh.dof_sets.items()):
         lines.append(f"  DOF set {name}: {len(rows)} DOF on "
                      f"{len(set(map(int, rows[:, 0])))} nodes")

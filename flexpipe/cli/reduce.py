@@ -119,16 +119,50 @@ def run_info(args) -> int:
     return 0
 
 
+#: smallest MAC at which a reduced mode is paired with a full-model mode in ``info``; below
+#: it the reduced mode has no counterpart among the full modes computed (the conventional
+#: 0.5: at most one other mode can share a shape that well)
+MAC_MATCH = 0.5
+
+
+def _pair(k: int, rigid: bool, mac, r: int):
+    """``(full mode index, MAC)`` paired with reduced mode ``k``: the full elastic mode of
+    the largest MAC (rigid modes and a missing MAC: the same index, MAC None)."""
+    if mac is None or rigid or k >= mac.shape[0] or mac.shape[1] <= r:
+        return k, None
+    j = r + int(np.argmax(mac[k, r:]))  # pair by shape (MAC), not by index
+    return j, float(mac[k, j])
+
+
 def info_text(body, *, path="", mac_size: int = 12) -> str:
-    """Human-readable summary of a FlexBody (what ``flexpipe info`` prints)."""
+    """Human-readable summary of a FlexBody (what ``flexpipe info`` prints).
+
+    Parameters
+    ----------
+    body : FlexBody
+        The reduced body.
+    path : str or Path
+        Its file, for the first line.
+    mac_size : int
+        Rows and columns of the MAC matrix printed.
+
+    Returns
+    -------
+    str
+        Method, nodes, modes and interfaces; the mass properties of the reduced body
+        against the mesh; per mode the reduced frequency, the full-model mode of best MAC
+        with its frequency and the difference (only when that MAC reaches
+        :data:`MAC_MATCH`, else ``no match``), and the modal damping ratio; the MAC matrix.
+    """
     from flexpipe.flexbody.invariants import rigid_mass_properties
 
     meta = body.meta
     lines = [f"{path}: {body.method}, {body.n_nodes} nodes ({meta.get('n_dof', '?')} DOF), "
              f"{body.n_rigid} rigid + {body.n_elastic} elastic modes",
-             "  interfaces: " + ", ".join(f"{i.name} ({i.kind}, {i.dofs} DOF, "
-                                           f"{len(i.nodes)} nodes at {_p(i.point)})"
-                                           for i in body.interfaces),
+             "  interfaces: " + ", ".join(
+                 f"{i.name} ({i.kind}, {i.dofs} DOF, {len(i.nodes)} "
+                 f"{'node' if len(i.nodes) == 1 else 'nodes'} at {_p(i.point)})"
+                 for i in body.interfaces),
              f"  source mesh sha256 {body.source_hash[:16]}...  flexpipe "
              f"{meta.get('flexpipe_version', '?')}  reduced in {meta.get('total_s', '?')} s"]
     if body.stress is not None:
@@ -151,17 +185,24 @@ def info_text(body, *, path="", mac_size: int = 12) -> str:
             lines.append(f"  {name:<18} {r:>18.10g} {f:>18.10g} {abs(r - f) / scale:>12.2e}")
     f_full = ck.get("full_frequencies_hz")
     mac = ck.get("mac")
-    lines += ["", "  mode   reduced [Hz]   full mode      full [Hz]    diff [%]    MAC   damping"]
+    lines += [""]
+    if mac is not None:
+        lines.append(f"  full mode: the full-model mode of largest MAC with the reduced one; "
+                     f"'no match' when that MAC is below {MAC_MATCH:g}")
+    lines.append("  mode   reduced [Hz]   full mode      full [Hz]    diff [%]    MAC   "
+                 "damping ratio [-]")
     r = body.n_rigid
     for k, f in enumerate(body.frequencies_hz):
         rigid = k < r
-        j = k
-        if mac is not None and not rigid and k < mac.shape[0] and mac.shape[1] > r:
-            j = r + int(np.argmax(mac[k, r:]))  # pair by shape (MAC), not by index
+        j, best = _pair(k, rigid, mac, r)
+        kind = "  rigid" if rigid else f"{body.damping_ratio[k]:>8.3f}"
+        m = "" if best is None else f"{best:>6.3f}"
+        if best is not None and best < MAC_MATCH:
+            lines.append(f"  {k + 1:>4} {f:>14.6g} {'no match':>11} {'-':>14} {'-':>11} "
+                         f"{m:>6} {kind}")
+            continue
         ff = f_full[j] if f_full is not None and j < len(f_full) else None
         diff = "" if ff is None or rigid or ff <= 0 else f"{100 * (f / ff - 1):>10.4f}"
-        m = "" if mac is None or rigid or j >= mac.shape[1] else f"{mac[k, j]:>6.3f}"
-        kind = "  rigid" if rigid else f"{body.damping_ratio[k]:>8.3f}"
         fs = "-" if ff is None else f"{ff:.6g}"
         jj = "" if ff is None else str(j + 1)
         lines.append(f"  {k + 1:>4} {f:>14.6g} {jj:>11} {fs:>14} {diff:>11} {m:>6} {kind}")

@@ -45,8 +45,13 @@ class HalfCarParams:
         Suspension damping ratios ``c / (2 sqrt(k_s m_s))`` with ``m_s`` the static
         sprung mass carried by the corner (linear, dual-rate jounce and rebound).
     gravity_m_per_s2
+    reference_speed_m_per_s, reference_frequency_Hz
+        ``[road] reference_speed_km_per_h`` (in m/s) and ``reference_frequency_Hz``:
+        the speed of the transient study (Figs 4 and 5; the paper's 150 km/h) and the
+        forcing frequency it gives on the road.
     road_amplitude_m, road_wavelength_m, irregularity_cycles
-        Harmonic road and isolated irregularity ``s0 sin(2 pi z / lambda)``.
+        Harmonic road and isolated irregularity ``s0 sin(2 pi z / lambda)``; the
+        wavelength is ``reference_speed / reference_frequency`` (section 4 of the paper).
     sweep_f_min_Hz, sweep_f_max_Hz, sweep_n_points, harmonics, time_samples
         Response-spectrum sweep and harmonic-balance resolution.
     refine_band_Hz, refine_points
@@ -70,6 +75,8 @@ class HalfCarParams:
     zeta_jounce: float
     zeta_rebound: float
     gravity_m_per_s2: float
+    reference_speed_m_per_s: float
+    reference_frequency_Hz: float
     road_amplitude_m: float
     road_wavelength_m: float
     irregularity_cycles: int
@@ -91,6 +98,16 @@ class HalfCarParams:
     def corners(self) -> tuple[Corner, Corner]:
         """``(front, rear)``."""
         return (self.front, self.rear)
+
+    @property
+    def body_dof(self) -> int:
+        """DOF of the FE body: ``(n_elements + 1)`` nodes x (w, theta)."""
+        return body_dof(self.n_elements)
+
+
+def body_dof(n_elements: int) -> int:
+    """DOF of a beam of ``n_elements`` cubic elements: 2 per node."""
+    return 2 * (n_elements + 1)
 
 
 class _Reader:
@@ -156,6 +173,55 @@ def _corner(r: _Reader, section: str, n_elements: int) -> Corner:
     )
 
 
+#: tables only a half-car parameter file has (a car, road or sweep file has none of them)
+_HALF_CAR_TABLES = ("front", "rear", "reduction", "table1")
+
+
+def _check_kind(path: Path, data: dict) -> None:
+    """Refuse a TOML file of another kind (a car, road or sweep file) in one line."""
+    if any(t in data for t in _HALF_CAR_TABLES):
+        return
+    found = ", ".join(f"[{k}]" for k in data) or "none"
+    what = " (a car file for flexpipe run)" if "car" in data else ""
+    raise InputError(
+        f"not a half-car parameter file{what}: it has none of the tables "
+        f"{', '.join(f'[{t}]' for t in _HALF_CAR_TABLES)} (its tables: {found}); a half-car "
+        f"parameter file looks like {DEFAULT_PARAMS}", file=path)
+
+
+def _frequencies(r: _Reader, key: str, n_max: int, what: str) -> tuple[float, ...]:
+    """A ``[table1]`` list of published frequencies: 1..n_max positive numbers."""
+    values = r.get("table1", key, kind=tuple)
+    if not 1 <= len(values) <= n_max:
+        raise r.error("table1", key,
+                      f"the {what} has {n_max} natural frequencies: give 1 to {n_max} "
+                      f"published values (Hz, ascending), got {len(values)}")
+    if not all(math.isfinite(v) and v > 0 for v in values):
+        raise r.error("table1", key, f"frequencies must be finite and > 0 Hz, got "
+                                     f"{list(values)}")
+    return values
+
+
+def _mode_counts(r: _Reader, n_el: int) -> tuple[int, int]:
+    """``[reduction]`` mode counts, checked against the DOF of the beam."""
+    n = body_dof(n_el)
+    fi = r.get("reduction", "free_interface_modes", kind=int, allow_zero=True)
+    if fi > n - 4:
+        raise r.error(
+            "reduction", "free_interface_modes",
+            f"{fi} elastic modes do not fit the body: body.n_elements = {n_el} gives a beam "
+            f"of {n} DOF, and the reduced body keeps 2 rigid-body + free_interface_modes "
+            f"elastic + 2 residual-flexibility modes, so valid values are 0..{n - 4}")
+    tr = r.get("reduction", "truncated_modes", kind=int)
+    if not 2 <= tr <= n:
+        raise r.error(
+            "reduction", "truncated_modes",
+            f"must lie in 2..{n}, got {tr}: the truncated body keeps its 2 rigid-body "
+            f"modes (heave, pitch) and at most all {n} modes of the beam (body.n_elements "
+            f"= {n_el})")
+    return fi, tr
+
+
 def load_params(path=None) -> HalfCarParams:
     """Read and validate a half-car parameter file.
 
@@ -171,8 +237,10 @@ def load_params(path=None) -> HalfCarParams:
     Raises
     ------
     InputError
-        Unreadable file, TOML syntax error, missing table/key, wrong type or a value out
-        of range; the message names the file, line and key.
+        Unreadable file, TOML syntax error, a file of another kind (e.g. a car file),
+        missing table/key, wrong type, a value out of range, mode counts the beam cannot
+        hold or more published frequencies than a model has; the message names the
+        file, line and key and what would be valid.
     """
     path = Path(path) if path is not None else DEFAULT_PARAMS
     try:
@@ -187,10 +255,13 @@ def load_params(path=None) -> HalfCarParams:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
-        raise InputError(f"invalid TOML: {exc}", file=path,
-                         line=int(m.group(1)) if m else None) from None
+        line = int(m.group(1)) if m else None
+        if line is None and "end of document" in str(exc):
+            line = max(len(text.splitlines()), 1)
+        raise InputError(f"invalid TOML: {exc}", file=path, line=line) from None
     except RecursionError:
         raise InputError("invalid TOML: nested too deeply", file=path, line=1) from None
+    _check_kind(path, data)
     r = _Reader(path, text, data)
     n_el = r.get("body", "n_elements", kind=int)
     front, rear = _corner(r, "front", n_el), _corner(r, "rear", n_el)
@@ -199,6 +270,9 @@ def load_params(path=None) -> HalfCarParams:
                       f"rear attachment node ({rear.attachment_node}) must lie behind the "
                       f"front one ({front.attachment_node}); nodes count from the front")
     zeta_B = r.get("body", "structural_damping_ratio", allow_zero=True)
+    fi, n_trunc = _mode_counts(r, n_el)
+    # section 4 of the paper: the wavelength makes the reference speed (150 km/h) give
+    # the reference forcing frequency (20 Hz); the transients run at that speed
     speed = r.get("road", "reference_speed_km_per_h") / 3.6
     f_ref = r.get("road", "reference_frequency_Hz")
     f_min = r.get("sweep", "frequency_min_Hz")
@@ -228,6 +302,8 @@ def load_params(path=None) -> HalfCarParams:
         zeta_jounce=r.get("damping", "zeta_jounce"),
         zeta_rebound=r.get("damping", "zeta_rebound"),
         gravity_m_per_s2=r.get("environment", "gravity_m_per_s2"),
+        reference_speed_m_per_s=speed,
+        reference_frequency_Hz=f_ref,
         road_amplitude_m=r.get("road", "amplitude_m"),
         road_wavelength_m=speed / f_ref,
         irregularity_cycles=r.get("road", "irregularity_cycles", kind=int),
@@ -238,11 +314,15 @@ def load_params(path=None) -> HalfCarParams:
         refine_points=r.get("sweep", "refine_points", kind=int, allow_zero=True),
         harmonics=n_h,
         time_samples=n_t,
-        free_interface_modes=r.get("reduction", "free_interface_modes", kind=int,
-                                   allow_zero=True),
-        truncated_modes=r.get("reduction", "truncated_modes", kind=int),
-        table1_complete_Hz=r.get("table1", "complete_Hz", kind=tuple),
-        table1_reduced_Hz=r.get("table1", "reduced_Hz", kind=tuple),
-        table1_rigid_Hz=r.get("table1", "rigid_Hz", kind=tuple),
+        free_interface_modes=fi,
+        truncated_modes=n_trunc,
+        table1_complete_Hz=_frequencies(r, "complete_Hz", body_dof(n_el) + 2,
+                                        f"complete model (body.n_elements = {n_el})"),
+        # the paper's reduced model may differ from this file's (free_interface_modes):
+        # Table 1 leaves the cells of modes it does not have blank
+        table1_reduced_Hz=_frequencies(r, "reduced_Hz", body_dof(n_el) + 2,
+                                       f"complete model (body.n_elements = {n_el}), the "
+                                       "bound of any reduced one,"),
+        table1_rigid_Hz=_frequencies(r, "rigid_Hz", 4, "rigid model"),
         source=path,
     )

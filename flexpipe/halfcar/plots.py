@@ -71,13 +71,26 @@ def _stability_plot(ax, f, y, stable, **style):
 
 
 def figure3(curves: list[tuple[str, Spectrum, dict]], path, *, title: str,
-            reference: Spectrum | None = None) -> None:
-    """Nonlinear spectra (harmonic balance); line solid where stable, dashed if not."""
+            reference: Spectrum | None = None, reference_label: str = "linear") -> None:
+    """Nonlinear spectra (harmonic balance); line solid where stable, dashed if not.
+
+    Parameters
+    ----------
+    curves : list of (label, Spectrum, style)
+        The harmonic-balance spectra.
+    path : str or Path
+        PNG written (atomically).
+    title : str
+    reference : Spectrum, optional
+        A linear spectrum drawn in grey behind the curves.
+    reference_label : str
+        Its legend entry, e.g. ``"complete, linear zeta = 0.3"`` (the caller knows the
+        damping ratio it was computed with).
+    """
     fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
     if reference is not None:
         for ax, y in zip(axes, _quantities(reference), strict=True):
-            ax.semilogy(reference.freq_Hz, y, color="0.7", lw=1.0,
-                        label="complete, linear zeta = 0.3")
+            ax.semilogy(reference.freq_Hz, y, color="0.7", lw=1.0, label=reference_label)
     for label, s, style in curves:
         for ax, y in zip(axes, _quantities(s), strict=True):
             _stability_plot(ax, s.freq_Hz, y, s.stable, **style)

@@ -37,6 +37,24 @@ SCAN_FIRST, SCAN_BLOCK = 8, 512
 EIGEN_COND_MAX = 1e8
 
 
+class EventCounts:
+    """Law switches located by an integration: total, damper ones, lift-offs per wheel."""
+
+    def __init__(self):
+        self.total, self.damper = 0, 0
+        self.lift_offs = np.zeros(2, dtype=int)
+
+    def damper_switch(self) -> None:
+        """Count a damper-branch switch."""
+        self.total += 1
+        self.damper += 1
+
+    def contact_change(self, j: int, lost: bool) -> None:
+        """Count a loss (``lost``) or recovery of contact of wheel ``j``."""
+        self.total += 1
+        self.lift_offs[j] += int(lost)
+
+
 class PiecewiseLinear:
     """Closed-form propagator of one model with piecewise-linear corner laws.
 
@@ -127,13 +145,14 @@ class PiecewiseLinear:
 
     # ------------------------------------------------------------------ driver
     def run(self, t_eval, t_end, x0, damper, contact, input_breaks, max_events):
-        """Integrate to ``t_end``; returns samples, branches and the number of switches."""
+        """Integrate to ``t_end``; returns samples, branches and the switches
+        (:class:`EventCounts`)."""
         n = self.n
         T, Y, B, C = [], [], [], []
         t0, x = 0.0, np.array(x0, dtype=float)
         damper, contact = damper.copy(), contact.copy()
         breaks = np.sort(np.asarray([b for b in input_breaks if 0.0 < b < t_end]))
-        n_events = 0
+        counts = EventCounts()
         while t0 < t_end:
             nxt = breaks[breaks > t0 + 1e-15]
             t_stop = min(t_end, nxt[0]) if nxt.size else t_end
@@ -166,20 +185,22 @@ class PiecewiseLinear:
             x = states(t_piece_end)[0]
             t0 = t_piece_end
             if t_hit is not None:
-                n_events += 1
-                if n_events > max_events:
-                    raise SolverError(f"more than {max_events} law switches: chattering?",
-                                      time=t0)
                 n_d = 2 if self.P.dual else 0
                 if k_hit < n_d:
                     damper[k_hit] = -damper[k_hit]
+                    counts.damper_switch()
                 else:
-                    contact[k_hit - n_d] = not contact[k_hit - n_d]
+                    j = k_hit - n_d
+                    counts.contact_change(j, lost=bool(contact[j]))
+                    contact[j] = not contact[j]
+                if counts.total > max_events:
+                    raise SolverError(f"more than {max_events} law switches: chattering?",
+                                      time=t0)
         if not T:
             return np.zeros(0), np.zeros((0, 2 * n)), np.zeros((0, 2), int), \
-                np.zeros((0, 2), bool), n_events
+                np.zeros((0, 2), bool), counts
         return (np.concatenate(T), np.concatenate(Y), np.concatenate(B), np.concatenate(C),
-                n_events)
+                counts)
 
     def _refine(self, states, lo, hi, k, damper, contact, max_iter=100):
         """Root of switching function ``k`` in ``[lo, hi]`` (Illinois method)."""

@@ -26,7 +26,7 @@ from flexpipe.errors import InputError, SolverError
 from flexpipe.halfcar._blas import single_threaded_blas
 from flexpipe.halfcar.elements import EVENT_EPS, EVENT_EPS_F, CornerLaws, Nonlinearity
 from flexpipe.halfcar.model import HalfCarModel
-from flexpipe.halfcar.pwlinear import PiecewiseLinear
+from flexpipe.halfcar.pwlinear import EventCounts, PiecewiseLinear
 
 
 @dataclass(frozen=True)
@@ -76,9 +76,17 @@ class Transient:
     damper_state : ndarray of int, shape (2, nt)
         +1 rebound (extension) branch, -1 jounce (compression) branch.
     n_events : int
-        Number of law switches located.
+        Number of law switches located (dampers and tire contact).
     cpu_s : float
         Process time spent integrating.
+    contact_state : ndarray of bool, shape (2, nt)
+        Whether each tire touches the road (always True without unilateral contact).
+    n_lift_offs : ndarray of int, shape (2,)
+        Number of times each wheel left the road (located events; 0 without contact).
+    n_damper_switches : int
+        Number of damper-branch switches among ``n_events``.
+    static_tire_force : ndarray, shape (2,)
+        Static tire loads, N: the total load is ``static_tire_force + tire_force``.
     """
 
     t: np.ndarray
@@ -90,6 +98,15 @@ class Transient:
     damper_state: np.ndarray
     n_events: int
     cpu_s: float
+    contact_state: np.ndarray
+    n_lift_offs: np.ndarray
+    n_damper_switches: int
+    static_tire_force: np.ndarray
+
+    @property
+    def tire_load(self) -> np.ndarray:
+        """Total tire loads (static + dynamic), N, shape (2, nt); never < 0 with contact."""
+        return self.static_tire_force[:, None] + self.tire_force
 
 
 class _Pieces:
@@ -246,11 +263,11 @@ def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: f
                 raise InputError("method='exact' needs piecewise-linear laws; Duffing tires "
                                  "need an ODE method such as 'Radau' or 'DOP853'",
                                  key="method")
-            t, y, br, ct, n_events = PiecewiseLinear(P).run(
+            t, y, br, ct, counts = PiecewiseLinear(P).run(
                 t_eval, t_end, x, branch, contact, P.input_breaks(), max_events)
         else:
-            t, y, br, ct, n_events = _run_ivp(P, t_eval, t_end, x, branch, contact, method,
-                                              rtol, atol, max_events)
+            t, y, br, ct, counts = _run_ivp(P, t_eval, t_end, x, branch, contact, method,
+                                            rtol, atol, max_events)
     cpu = time.process_time() - cpu0
     # drop duplicates at restart times (keep the later, post-switch sample)
     order = np.argsort(t, kind="stable")
@@ -265,14 +282,18 @@ def simulate(model: HalfCarModel, nl: Nonlinearity, road: Road, speed_m_per_s: f
     d = P.road_s(t) - q @ model.E
     tire = model.k_t * d + P.tire_extra(d, ct)
     return Transient(t=t, q=q, qd=qd, acc_A=acc @ model.a_A, travel=(q @ model.D).T,
-                     tire_force=tire.T, damper_state=br.T, n_events=n_events, cpu_s=cpu)
+                     tire_force=tire.T, damper_state=br.T, n_events=counts.total, cpu_s=cpu,
+                     contact_state=ct.T, n_lift_offs=counts.lift_offs.copy(),
+                     n_damper_switches=counts.damper,
+                     static_tire_force=np.array(model.static_tire_force, dtype=float))
+
 
 
 def _run_ivp(P, t_eval, t_end, x, branch, contact, method, rtol, atol, max_events):
     """Event-driven restarts of :func:`scipy.integrate.solve_ivp` (any law)."""
     n = P.n
     branch, contact = branch.copy(), contact.copy()
-    t0, n_events = 0.0, 0
+    t0, counts = 0.0, EventCounts()
     T, Y, B, Cs = [], [], [], []
     while True:
         rhs, jac, events = P.functions(branch, contact)
@@ -295,12 +316,13 @@ def _run_ivp(P, t_eval, t_end, x, branch, contact, method, rtol, atol, max_event
         _, kind, j = events[k]
         if kind == "damper":
             branch[j] = -branch[j]
+            counts.damper_switch()
         else:
+            counts.contact_change(j, lost=bool(contact[j]))
             contact[j] = not contact[j]
         t0 = t_hit
-        n_events += 1
-        if n_events > max_events:
+        if counts.total > max_events:
             raise SolverError(f"more than {max_events} law switches: chattering?",
                               time=t0)
     return (np.concatenate(T), np.concatenate(Y), np.concatenate(B), np.concatenate(Cs),
-            n_events)
+            counts)

@@ -152,7 +152,7 @@ class Mesh:
     sections : mapping of str to mapping
         Properties carried by the file, keyed by cell-set name: ``thickness``,
         ``E``, ``nu``, ``rho``, beam ``A``, ``Iy``, ``Iz``, ``J`` (and optionally shear
-        area factors ``ky``, ``kz``, principal-axis angle ``theta``), shell ``bending``
+        area factors ``k1``, ``k2``, principal-axis angle ``theta``), shell ``bending``
         (PSHELL 12I/T^3 times E2/E).
     source : str
         The file the mesh came from ("" when built in memory).

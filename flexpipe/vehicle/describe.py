@@ -1,7 +1,9 @@
 """Text summary of a car file: masses, static corner loads, suspension templates, mounts.
 
 Used by ``flexpipe info CAR.toml``.  Every figure is computed from the file (no run): the
-rigid mass properties of the trimmed body, the static wheel loads of the whole car at rest,
+rigid mass properties of the trimmed body, the corner masses (for linkage suspensions the
+wheel with every part of the linkage, and the conventional unsprung estimate of
+:func:`unsprung_estimate`), the static wheel loads of the whole car at rest,
 and for linkage suspensions, per axle at the design position, the spring's motion ratio and
 kinematic wheel rate (spring rate x motion ratio^2), the spring preload (virtual work) and
 the wheel rate including compliance (bushings, preloaded spring) at two loads: the static
@@ -25,7 +27,18 @@ def _p(v) -> str:
 
 
 def car_text(car: Car) -> str:
-    """Human-readable summary of ``car`` (see module docstring)."""
+    """Human-readable summary of a car (see the module docstring).
+
+    Parameters
+    ----------
+    car : Car
+        The car, as :func:`flexpipe.vehicle.spec.load_car` reads it.
+
+    Returns
+    -------
+    str
+        The summary ``flexpipe info CAR.toml`` prints.
+    """
     from flexpipe.vehicle import bodymodel
     from flexpipe.vehicle.corners import static_wheel_loads
 
@@ -36,8 +49,17 @@ def car_text(car: Car) -> str:
                  f"{_p(rb.center_of_mass)} m, "
                  f"{len(car.body.added_masses)} non-structural masses")
     unsprung = [c.unsprung_mass for c in car.corners]
-    lines.append("  unsprung (per corner, kg): " + ", ".join(
-        f"{n} {m:.2f}" for n, m in zip(CORNERS, unsprung, strict=True)))
+    if car.suspension is None:
+        lines.append("  unsprung (per corner, kg): " + ", ".join(
+            f"{n} {m:.2f}" for n, m in zip(CORNERS, unsprung, strict=True)))
+    else:  # a linkage corner's mass is the wheel and every part of its linkage
+        links = car.suspension.corners()
+        lines.append("  wheel, knuckle and arms/links, whole (per corner, kg): " + ", ".join(
+            f"{n} {m:.2f}" for n, m in zip(CORNERS, unsprung, strict=True)))
+        lines.append("  unsprung mass estimate (wheel + knuckle + half of each arm/link "
+                     "between body and knuckle; per corner, kg): " + ", ".join(
+                         f"{c.name} {unsprung_estimate(links[c.name], c.unsprung_mass):.2f}"
+                         for c in car.corners))
     if car.suspension is None:
         N = static_wheel_loads(car, rb.mass, rb.center_of_mass)
         lines.append("  suspension: prismatic corners (hardpoint_m, spring/damper along body z)")
@@ -74,6 +96,42 @@ def car_text(car: Car) -> str:
                  f"steering ratio {car.steering.ratio:g} on the {car.steering.axle} axle; "
                  f"{car.drive.layout}-wheel drive")
     return "\n".join(lines)
+
+
+def unsprung_estimate(linkage, corner_mass: float) -> float:
+    """The conventional unsprung mass of a linkage corner.
+
+    The wheel and the knuckle count whole, each part joined both to the body side (body
+    or steering rack) and to the wheel side (another part) counts half, a part joined to
+    the body side only (a rocker, say) not at all, and any other part whole.
+
+    Parameters
+    ----------
+    linkage : CornerLinkage
+        The corner's linkage (:class:`~flexpipe.vehicle.suspension.model.CornerLinkage`).
+    corner_mass : float
+        The corner's mass (kg): the wheel and every part of the linkage, as the car file
+        reader sums them (``CornerSpec.unsprung_mass``).
+
+    Returns
+    -------
+    float
+        The estimate (kg).
+    """
+    from flexpipe.vehicle.suspension.model import BODY
+
+    body_side = {BODY, "rack"}
+    ends = [(j.a, j.b) for j in linkage.joints] + [(k.a, k.b) for k in linkage.links]
+    out = corner_mass
+    for part in linkage.parts:
+        if part.name == linkage.knuckle:
+            continue
+        others = [b if a == part.name else a for a, b in ends if part.name in (a, b)]
+        to_body = any(o in body_side for o in others)
+        to_wheel = any(o not in body_side for o in others)
+        share = 0.5 if to_body and to_wheel else (0.0 if to_body else 1.0)
+        out -= (1.0 - share) * part.mass
+    return out
 
 
 def _axle_lines(car: Car, name: str, axle, load: float) -> list[str]:

@@ -11,8 +11,8 @@ from __future__ import annotations
 #: suspension spring rate at the spring, N/m.  A road spring carries a static corner load of
 #: about 1-50 kN (small cars 2-4 kN, heavy trucks tens of kN): at 1e3 N/m it would need
 #: metres of static deflection, which no spring (under 0.5 m long) has; at 1e7 N/m it would
-#: deflect well under a millimetre, 20-50 times stiffer than the tyre (1.5e5-1e6 N/m), so
-#: the wheel would not move on its suspension.  Passenger-car springs: 2e4-2e5 N/m (the
+#: deflect 0.1-5 mm, 10-70 times stiffer than the tyre (1.5e5-1e6 N/m), so the wheel would
+#: hardly move on its suspension.  Passenger-car springs: 2e4-2e5 N/m (the
 #: samples 2.6e4-1.1e5), truck leaf springs up to about 1e6 N/m.  A value in N/mm or kN/m
 #: is 1000 times too small.
 SPRING_RATE_N_PER_M = (1e3, 1e7)
@@ -74,7 +74,9 @@ LENGTH_SLIPS = ((1e-3, "mm"),)
 #: 1e4 N/m a bushing in the load path would deflect 0.4 m under a 4 kN wheel load; above
 #: 1e8 N/m it is a metal joint, which the kinematic mode models as such.  Verified on
 #: cars/sedan_linkage.toml in compliant mode at the default step (1 ms, ISO C, 20 m/s): every
-#: bushing at 1e8 N/m runs and gives the kinematic mode's hub forces.  A value in N/mm or
+#: bushing at 1e8 N/m runs and gives the kinematic mode's vertical hub forces within 5 % of
+#: their fluctuation (tests/test_car_limits.py
+#: ``test_stiffest_valid_bushings_act_as_the_joints_they_surround``).  A value in N/mm or
 #: kN/mm is 1e3 or 1e6 times too small.
 BUSHING_STIFFNESS_N_PER_M = (1e4, 1e8)
 BUSHING_STIFFNESS_SLIPS = ((1e3, "N/mm"), (1e6, "kN/mm"))

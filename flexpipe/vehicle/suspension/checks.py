@@ -1,5 +1,5 @@
-"""Checks of a linkage corner's hardpoints that need no kinematics (scale, side, distinct
-points) and of its bushings' rates (:func:`check_bushing`).
+"""Checks of a linkage corner's hardpoints that need no kinematics (scale, distance from
+the wheel centre, side, distinct points) and of its bushings' rates (:func:`check_bushing`).
 
 Run by :func:`flexpipe.vehicle.suspension.spec.load_suspension` on the left corner as the
 car file gives it (after ``location_m``, before mirroring), so that a slip is named by its
@@ -26,6 +26,12 @@ MIN_SEPARATION_M = 1e-3
 #: limit (EU, US), so |y| <= 3 m.  |x|: from the axle at x = 0; the longest rigid road
 #: vehicles are about 15 m, so |x| <= 100 m.  A value in millimetres is 1000 times larger.
 WHEEL_CENTER_BOX_M = {0: (-100.0, 100.0), 1: (-3.0, 3.0), 2: (0.0, 3.0)}
+#: a corner's hardpoints lie within this distance (m) of its wheel centre.  Its longest
+#: members are trailing links and arms: the sample's farthest point, the rear trailing
+#: link's front pivot, is 0.81 m from its wheel centre, a truck's trailing arm reaches
+#: some 1-1.5 m.  A point typed in millimetres lies about 1000 times its distance away
+#: (the sample's lower ball joint as [0, 770, -320]: 770 m)
+MAX_HARDPOINT_DISTANCE_M = 3.0
 #: points carried by the knuckle (the wheel side): y > 0 on a left corner
 WHEEL_SIDE = ("wheel_center", "lower_arm_outer", "upper_arm_outer", "tie_rod_outer",
               "strut_lower", "lateral_link_outer", "trailing_link_outer")
@@ -85,9 +91,10 @@ def check_hardpoints(template: str, hp: dict, raw: dict, loc: np.ndarray, t: Tab
     Raises
     ------
     InputError
-        A wheel centre outside any road vehicle's envelope (often millimetres), a left
-        corner's point on the right side, an inner pivot outboard of the wheel centre, two
-        points that define an axis or member but coincide.
+        A wheel centre outside any road vehicle's envelope (often millimetres), a
+        hardpoint far from its wheel centre (:data:`MAX_HARDPOINT_DISTANCE_M`; often
+        millimetres), a left corner's point on the right side, an inner pivot outboard of
+        the wheel centre, two points that define an axis or member but coincide.
     """
     wc = hp["wheel_center"]
     for i, (lo, hi) in WHEEL_CENTER_BOX_M.items():
@@ -106,6 +113,7 @@ def check_hardpoints(template: str, hp: dict, raw: dict, loc: np.ndarray, t: Tab
         if abs(loc[i]) > abs(raw["wheel_center"][i]):
             raise t.error("location_m", why)
         raise hpt.error("wheel_center", why)
+    _check_distances(hp, raw, loc, hpt)
     right = [k for k, p in hp.items() if p[1] < 0]
     mirrored = (f"; all {len(hp)} hardpoints have y < 0, as the right corner's would: negate "
                 "their y") if len(right) == len(hp) else ""
@@ -135,6 +143,47 @@ def check_hardpoints(template: str, hp: dict, raw: dict, loc: np.ndarray, t: Tab
         raise hpt.error("arb_bushing", f"y = {hp['arb_bushing'][1]:g} m: the left bar bushing "
                                        "and its mirror image (the right one) coincide, so "
                                        "they define no bar axis; give y > 0")
+
+
+def _vec(v) -> str:
+    return "[" + ", ".join(f"{x:g}" for x in v) + "]"
+
+
+def _check_distances(hp: dict, raw: dict, loc: np.ndarray, hpt: Table) -> None:
+    """Every hardpoint within :data:`MAX_HARDPOINT_DISTANCE_M` of the wheel centre (checked
+    for the envelope first), else an error naming the farthest one, its distance and, when
+    its values read as millimetres put it near the wheel centre (and some 1000 times
+    nearer than as given), the unit slip.  When most points are far and millimetres do not
+    explain it, the wheel centre is named instead."""
+    wc = hp["wheel_center"]
+    dist = {k: float(np.linalg.norm(p - wc)) for k, p in hp.items() if k != "wheel_center"}
+    far = sorted((k for k, d in dist.items() if d > MAX_HARDPOINT_DISTANCE_M),
+                 key=lambda k: -dist[k])
+    if not far:
+        return
+    as_mm = {k: np.asarray(raw[k]) / 1e3 + loc for k in far}
+    d_mm = {k: float(np.linalg.norm(as_mm[k] - wc)) for k in far}
+    # millimetres: read so, the point is near the wheel centre and ~1000 times (at least
+    # 300 times) nearer than as given; 10 or 100 times is a misplaced decimal point
+    mm = {k: d_mm[k] <= MAX_HARDPOINT_DISTANCE_M and dist[k] >= 300 * d_mm[k] for k in far}
+    limit = (f"a corner's hardpoints lie within {MAX_HARDPOINT_DISTANCE_M:g} m of its wheel "
+             "centre (its longest members, trailing links and arms, reach about 1.5 m)")
+    if 2 * len(far) > len(dist) and not all(mm.values()):
+        raise hpt.error("wheel_center", f"the wheel centre {_vec(wc)} m is more than "
+                                        f"{MAX_HARDPOINT_DISTANCE_M:g} m from {len(far)} of "
+                                        f"the corner's {len(dist)} other hardpoints "
+                                        f"({', '.join(far)}); {limit}")
+    name = far[0]
+    where = f"hardpoints_m.{name} = {_vec(raw[name])}" + (
+        f" + location_m {_vec(loc)}" if np.any(loc) else "")
+    why = (f"'{name}' at {_vec(hp[name])} m ({where}) lies {dist[name]:.4g} m from the wheel "
+           f"centre {_vec(wc)} m; {limit}")
+    if mm[name]:
+        why += (f"; hardpoints are in metres; this looks like millimetres "
+                f"({_vec(as_mm[name])} m would be {d_mm[name]:.3g} m from the wheel centre)")
+    if len(far) > 1:
+        why += f"; also too far: {', '.join(far[1:])}"
+    raise hpt.error(name, why)
 
 
 def check_bushing(t: Table, k: np.ndarray, c: np.ndarray) -> None:

@@ -9,8 +9,9 @@ from pathlib import Path
 from flexpipe._args import as_path, checked_int, checked_number
 from flexpipe.errors import InputError
 
-#: fewest points per sweep: the rates are slopes (:func:`numpy.gradient`) of the sweep,
-#: the summary reads the design position between its ends (as ``flexpipe kc --points``)
+#: fewest points per sweep (``flexpipe kc --points``): the tables' rates are slopes
+#: (:func:`numpy.gradient`) of the sweep, which need a point between its ends; the summary
+#: is evaluated at the design position whatever the sweep
 N_MIN = 3
 #: largest wheel travel +-, m: beyond any road car's bump/rebound travel; a larger value
 #: is most likely millimetres given as metres (the CLI's ``--travel`` is in mm)
