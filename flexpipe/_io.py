@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import os
+import re
 import tempfile
 from pathlib import Path
 
@@ -85,11 +87,58 @@ def write_matrix_csv(path, header, data, *, first: str = "%.12g", rest: str = "%
     write_text_atomic(path, buf.getvalue())
 
 
-def read_numeric_rows(path, *, kind: str, columns: str):
+#: length units a table header may name (factor to metres)
+LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "km": 1e3}
+_BRACKET_UNIT = re.compile(r"^(?P<name>.*?)\s*[\[(]\s*(?P<unit>[^\])]*?)\s*[\])]$")
+_HEADER_FIELD = re.compile(r"[^\s\[(]+(?:\s*[\[(][^\])]*[\])])?")
+
+
+def _split_fields(text: str) -> list[str]:
+    return [f.strip() for f in (text.split(",") if "," in text else text.split())]
+
+
+def _split_header(text: str) -> list[str]:
+    """Header fields: comma separated, or whitespace separated with ``name [unit]`` kept
+    together."""
+    if "," in text:
+        return [f.strip().strip('"').strip("'").strip() for f in text.split(",")]
+    return _HEADER_FIELD.findall(text)
+
+
+def _is_number(field: str) -> bool:
+    try:
+        float(field)
+    except ValueError:
+        return False
+    return True
+
+
+@dataclasses.dataclass(frozen=True)
+class NumericTable:
+    """A small numeric table read by :func:`read_numeric_table`.
+
+    Attributes
+    ----------
+    header : list of str or None
+        The fields of the header line (None when the file has none).
+    header_line : int or None
+        Its line number.
+    rows : list of (line_number, text, values)
+        The data lines; ``values`` is a list of finite floats.
+    """
+
+    header: list | None
+    header_line: int | None
+    rows: list
+
+
+def read_numeric_table(path, *, kind: str, columns: str) -> NumericTable:
     """Read a small numeric table (comma or whitespace separated) with line numbers.
 
-    ``#`` lines and blank lines are skipped; one non-numeric header line is allowed
-    before the data.  Errors name the file and line.
+    The file is UTF-8 text (a UTF-8 byte order mark is skipped).  ``#`` lines and blank
+    lines are skipped; the first other line is a header when none of its fields is a
+    number (column names, returned for the caller to interpret, see
+    :func:`header_columns`); every other line is data.  Errors name the file and line.
 
     Parameters
     ----------
@@ -101,8 +150,7 @@ def read_numeric_rows(path, *, kind: str, columns: str):
 
     Returns
     -------
-    rows : list of (line_number, text, values)
-        ``values`` is a list of finite floats.
+    NumericTable
     """
     import math
 
@@ -114,32 +162,114 @@ def read_numeric_rows(path, *, kind: str, columns: str):
     except OSError as exc:
         raise InputError(f"cannot read the {kind} file ({exc})", file=path) from None
     try:
-        lines = raw.decode("utf-8").splitlines()
+        lines = raw.decode("utf-8-sig").splitlines()
     except UnicodeDecodeError as exc:
-        raise InputError(f"not UTF-8 text (byte 0x{raw[exc.start]:02x}); a {kind} file is a "
+        at = exc.start + (3 if raw.startswith(b"\xef\xbb\xbf") else 0)
+        raise InputError(f"not UTF-8 text (byte 0x{raw[at]:02x}); a {kind} file is a "
                          f"text table of {columns}", file=path,
-                         line=raw[: exc.start].count(b"\n") + 1) from None
+                         line=raw[:at].count(b"\n") + 1) from None
     rows = []
-    header_allowed = True
-    for k, raw in enumerate(lines, start=1):
-        text = raw.strip()
+    header = header_line = None
+    first = True
+    for k, line in enumerate(lines, start=1):
+        text = line.strip()
         if not text or text.startswith("#"):
             continue
-        fields = [f.strip() for f in (text.split(",") if "," in text else text.split())]
+        fields = _split_fields(text)
         try:
             values = [float(f) for f in fields]
         except ValueError:
-            if header_allowed:
-                header_allowed = False
+            if first and not any(_is_number(f) for f in fields):
+                header, header_line = _split_header(text), k
+                first = False
                 continue
             raise InputError(f"not a number in {text!r}; expected {columns}",
                              file=path, line=k) from None
-        header_allowed = False
+        first = False
         if not all(math.isfinite(v) for v in values):
             raise InputError(f"non-finite value in {text!r}; every value must be a finite "
                              "number", file=path, line=k)
         rows.append((k, text, values))
-    return rows
+    return NumericTable(header=header, header_line=header_line, rows=rows)
+
+
+def read_numeric_rows(path, *, kind: str, columns: str):
+    """The data lines of :func:`read_numeric_table` (its header, if any, is dropped):
+    a list of ``(line_number, text, values)``."""
+    return read_numeric_table(path, kind=kind, columns=columns).rows
+
+
+def _column_key(name: str) -> str:
+    return re.sub(r"[\s\-]+", "_", name.strip().lower()).strip("_")
+
+
+def header_columns(header, *, names: dict, file, line: int | None, kind: str) -> list:
+    """What each column of a table header is, and the factor from its unit to metres.
+
+    A field is a column name, optionally with a length unit: ``x``, ``x_m``, ``x_mm``,
+    ``x [mm]``, ``x (m)``, ``x m`` (case, spaces and hyphens in names do not matter; the
+    units are those of :data:`LENGTH_UNITS`, metres when none is given).
+
+    Parameters
+    ----------
+    header : list of str
+        The header fields (:attr:`NumericTable.header`).
+    names : dict
+        ``{role: (name, ...)}``: the names each role of a column may have, e.g.
+        ``{"x": ("x",), "y": ("y",)}``.
+    file, line
+        Where the header is, for messages.
+    kind : str
+        What the file is ("road", "path"), for messages.
+
+    Returns
+    -------
+    list of (role, factor)
+        One per field.
+
+    Raises
+    ------
+    InputError
+        Naming the file, line and column: a unit that is not a length unit listed above,
+        a name no role has (the message lists the valid names), or a role given twice.
+    """
+    from flexpipe.errors import InputError
+
+    lookup = {_column_key(n): role for role, ns in names.items() for n in ns}
+    valid = "; ".join(f"{role}: {', '.join(ns)}" for role, ns in names.items())
+    units = ", ".join(LENGTH_UNITS)
+    out, seen = [], {}
+    for i, field in enumerate(header, start=1):
+        where = dict(file=file, line=line, key=field)
+        m = _BRACKET_UNIT.match(field)
+        if m:
+            name, unit = _column_key(m.group("name")), m.group("unit").strip()
+            if name not in lookup:
+                raise InputError(f"{kind} file header: column {i} {field!r} is not a column "
+                                 f"a {kind} has; valid names ({valid}), each optionally with "
+                                 f"a unit ({units}) as name_mm or name [mm]", **where)
+        else:
+            name, unit = _column_key(field), None
+            if name not in lookup:
+                head, _, tail = name.rpartition("_")
+                if head in lookup:
+                    name, unit = head, tail
+                else:
+                    raise InputError(
+                        f"{kind} file header: column {i} {field!r} is not a column a {kind} "
+                        f"has; valid names ({valid}), each optionally with a unit ({units}) "
+                        "as name_mm or name [mm]", **where)
+        if unit is not None and unit.lower() not in LENGTH_UNITS:
+            raise InputError(f"{kind} file header: column {i} {field!r} is in {unit!r}, not "
+                             f"a length unit flexpipe knows; valid units: {units}", **where)
+        role = lookup[name]
+        if role in seen:
+            raise InputError(f"{kind} file header: column {i} {field!r} is the {role} again "
+                             f"(column {seen[role]} {header[seen[role] - 1]!r}); each column "
+                             "once", **where)
+        seen[role] = i
+        out.append((role, 1.0 if unit is None else LENGTH_UNITS[unit.lower()]))
+    return out
 
 
 # --------------------------------------------------------------------------- output paths

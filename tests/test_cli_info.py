@@ -233,3 +233,67 @@ def test_info_warns_of_what_run_would_refuse(capsys, tmp_path):
     assert "corners.fl.wheel_center_m z = 0.3300 m" in cap.err
     assert main(["info", str(root / "cars" / "sedan.toml")]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+def test_info_sample_path_csv_behind_a_comment_is_a_path(capsys):
+    """paths/sample_xy.csv starts with a '#' comment: the header on the next line tells
+    the path (it was read as a road and failed).  Length from the file's points by hand."""
+    import numpy as np
+
+    root = Path(__file__).resolve().parents[1]
+    sample = root / "paths" / "sample_xy.csv"
+    xy = np.loadtxt(sample, delimiter=",", comments="#", skiprows=2)
+    length = float(np.hypot(*np.diff(xy, axis=0).T).sum())
+    assert main(["info", str(sample)]) == 0
+    out = capsys.readouterr().out
+    assert ": path " in out and f"{length:.6g} m long, {len(xy)} points" in out
+
+
+@pytest.mark.parametrize("text, kind, words", [
+    ("# lane change\nx_m,y_m\n0,0\n10,0\n20,1.75\n30,3.5\n40,3.5\n", "path",
+     ["y 0 .. 3.5 m", "5 points"]),
+    ("y_m,x_m\n0,0\n0,10\n3.5,20\n", "path", ["y 0 .. 3.5 m", "to (20, 3.5) m"]),
+    ("0,0\n10,0\n10,5\n5,8\n", "path", ["4 points"]),             # x goes back: no road
+    ("0,0,0\n10,0.01,0.02\n20,0,0\n", "road", ["20 m long", "max 20.00"]),
+    ("distance_mm,height_mm\n0,0\n10000,20\n20000,0\n", "road", ["20 m long", "max 20.00"]),
+])
+def test_info_csv_is_told_by_header_or_by_what_it_can_be(capsys, tmp_path, text, kind, words):
+    f = tmp_path / "f.csv"
+    f.write_text(text)
+    assert main(["info", str(f)]) == 0
+    out = capsys.readouterr().out
+    assert f": {kind} " in out, out
+    for w in words:
+        assert w in out, out
+
+
+def test_info_csv_that_can_be_road_or_path_asks_for_a_header(capsys, tmp_path):
+    f = tmp_path / "two.csv"
+    f.write_text("0,0\n10,0\n20,1.75\n30,3.5\n")
+    assert main(["info", str(f)]) == 2
+    err = capsys.readouterr().err
+    assert "two.csv, line 1" in err and "road (distance, height) or a path (x, y)" in err
+    assert "'x_m,y_m'" in err and "Traceback" not in err
+
+
+def test_info_tir_without_width_and_warnings_once(capsys, tmp_path):
+    """A .tir without [DIMENSION] WIDTH (runs accept it) is described, 'width not given';
+    the file is read once, so its ANGLE = 'deg' warning shows once."""
+    import warnings
+
+    lines = TIR.read_text().splitlines()
+    no_width = tmp_path / "no_width.tir"
+    no_width.write_text("\n".join(t for t in lines if not t.startswith("WIDTH ")) + "\n")
+    assert main(["info", str(no_width)]) == 0
+    out = capsys.readouterr().out
+    r0 = _tir_numbers(TIR)["UNLOADED_RADIUS"]
+    assert "width not given" in out and f"unloaded radius {r0 * 1e3:.1f} mm" in out
+    deg = tmp_path / "deg.tir"
+    deg.write_text("\n".join(t.replace("'radian'", "'deg'") if t.startswith("ANGLE ") else t
+                             for t in lines) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")      # (each warning call shows, none is merged)
+        assert main(["info", str(deg)]) == 0
+    cap = capsys.readouterr()
+    assert sum("ANGLE" in t for t in cap.err.splitlines()) == 1, cap.err
+    assert f"width {_tir_numbers(TIR)['WIDTH'] * 1e3:.0f} mm" in cap.out

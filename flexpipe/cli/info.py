@@ -11,9 +11,12 @@ its tables (:func:`toml_kind`): a car (``[car]``) is described by
 by their length, samples and extent; any other TOML file (a sweep, a driver, the
 half-car parameters) is a one-line error saying what it is and what ``info`` takes.
 
-A road's track RMS is weighted by length over the profile the car drives (linear between
-samples, :func:`track_statistics`), so non-uniform sampling does not bias it; its
-reference line is told as straight along x, placed or curved.  A mesh's section
+A ``.csv`` file is a road or a path by its header (``#`` comment lines before it skipped)
+or, without one, by what it can be (:func:`csv_kind`).  A road's track RMS is weighted by
+length over the profile the car drives (linear between samples,
+:func:`track_statistics`), so non-uniform sampling does not bias it; its reference line
+is told as straight along x, placed or curved.  A tyre file is read once; one without
+``[DIMENSION] WIDTH`` (which a run does not need) says "width not given".  A mesh's section
 properties carry their SI units, and its structural mass and centre of mass come from the
 properties it carries (:func:`flexpipe.fem.structural_mass.structural_mass`, no assembly).
 """
@@ -228,14 +231,23 @@ def road_text(road, *, file=None, table: dict | None = None) -> str:
 def tire_text(path) -> str:
     """Summary of a ``.tir`` tyre file as flexpipe reads it (PAC2002): size, vertical
     model, and at the nominal load FNOMIN the peak friction, slip stiffnesses, relaxation
-    lengths and the loaded radius."""
+    lengths and the loaded radius.  The file is read once (its warnings show once); a file
+    without ``[DIMENSION] WIDTH``, which a run does not need, says "width not given"."""
     import numpy as np
 
-    from flexpipe.tires import read_tir, tire_from_file
+    from flexpipe.errors import InputError
+    from flexpipe.tires import Pac2002Tire, read_tir
+    from flexpipe.tires.checks import probe_forces
     from flexpipe.vehicle.corners import static_loaded_radius
 
     props = read_tir(path)
-    tire = tire_from_file(path)
+    try:  # what tire_from_file(path) builds, from the one reading
+        tire = Pac2002Tire.from_properties(props)
+    except InputError as exc:
+        if exc.file is not None:
+            raise
+        raise InputError(str(exc), file=props.path, key=exc.key) from None
+    probe_forces(tire, props.path)
     mf, fz = tire.mf, props.fnomin
     mux, muy = (float(np.asarray(m)) for m in mf.peak_friction(fz))
     kx, ky = (float(np.asarray(k)) for k in mf.slip_stiffness(fz))
@@ -243,30 +255,69 @@ def tire_text(path) -> str:
     relax = ("no relaxation data" if np.isnan(sk) and np.isnan(sa) else
              f"relaxation lengths {sk * 1e3:.0f} mm (longitudinal), {sa * 1e3:.0f} mm "
              "(lateral)")
+    width = props.get("DIMENSION", "WIDTH")
+    width = ("width not given" if width is None else
+             f"width {width * 1e3:.0f} mm" if isinstance(width, float) else
+             f"width {width!r} (not a number)")
     return "\n".join([
         f"{path}: tyre ({props.property_file_format}, USE_MODE {props.use_mode}, "
         f"TYRESIDE {props.tyre_side})",
-        f"  unloaded radius {props.unloaded_radius * 1e3:.1f} mm, width "
-        f"{props.width * 1e3:.0f} mm; vertical stiffness {props.vertical_stiffness:.4g} N/m, "
-        f"damping {props.vertical_damping:.4g} N s/m",
+        f"  unloaded radius {props.unloaded_radius * 1e3:.1f} mm, {width}; vertical "
+        f"stiffness {props.vertical_stiffness:.4g} N/m, damping "
+        f"{props.vertical_damping:.4g} N s/m",
         f"  at FNOMIN = {fz:.0f} N: peak friction mu_x {mux:.3f}, mu_y {muy:.3f}; slip "
         f"stiffness {kx:.4g} N, cornering stiffness {abs(ky) * np.pi / 180:.4g} N/deg; "
         f"{relax}",
         f"  loaded radius at FNOMIN {static_loaded_radius(tire, fz) * 1e3:.1f} mm"])
 
 
-def csv_text(path) -> str:
-    """Summary of a ``.csv`` road profile (``distance_m, left_m, right_m`` or
-    ``distance_m, height_m``) or driver path (``x_m, y_m``), told by its header."""
+def csv_kind(path) -> str:
+    """Whether a ``.csv`` file is a road (``"road"``) or a driver path (``"path"``).
+
+    Told by the header when the file has one (``#`` comment lines before it are skipped):
+    one naming ``x`` and ``y`` (``x_m,y_m``, any unit) is a path, any other a road (whose
+    reader names a column it cannot place).  Without a header, by what the file can be:
+    three columns, or a first column that does not increase strictly, only one of them;
+    two columns that can be both (x increasing, a drivable path) are an error asking for
+    a header.
+    """
+    from flexpipe._io import header_columns, read_numeric_table
+    from flexpipe.driver.tracks import PATH_COLUMNS
     from flexpipe.errors import InputError
 
+    table = read_numeric_table(path, kind="road or path",
+                               columns="'distance, left, right' (road) or 'x, y' (path)")
+    if table.header is not None:
+        try:
+            cols = header_columns(table.header, names=PATH_COLUMNS, file=path,
+                                  line=table.header_line, kind="path")
+        except InputError:
+            return "road"
+        return "path" if {role for role, _ in cols} == {"x", "y"} else "road"
+    rows = [values for _, _, values in table.rows]
+    if not rows or len(rows[0]) != 2 or any(len(r) != 2 for r in rows):
+        return "road"  # (the road reader names what is wrong)
+    x = [r[0] for r in rows]
+    can_road = all(b > a for a, b in zip(x, x[1:], strict=False))
     try:
-        with open(path, encoding="utf-8", errors="replace") as f:
-            header = f.readline()
-    except OSError as exc:
-        raise InputError(f"cannot read the file ({exc.strerror})", file=path) from None
-    columns = [c.strip().lower() for c in header.split(",")]
-    if "x_m" in columns and "y_m" in columns:
+        from flexpipe.driver import Path as DPath
+
+        DPath.from_xy(x, [r[1] for r in rows])
+        can_path = True
+    except InputError:
+        can_path = False
+    if can_road and can_path:
+        raise InputError("two columns without a header: this can be a road (distance, "
+                         "height) or a path (x, y); add a header line naming the columns, "
+                         "'distance_m,height_m' or 'x_m,y_m'", file=path,
+                         line=table.rows[0][0])
+    return "path" if can_path else "road"
+
+
+def csv_text(path) -> str:
+    """Summary of a ``.csv`` road profile (``distance_m, left_m, right_m`` or
+    ``distance_m, height_m``) or driver path (``x_m, y_m``), told by :func:`csv_kind`."""
+    if csv_kind(path) == "path":
         from flexpipe.driver import read_path
 
         return path_text(read_path(path), file=path)

@@ -6,9 +6,19 @@ frequencies as field data) and ``frequencies.csv`` into ``--out`` (default
 
 A Nastran SOL 103 deck runs as Nastran would: its case-control ``SPC = n`` set (with
 ``GRID`` ``PS``) is held fixed and its ``METHOD`` ``EIGRL`` (number of roots ``ND``,
-frequency range ``V1..V2``) chooses the modes, unless ``--fixed`` / ``--n`` are given;
-``PARAM, COUPMASS, -1`` (lumped mass, Nastran's default when the deck says so) is
-honoured.
+frequency range ``V1..V2``) chooses the modes, unless ``--fixed`` / ``--n`` are given.
+An Abaqus deck likewise: the ``*BOUNDARY`` conditions in effect in its first
+``*FREQUENCY`` step are held fixed and that step's number of eigenvalues and frequency
+range choose the modes (:mod:`flexpipe.mesh.abaqus`).
+The mass matrix (printed as ``mass: ...``, see :func:`mass_choice`): ``PARAM, COUPMASS``
+when the deck gives it (-1: lumped, >= 0: consistent); without it, a deck with a ``SOL``
+statement gets Nastran's default, lumped mass (``COUPMASS = -1``), when its elements are
+shells, linear solids and springs - a deck with CBAR/CBEAM/CROD/CONROD or 10-node CTETRA
+keeps the consistent mass and says why (flexpipe's lumped mass of those has no rotary or
+torsional inertia, or lumps the mid-side nodes otherwise than Nastran may: add ``PARAM,
+COUPMASS, -1`` to use it).  Bulk data without
+a ``SOL`` statement (such as the car body decks) and the other mesh formats get the
+consistent mass, as ``flexpipe reduce`` always does.
 
 Example::
 
@@ -30,7 +40,11 @@ from flexpipe.errors import InputError
 
 def add_arguments(p) -> None:
     """Options of ``flexpipe modes``."""
-    p.add_argument("mesh", help="mesh file (.msh .inp .bdf/.nas/.dat .vtu/.vtk .stl/.obj/.ply)")
+    p.add_argument("mesh", help="mesh file (.msh .inp .bdf/.nas/.dat .vtu/.vtk .stl/.obj/.ply); "
+                   "a Nastran deck's SPC set and EIGRL apply (an Abaqus deck's *BOUNDARY and "
+                   "*FREQUENCY), and a Nastran deck's mass: PARAM,COUPMASS, "
+                   "else lumped (Nastran's default) for a SOL deck of shells/solids, "
+                   "consistent otherwise (printed as 'mass: ...')")
     p.add_argument("--material", help="library material: steel, aluminium, magnesium "
                    "(default: the materials the file carries, e.g. Nastran MAT1)")
     p.add_argument("--E", type=float, help="Young's modulus in Pa (overrides --material)")
@@ -132,9 +146,10 @@ def run(args) -> int:
                          keep=tuple(args.keep), prune_unreferenced=args.prune)
     if material is None:
         _check_file_materials(mesh)
+    lumped, mass_note = mass_choice(mesh)
     with _step("assembling", args.quiet):
         fe = assemble(mesh, material, allow_disconnected=args.allow_disconnected,
-                      progress=not args.quiet, lumped=bool(mesh.solution.get("lumped_mass")))
+                      progress=not args.quiet, lumped=lumped)
     fixed = None
     sol = dict(mesh.solution)
     if args.fixed:
@@ -171,12 +186,40 @@ def run(args) -> int:
                                              if args.fixed else "")
           + (f"; deck SPC: {', '.join(deck_sets(mesh))}" if fixed is not None
              and not args.fixed else ""))
+    print(mass_note)
     print(f"{'mode':>5}  {'frequency [Hz]':>16}")
     for k, f in enumerate(freqs):
         print(f"{k + 1:>5}  {f:>16.6g}")
     print(f"wrote {written[0]} ({len(freqs)} modes) and {out / 'frequencies.csv'}"
           + (f" and {len(written) - 1} per-mode files" if args.per_mode else ""))
     return 0
+
+
+#: cell types whose lumped mass (flexpipe.fem.lumped: translational row sums, no rotary
+#: inertia) is the one Nastran forms for COUPMASS = -1
+NASTRAN_LUMPED_TYPES = ("quad", "triangle", "tetra", "hexahedron", "wedge", "pyramid",
+                        "spring", "spring1", "vertex")
+
+
+def mass_choice(mesh) -> tuple[bool, str]:
+    """``(lumped, note)``: the mass matrix ``flexpipe modes`` uses for ``mesh`` and the line
+    it prints about it (see the module docstring)."""
+    sol = mesh.solution
+    if sol.get("lumped_mass") is not None:
+        lumped = bool(sol["lumped_mass"])
+        value = sol.get("coupmass", -1 if lumped else 1)
+        return lumped, f"mass: {'lumped' if lumped else 'consistent'} (PARAM,COUPMASS,{value})"
+    if sol.get("sol") is not None:
+        other = sorted({b.type for b in mesh.blocks if len(b)} - set(NASTRAN_LUMPED_TYPES))
+        if not other:
+            return True, "mass: lumped (Nastran's default, PARAM,COUPMASS absent)"
+        return False, ("mass: consistent (PARAM,COUPMASS absent: Nastran's default is lumped, "
+                       f"but for {', '.join(other)} elements flexpipe's lumped mass is not "
+                       "Nastran's; PARAM,COUPMASS,-1 in the deck uses it)")
+    if "wtmass" in mesh.info:          # Nastran bulk data without executive control
+        return False, ("mass: consistent (no SOL statement in the deck; a Nastran run "
+                       "would lump it: PARAM,COUPMASS,-1 in the deck does so here)")
+    return False, "mass: consistent"
 
 
 def deck_sets(mesh) -> list[str]:

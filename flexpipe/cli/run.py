@@ -48,9 +48,10 @@ def add_arguments(parser) -> None:
                         help="road file (.toml spec, .crg, .csv); default: flat")
     parser.add_argument("--path", default=None,
                         help="path file (.csv x,y or .toml [path], e.g. "
-                             "paths/slalom_18m.toml) or a keyword: 'straight' (straight "
-                             "along x, the default) or 'road' (follow the road's reference "
-                             "line)")
+                             "paths/slalom_18m.toml) or a keyword: 'straight' (the default: "
+                             "straight from the road's first sample along its start heading; "
+                             "along x from 0 for a road starting at 0 or no road) or 'road' "
+                             "(follow the road's reference line)")
     parser.add_argument("--speed", type=float, required=True,
                         help="constant target speed in km/h")
     parser.add_argument("--t-end", type=float, default=10.0, help="simulated time, s (10)")

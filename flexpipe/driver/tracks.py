@@ -35,7 +35,7 @@ import pathlib
 
 import numpy as np
 
-from flexpipe._io import read_numeric_rows
+from flexpipe._io import header_columns, read_numeric_table
 from flexpipe.driver.path import Path
 from flexpipe.errors import InputError
 from flexpipe.roads._tables import TableReader, read_toml
@@ -188,20 +188,49 @@ def iso3888_1(*, vehicle_width: float = 1.8, lead_in: float = 50.0, lead_out: fl
                                f"direction={direction})")
 
 
+#: column names a path CSV header may use, by role (see :func:`read_path_csv`)
+PATH_COLUMNS = {"x": ("x",), "y": ("y",)}
+
+
 def read_path_csv(path) -> Path:
-    """Read ``x, y`` points (m) from a CSV file (``#`` comments, optional header line)."""
+    """Read ``x, y`` points (m) from a CSV file.
+
+    ``#`` lines and blank lines are ignored (a UTF-8 byte order mark too).  The first other
+    line may be a header naming the columns ``x`` and ``y`` in either order, each
+    optionally with a length unit (``x_m``, ``y_mm``, ``x [mm]``, ``y (m)``: m, cm, mm or
+    km, converted to metres); a file without a header is read as ``x, y`` in metres.
+
+    Raises
+    ------
+    InputError
+        Naming the file and line (and the column for a header): a header column other
+        than x and y or in a unit that is not a length, a bad number, a wrong number of
+        columns, fewer than 2 points, repeated points or a turn back.
+    """
     path = pathlib.Path(path)
-    xs, ys, where = [], [], []
-    for k, _text, values in read_numeric_rows(path, kind="path", columns="'x, y' in metres"):
+    table = read_numeric_table(path, kind="path", columns="'x, y' in metres")
+    layout = ((0, 1.0), (1, 1.0))
+    if table.header is not None:
+        cols = header_columns(table.header, names=PATH_COLUMNS, file=path,
+                              line=table.header_line, kind="path")
+        where = {role: (i, f) for i, (role, f) in enumerate(cols)}
+        if len(where) != 2:
+            raise InputError(f"path file header ({', '.join(map(repr, table.header))}) "
+                             f"has no {'y' if 'x' in where else 'x'} column; a path header "
+                             "names x and y, e.g. 'x_m,y_m'", file=path,
+                             line=table.header_line)
+        layout = (where["x"], where["y"])
+    xs, ys, lines = [], [], []
+    for k, _text, values in table.rows:
         if len(values) != 2:
             raise InputError(f"{len(values)} columns; expected 2 (x, y)", file=path, line=k)
-        xs.append(values[0])
-        ys.append(values[1])
-        where.append(k)
+        xs.append(values[layout[0][0]] * layout[0][1])
+        ys.append(values[layout[1][0]] * layout[1][1])
+        lines.append(k)
     if len(xs) < 2:
         raise InputError(f"{len(xs)} point(s); a path needs at least 2", file=path,
-                         line=where[-1] if where else 1)
-    return Path.from_xy(xs, ys, name=path.stem, source=str(path), lines=where)
+                         line=lines[-1] if lines else 1)
+    return Path.from_xy(xs, ys, name=path.stem, source=str(path), lines=lines)
 
 
 PATH_TYPES = ("straight", "slalom", "iso3888_1", "points", "csv")

@@ -1,5 +1,8 @@
-"""Sections, masses, couplings and springs of the Abaqus reader (see
-:mod:`flexpipe.mesh.abaqus`): ``*BEAM SECTION`` shapes (RECT, CIRC, PIPE, BOX, I, L) and
+"""Sections, boundary conditions, masses, couplings and springs of the Abaqus reader (see
+:mod:`flexpipe.mesh.abaqus`): ``*SOLID SECTION``, ``*SHELL SECTION`` and ``*SHELL GENERAL
+SECTION`` parameters (``OFFSET``, ``DENSITY``; the ones that do not change M and K; the
+others refused), ``*BOUNDARY`` lines and types, the ``*FREQUENCY`` data line,
+``*BEAM SECTION`` shapes (RECT, CIRC, PIPE, BOX, I, L) and
 ``*BEAM GENERAL SECTION``, MASS/ROTARYI elements, ``*KINEMATIC COUPLING``,
 ``*COUPLING`` with ``*KINEMATIC`` (rigid links) or ``*DISTRIBUTING`` (RBE3-type
 interpolation, uniform weights or the node-based surface's weights), SPRING1/SPRING2
@@ -122,21 +125,23 @@ def _masses(deck, cells_of, index, where_e):
     return tuple(PointMass(node, m, I, id=eid) for node, (m, I, eid) in acc.items())
 
 
+def ref_node(deck, ref, index, what, f, ln) -> int:
+    """Node index of a REF NODE= (a node label, or a node set holding one node, as
+    Abaqus/CAE writes for a reference point)."""
+    ids = deck.nodes_of(ref, what, f, ln)
+    if len(ids) != 1:
+        raise MeshError(f"{what}={ref}: the node set holds {len(ids)} nodes; valid: one node",
+                        file=f, line=ln)
+    return int(index(ids, lambda _, f=f, ln=ln: (f, ln), what)[0])
+
+
 def _couplings(deck, index):
     links = []
     for ref, rows, f, ln in deck.couplings:
-        master = int(index([ref], lambda _, f=f, ln=ln: (f, ln),
-                           "*KINEMATIC COUPLING REF NODE")[0])
+        master = ref_node(deck, ref, index, "*KINEMATIC COUPLING REF NODE", f, ln)
         by_dofs = defaultdict(list)
         for tok, first, last, lf, lln in rows:
-            if tok.isdigit():
-                nodes = [int(tok)]
-            else:
-                key = deck.set_key(deck.nsets, tok)
-                if key is None:
-                    raise MeshError(f"*KINEMATIC COUPLING refers to NSET '{tok}', which is "
-                                    "not defined", file=lf, line=lln)
-                nodes = deck.nsets[key]
+            nodes = deck.nodes_of(tok, "*KINEMATIC COUPLING", lf, lln)
             dofs = "".join(str(d) for d in range(first, last + 1))
             by_dofs[dofs].extend(nodes)
         node_dofs = defaultdict(str)
@@ -158,20 +163,13 @@ def _surface_nodes(deck, name, f, ln, index):
         raise MeshError(f"*COUPLING refers to SURFACE '{name}', which is not defined (as "
                         "*SURFACE, TYPE=NODE before it)", file=f, line=ln)
     ids, weights = [], []
-    for lf, lln, t in rows:
+    for lf, lln, t, ctx in rows:
         tok = [x.strip() for x in t.split(",")]
         w = parse_real(tok[1]) if len(tok) > 1 and tok[1] else 1.0
         if w is None or not (np.isfinite(w) and w > 0):
             raise MeshError(f"*SURFACE {name}: weight '{tok[1]}'; valid: > 0", file=lf,
                             line=lln)
-        if tok[0].isdigit():
-            nodes = [int(tok[0])]
-        else:
-            key = deck.set_key(deck.nsets, tok[0])
-            if key is None:
-                raise MeshError(f"*SURFACE {name} refers to NSET '{tok[0]}', which is not "
-                                "defined", file=lf, line=lln)
-            nodes = deck.nsets[key]
+        nodes = deck.nodes_of(deck.node_ref(tok[0], ctx), f"*SURFACE {name}", lf, lln)
         ids += list(nodes)
         weights += [w] * len(nodes)
     idx = index(ids, lambda _, f=f, ln=ln: (f, ln), f"*SURFACE {name}")
@@ -184,7 +182,7 @@ def _couplings2(deck, index):
 
     links, interp = [], []
     for kind, ref, surf, f, ln, dofs in deck.couplings2:
-        r = int(index([ref], lambda _, f=f, ln=ln: (f, ln), "*COUPLING REF NODE")[0])
+        r = ref_node(deck, ref, index, "*COUPLING REF NODE", f, ln)
         nodes, w = _surface_nodes(deck, surf, f, ln, index)
         nodes, first = np.unique(nodes, return_index=True)
         w = w[first]
@@ -313,7 +311,7 @@ def _plies(rows, p, f, ln) -> list:
     return plies
 
 
-def _composite(deck, plies, f, ln) -> dict:
+def _composite(deck, plies, f, ln, nsm: float = 0.0) -> dict:
     """Section of a composite shell by classical lamination (see flexpipe.fem.laminate)."""
     from flexpipe.fem.laminate import ply_q
     from flexpipe.fem.laminate import section as lam_section
@@ -332,6 +330,185 @@ def _composite(deck, plies, f, ln) -> dict:
             Q, Gz = ply_q(m["E"], m["E"], m["nu"], G), G
         out.append((Q, th, ang, Gz, m.get("rho", 0.0)))
     try:
-        return lam_section(out)
+        return lam_section(out, nsm)
     except ValueError as exc:
         raise MeshError(f"*SHELL SECTION, COMPOSITE: {exc}", file=f, line=ln) from None
+
+
+#: section parameters: read, accepted because they do not change M and K of a linear
+#: elastic section (integration rule, hourglass controls, thickness-change and thermal
+#: options, CAE layup name, material axes of an isotropic section), or refused
+_SECTION_READ = {"SOLID SECTION": ("ELSET", "MATERIAL"),
+                 "SHELL SECTION": ("ELSET", "MATERIAL", "COMPOSITE", "SYMMETRIC", "OFFSET",
+                                   "DENSITY"),
+                 "SHELL GENERAL SECTION": ("ELSET", "MATERIAL", "COMPOSITE", "SYMMETRIC",
+                                           "OFFSET", "DENSITY")}
+_SECTION_HARMLESS = {"SOLID SECTION": ("ORIENTATION", "CONTROLS"),
+                     "SHELL SECTION": ("ORIENTATION", "CONTROLS", "SECTION INTEGRATION",
+                                       "POISSON", "TEMPERATURE", "THICKNESS MODULUS", "LAYUP"),
+                     "SHELL GENERAL SECTION": ("ORIENTATION", "CONTROLS", "POISSON",
+                                               "LAYUP")}
+
+
+def _section_props(kw, p, rows, f, ln) -> dict:
+    """Section data of ``*SOLID SECTION``, ``*SHELL SECTION`` or ``*SHELL GENERAL SECTION``
+    (isotropic MATERIAL or COMPOSITE): ``thickness``, ``composite`` plies, ``offset``
+    (OFFSET, a fraction of the thickness) and ``nsm`` (DENSITY, mass per area).  Other
+    parameters are accepted when they do not change M and K, else refused."""
+    known = _SECTION_READ[kw] + _SECTION_HARMLESS[kw]
+    bad = [k for k in p if k not in known]
+    if bad:
+        hint = {"NODAL THICKNESS": " (thickness from *NODAL THICKNESS: give the thickness on "
+                                   "the data line instead)",
+                "SHELL THICKNESS": " (thickness from a distribution: give it on the data "
+                                   "line instead)",
+                "COMPOSITE": " (layered solids: use homogeneous solid sections)"}.get(bad[0], "")
+        raise MeshError(f"*{kw} parameter {bad[0]} is not supported{hint}; valid: "
+                        f"{', '.join(_SECTION_READ[kw])} (and, not changing M and K, "
+                        f"{', '.join(_SECTION_HARMLESS[kw])})", file=f, line=ln)
+    props = {}
+    if kw == "SOLID SECTION":
+        return props
+    composite = "COMPOSITE" in p
+    if composite and "ORIENTATION" in p:
+        raise MeshError(f"*{kw}, COMPOSITE with ORIENTATION={p['ORIENTATION']} is not "
+                        "supported (ply angles are taken from the global X axis projected on "
+                        "the shell)", file=f, line=ln)
+    if composite and "MATERIAL" in p:
+        raise MeshError(f"*{kw}: COMPOSITE and MATERIAL= exclude each other (the plies name "
+                        "their materials)", file=f, line=ln)
+    if "SYMMETRIC" in p and not composite:
+        raise MeshError(f"*{kw}: SYMMETRIC applies to a COMPOSITE section only", file=f,
+                        line=ln)
+    if kw == "SHELL GENERAL SECTION" and not composite and "MATERIAL" not in p:
+        raise MeshError("*SHELL GENERAL SECTION without MATERIAL= or COMPOSITE (stiffness "
+                        "matrices on the data lines, or USER) is not supported; give "
+                        "MATERIAL=<isotropic material> and the thickness, as *SHELL SECTION",
+                        file=f, line=ln)
+    if composite:
+        props["composite"] = _plies(rows, p, f, ln)
+    else:
+        if not rows:
+            raise MeshError(f"*{kw} needs a data line with the thickness", file=f, line=ln)
+        if kw == "SHELL GENERAL SECTION" and len(rows) > 1:
+            raise MeshError("*SHELL GENERAL SECTION with MATERIAL= has one data line (the "
+                            "thickness)", file=rows[1][0], line=rows[1][1])
+        props["thickness"] = values(*rows[0], "shell thickness", count=1)[0]
+        if not (np.isfinite(props["thickness"]) and props["thickness"] > 0):
+            raise MeshError(f"*{kw} thickness {props['thickness']}; valid: > 0",
+                            file=rows[0][0], line=rows[0][1])
+    if "OFFSET" in p:
+        v = p["OFFSET"].upper()
+        off = {"SPOS": 0.5, "SNEG": -0.5}.get(v, parse_real(v) if v else None)
+        if off is None or not np.isfinite(off):
+            raise MeshError(f"*{kw} OFFSET={p['OFFSET']}; valid: SPOS, SNEG or a number (the "
+                            "reference surface's distance from the mid-surface, a fraction "
+                            "of the thickness along the normal); distributions are not "
+                            "supported", file=f, line=ln)
+        if off:
+            props["offset"] = off
+    if "DENSITY" in p:
+        nsm = parse_real(p["DENSITY"]) if p["DENSITY"] else None
+        if nsm is None or not (np.isfinite(nsm) and nsm >= 0):
+            raise MeshError(f"*{kw} DENSITY={p['DENSITY']}; valid: a mass per unit area >= 0",
+                            file=f, line=ln)
+        if nsm:
+            props["nsm"] = nsm
+    return props
+
+
+#: named *BOUNDARY types and the DOF they hold (Abaqus conventions)
+BC_TYPES = {"ENCASTRE": "123456", "PINNED": "123", "XSYMM": "156", "YSYMM": "246",
+            "ZSYMM": "345", "XASYMM": "234", "YASYMM": "135", "ZASYMM": "126"}
+_BC_PARAMS = ("OP", "TYPE", "AMPLITUDE", "FIXED")
+
+
+def _boundary(deck, p, lines, f, ln):
+    """Rows ``(node id or node set key, dofs "123", file, line)`` of a ``*BOUNDARY``
+    block, and whether it has ``OP=NEW``.  A non-zero value is held at zero with a
+    warning: a natural-frequency analysis (as Abaqus's ``*FREQUENCY`` step) fixes the DOF."""
+    bad = [k for k in p if k not in _BC_PARAMS]
+    if bad:
+        raise MeshError(f"*BOUNDARY parameter {bad[0]} is not supported; valid: OP=MOD|NEW, "
+                        "TYPE=DISPLACEMENT, AMPLITUDE, FIXED", file=f, line=ln)
+    op = p.get("OP", "MOD").upper()
+    if op not in ("MOD", "NEW"):
+        raise MeshError(f"*BOUNDARY OP={p['OP']}; valid: MOD, NEW", file=f, line=ln)
+    kind = p.get("TYPE", "DISPLACEMENT").upper()
+    if kind != "DISPLACEMENT":
+        raise MeshError(f"*BOUNDARY TYPE={p['TYPE']} is not supported; valid: DISPLACEMENT "
+                        "(zero displacements and rotations held fixed)", file=f, line=ln)
+    ctx = deck.ctx()
+    rows, nonzero = [], []
+    for lf, lln, t in lines.data():
+        tok = [x.strip() for x in t.split(",")]
+        tok += [""] * (4 - len(tok))
+        if not tok[0] or not tok[1]:
+            raise MeshError("*BOUNDARY line needs 'node or node set, first DOF[, last DOF[, "
+                            "value]]' or 'node or node set, type' (ENCASTRE, PINNED, XSYMM, ...)",
+                            file=lf, line=lln)
+        if not tok[1].isdigit():
+            dofs = BC_TYPES.get(tok[1].upper())
+            if dofs is None:
+                raise MeshError(f"*BOUNDARY type '{tok[1]}' is not known; valid: a DOF number "
+                                f"1..6 or {', '.join(BC_TYPES)}", file=lf, line=lln)
+        else:
+            first = int(tok[1])
+            last = int(tok[2]) if tok[2].isdigit() else first
+            if tok[2] and not tok[2].isdigit():
+                raise MeshError(f"*BOUNDARY last DOF '{tok[2]}'; valid: an integer 1..6",
+                                file=lf, line=lln)
+            if not 1 <= first <= last <= 6:
+                raise MeshError(f"*BOUNDARY DOF {first}..{last}; valid: first <= last within "
+                                "1..6 (displacements 1-3, rotations 4-6)", file=lf, line=lln)
+            dofs = "".join(str(d) for d in range(first, last + 1))
+            if tok[3]:
+                v = parse_real(tok[3])
+                if v is None or not np.isfinite(v):
+                    raise MeshError(f"*BOUNDARY value '{tok[3]}' is not a number", file=lf,
+                                    line=lln)
+                if v:
+                    nonzero.append((lf, lln, tok[0], tok[3]))
+        rows.append((deck.node_ref(tok[0], ctx), dofs, lf, lln))
+    if nonzero:
+        lf, lln, what, v = nonzero[0]
+        warnings.warn(MeshWarning(
+            f"{lf} line {lln}: *BOUNDARY prescribes non-zero values ({len(nonzero)} line(s), "
+            f"e.g. {what} = {v}); the natural modes hold these DOF fixed (as a *FREQUENCY "
+            "step does), the values are not used"), stacklevel=5)
+    return rows, op == "NEW"
+
+
+def _frequency(p, rows, f, ln):
+    """``(n, f_min, f_max, file, line)`` of a ``*FREQUENCY`` step (None where blank)."""
+    solver = p.get("EIGENSOLVER", "LANCZOS").upper()
+    if solver not in ("LANCZOS", "AMS", "SUBSPACE"):
+        raise MeshError(f"*FREQUENCY EIGENSOLVER={p['EIGENSOLVER']}; valid: LANCZOS, AMS, "
+                        "SUBSPACE", file=f, line=ln)
+    if not rows:
+        raise MeshError("*FREQUENCY needs a data line (number of eigenvalues, frequency range)",
+                        file=f, line=ln)
+    lf, lln, t = rows[0]
+    tok = [x.strip() for x in t.split(",")] + [""] * 3
+    n = None
+    if tok[0]:
+        if not tok[0].isdigit() or int(tok[0]) < 1:
+            raise MeshError(f"*FREQUENCY number of eigenvalues '{tok[0]}'; valid: an integer "
+                            ">= 1 or blank", file=lf, line=lln)
+        n = int(tok[0])
+    fields = (None, tok[1]) if solver == "SUBSPACE" else (tok[1], tok[2])
+    rng = []
+    for what, s in zip(("minimum", "maximum"), fields, strict=True):
+        v = parse_real(s) if s else None
+        if s and (v is None or not np.isfinite(v) or v < 0):
+            raise MeshError(f"*FREQUENCY {what} frequency '{s}'; valid: a frequency >= 0 "
+                            "(cycles per time) or blank", file=lf, line=lln)
+        rng.append(v)
+    f_min, f_max = rng
+    if n is None and f_max is None:
+        raise MeshError("*FREQUENCY gives neither the number of eigenvalues nor a maximum "
+                        "frequency", file=lf, line=lln)
+    if f_min is not None and f_max is not None and f_min >= f_max:
+        raise MeshError(f"*FREQUENCY range {f_min:g}..{f_max:g}; valid: minimum < maximum",
+                        file=lf, line=lln)
+    return n, f_min, f_max, lf, lln

@@ -3,7 +3,12 @@
 Handles free field (commas), small field (8 characters), large field (16 characters,
 ``NAME*`` and ``*`` continuation lines), continuation lines (first field blank, ``+`` or
 ``*``), ``$`` comments, executive/case control before ``BEGIN BULK``, ``ENDDATA`` and
-``INCLUDE 'file'`` (relative to the including file).  Numbers may use Nastran's implied
+``INCLUDE 'file'`` (relative to the including file; a quoted name may continue over the
+following lines up to its closing quote, as MSC/NX Nastran allow).  The bulk data starts
+after the ``BEGIN BULK`` line, matched as Nastran's free-format case control does: any case,
+any blanks between and before the words, text after them (``begin  bulk``, ``BEGIN BULK
+AUXMODEL=1``); a deck with ``CEND`` but no such line is an error (its executive and case
+control would otherwise be read as bulk data).  Numbers may use Nastran's implied
 exponent (``7.85-9``, ``1.+5``) or ``D`` exponents.
 
 A deck cut short is an error naming the file, the line and the card (:func:`cut_checks`):
@@ -115,7 +120,26 @@ def _split(line: str) -> tuple[str, list[str]]:
     return first, [line[s].strip() for s in _SMALL]
 
 
-def _include_target(line: str, path: Path, lineno: int) -> Path:
+def _include_statement(lines: list[str], i: int, s: str, path: Path) -> tuple[str, int]:
+    """The whole INCLUDE statement starting on line ``i`` (code ``s``) and the index of its
+    last line.  A quoted file name that is not closed on the line continues on the next
+    lines (MSC/NX Nastran), each stripped of its leading and trailing blanks, until the
+    closing quote."""
+    m = re.match(r"^\s*INCLUDE\s+(['\"])", s, flags=re.IGNORECASE)
+    if m is None or s.count(m.group(1)) != 1:
+        return s, i
+    q, parts = m.group(1), [s.rstrip()]
+    for j in range(i + 1, len(lines)):
+        t = lines[j].split("$", 1)[0].strip()
+        parts.append(t)
+        if q in t:
+            return "".join(parts), j
+    raise MeshError(f"INCLUDE: the file name opened with {q} on this line is never closed "
+                    f"(no closing {q} up to the end of the file); a name continued on the "
+                    f"next lines must end with {q}", file=str(path), line=i + 1)
+
+
+def _include_target(line: str, path: Path, lineno: int, last: int | None = None) -> Path:
     m = re.match(r"^\s*INCLUDE\s+['\"]?([^'\"]+)['\"]?\s*$", line, flags=re.IGNORECASE)
     if not m:
         raise MeshError("cannot parse INCLUDE statement; write INCLUDE 'file.bdf'",
@@ -125,9 +149,35 @@ def _include_target(line: str, path: Path, lineno: int) -> Path:
         near = path.parent / target
         target = near if near.exists() or not target.exists() else target
     if not target.is_file():
-        raise MeshError(f"INCLUDE file '{m.group(1)}' not found (looked next to {path.name})",
-                        file=str(path), line=lineno)
+        span = f" (the name continued over lines {lineno}-{last})" if last else ""
+        raise MeshError(f"INCLUDE file '{m.group(1)}'{span} not found (looked next to "
+                        f"{path.name})", file=str(path), line=lineno)
     return target
+
+
+#: the case-control line that starts the bulk data: free format, any case, blanks
+#: before and between the words, anything after (MSC/NX ``BEGIN BULK [AUXMODEL=..]``)
+_BEGIN_BULK = re.compile(r"\s*BEGIN\s+BULK(?![A-Z0-9_])", re.IGNORECASE)
+_CEND = re.compile(r"^[ \t]*CEND[ \t]*(?:\$.*)?$", re.IGNORECASE | re.MULTILINE)
+
+
+def bulk_start(lines: list[str], text: str, path: Path) -> int:
+    """Index of the first bulk-data line of a deck: the line after ``BEGIN BULK`` (see the
+    module docstring), 0 without one.  A deck with a ``CEND`` line (the end of the
+    executive control) but no ``BEGIN BULK`` is an error naming the ``CEND`` line."""
+    for i, ln in enumerate(lines):
+        s = ln.lstrip()
+        if s[:5].upper() == "BEGIN" and _BEGIN_BULK.match(s.split("$", 1)[0]):
+            return i + 1
+    m = _CEND.search(text)
+    if m is not None:
+        line = next((i + 1 for i, ln in enumerate(lines)
+                     if _CEND.match(ln.split("$", 1)[0])), None)
+        raise MeshError("CEND (end of the executive control) but no BEGIN BULK line "
+                        "follows: the case control and the bulk data cannot be told apart; "
+                        "start the bulk data with a line 'BEGIN BULK'", file=str(path),
+                        line=line)
+    return 0
 
 
 #: cards taken by the vectorized fast path when written in plain small-field format
@@ -274,11 +324,7 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
     seq = _seq if _seq is not None else [0]
     text = read_deck_text(path, _stack, include="INCLUDE", kind="a Nastran bulk-data")
     lines = text.splitlines()
-    start = 0
-    for i, ln in enumerate(lines):
-        if ln.lstrip().upper().startswith("BEGIN BULK"):
-            start = i + 1
-            break
+    start = bulk_start(lines, text, path)
     if control is not None:
         control.extend(lines[:max(start - 1, 0)])
     base = seq[0]
@@ -299,7 +345,10 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
     last = -1                    # index of the last card line read card by card
     includes = []
     stop = None                  # index of the ENDDATA line
+    skip_to = -1                 # last line of a continued INCLUDE file name
     for i in others:
+        if i <= skip_to:
+            continue
         if fast_at:              # a fast line since the last card: it is the current card
             p = bisect.bisect_left(fast_at, i) - 1
             if p >= 0 and fast_at[p] > last:
@@ -320,7 +369,9 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
             break
         if head == "INCLUDE":
             current, last = None, -1
-            includes.append((i, _include_target(s, path, i + 1)))
+            s, skip_to = _include_statement(lines, i, s, path)
+            includes.append((i, _include_target(s, path, i + 1, skip_to + 1 if skip_to > i
+                                                else None)))
             continue
         first, data = _split(s)
         if first == "" or first[0] in "+*":
@@ -359,23 +410,70 @@ def read_cards(path: Path, *, fast: FastLines | None = None, control: list | Non
     return cards
 
 
-_CASE = re.compile(r"^\s*(SPC|METHOD|SOL)\s*=?\s*(\d+)\s*$", re.IGNORECASE)
+_CASE = re.compile(r"^\s*(SPC|METHOD|SOL)\s*(?:\(\s*([A-Za-z]+)\s*\))?\s*=?\s*(\d+)\s*$",
+                   re.IGNORECASE)
+_CASE_WORD = re.compile(r"^\s*(SPC|METHOD)(?![A-Z0-9_])", re.IGNORECASE)
+#: named solutions of the executive SOL statement that compute normal modes
+_SOL_NAMES = {"SEMODES": 103, "MODES": 103}
 
 
-def case_control(lines: list[str]) -> dict:
+def case_control(lines: list[str], path=None) -> dict:
     """``SOL``, ``SPC`` and ``METHOD`` set ids of the executive/case control section.
 
     ``lines`` are the lines of the main file before ``BEGIN BULK`` (``read_cards(...,
     control=lines)``; empty when the file has no ``BEGIN BULK`` line).  The first
     occurrence wins (global case control, else the first subcase); each value is ``(set
-    id, line number)``.
+    id, line number)``.  ``METHOD`` may carry a describer, ``METHOD(STRUCTURE) = n`` or
+    ``METHOD(BOTH) = n`` (MSC/NX, HyperMesh/OptiStruct): the structure's method;
+    ``METHOD(FLUID)`` is not for the structure and is skipped with a warning, and so is an
+    ``SPC``/``METHOD`` line this reader cannot read (e.g. ``SPC = ALL``), naming ``path``
+    and the line.  ``SOL SEMODES`` counts as ``SOL 103``.
     """
     out: dict = {}
+    where = f"{path}, " if path else ""
     for i, ln in enumerate(lines):
         s = ln.split("$", 1)[0]
-        m = _CASE.match(s.replace("=", " = ", 1) if "=" in s else s)
-        if m is None and s.strip().upper().startswith("SOL "):
-            m = re.match(r"^\s*(SOL)\s+(\d+)", s, re.IGNORECASE)
-        if m:
-            out.setdefault(m.group(1).upper(), (int(m.group(2)), i + 1))
+        if not s.strip():
+            continue
+        m = _CASE.match(s)
+        if m and m.group(2) is not None:
+            word, describer = m.group(1).upper(), m.group(2).upper()
+            ok = word == "METHOD" and (describer in ("BOTH", "STRUCTURE")
+                                       or (len(describer) >= 4
+                                           and "STRUCTURE".startswith(describer)))
+            if not ok:
+                _case_warning(f"{where}line {i + 1}: case control '{s.strip()}' is ignored: "
+                              + ("METHOD(FLUID) selects the fluid's eigenvalue method, not "
+                                 "the structure's" if word == "METHOD"
+                                 and "FLUID".startswith(describer) else
+                                 f"the describer ({m.group(2)}) is not understood")
+                              + f"; valid: {word} = n" + (", METHOD(STRUCTURE) = n, "
+                                                          "METHOD(BOTH) = n"
+                                                          if word == "METHOD" else ""))
+                continue
+        if m is None:
+            t = re.match(r"^\s*SOL\s+(\d+|[A-Za-z]+)", s, re.IGNORECASE)
+            if t:
+                v = t.group(1).upper()
+                if v.isdigit() or v in _SOL_NAMES:
+                    out.setdefault("SOL", (int(v) if v.isdigit() else _SOL_NAMES[v], i + 1))
+                else:
+                    out.setdefault("SOL", (v, i + 1))
+                continue
+            w = _CASE_WORD.match(s)
+            if w and w.group(1).upper() not in out:
+                _case_warning(f"{where}line {i + 1}: case control '{s.strip()}' is not "
+                              f"understood and ignored; valid: {w.group(1).upper()} = n (a "
+                              "set id)" + (", METHOD(STRUCTURE) = n"
+                                          if w.group(1).upper() == "METHOD" else ""))
+            continue
+        out.setdefault(m.group(1).upper(), (int(m.group(3)), i + 1))
     return out
+
+
+def _case_warning(text: str) -> None:
+    import warnings
+
+    from flexpipe.mesh.validate import MeshWarning
+
+    warnings.warn(MeshWarning(text), stacklevel=4)

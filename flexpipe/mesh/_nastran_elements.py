@@ -80,14 +80,68 @@ def element(card: Card, els: dict, converted: dict | None = None) -> None:
         raise card.error(f"{card.name} with {n} node(s) ({why}) is not supported; valid: "
                          f"{sorted(types)} node(s)")
     els[types[n]].append((card, eid, pid, g))
-    tcols = {"CQUAD4": range(10, 14), "CTRIA3": range(11, 14)}.get(card.name, ())
-    if any(card.raw(k) for k in tcols):
-        warnings.warn(MeshWarning(f"{card.file} line {card.line}: {card.name} {eid} corner "
-                                  "thicknesses T1.. are ignored; the PSHELL T applies"),
-                      stacklevel=4)
     if card.name == "CBEAM" and (card.raw(16) or card.raw(17)):
         warnings.warn(MeshWarning(f"{card.file} line {card.line}: CBEAM {eid} warping grids "
                                   "SA/SB are ignored (no warping DOF)"), stacklevel=4)
+
+
+#: shell card -> (data indices of the corner thicknesses T1.., index of TFLAG) (QRG)
+CORNER_T = {"CQUAD4": (range(10, 14), 9), "CTRIA3": (range(11, 14), 10),
+            "CQUAD8": (range(10, 14), 16), "CTRIA6": (range(10, 13), 13)}
+
+
+def corner_thickness(card: Card):
+    """``(TFLAG, [T1, T2, ...])`` of a shell card that gives corner thicknesses (None for
+    a blank Ti), or None when it gives none (blank Ti with TFLAG 0 or 1: the PSHELL T)."""
+    cols, fcol = CORNER_T.get(card.name, ((), None))
+    if not any(card.raw(k) for k in cols):
+        if fcol is not None and card.raw(fcol) not in ("", "0", "1"):
+            raise card.error(f"TFLAG = {card.raw(fcol)}; valid: 0, 1 or blank")
+        return None
+    tflag = card.int(fcol, "TFLAG", 0)
+    if tflag not in (0, 1):
+        raise card.error(f"TFLAG = {tflag}; valid: 0 (T1.. are thicknesses), 1 (factors on "
+                         "the PSHELL T) or blank")
+    return tflag, [card.real(k, f"T{j + 1}", None) for j, k in enumerate(cols)]
+
+
+def element_thickness(rows, corners, user_of, T, prop: Card):
+    """Thickness of the shell cells ``rows`` of one PSHELL (``T`` its T, None if blank):
+    the mean of the element's corner thicknesses (``corners[row]`` from
+    :func:`corner_thickness`) where it gives them, ``T`` elsewhere (NaN if T is blank).
+    Returns ``(t, number of elements whose corners differ)``."""
+    t = np.full(len(rows), np.nan if T is None else float(T))
+    varying = 0
+    for k, j in enumerate(rows):
+        cj = corners[j]
+        if cj is None:
+            continue
+        tflag, vals = cj
+        user = user_of(int(j))
+        names = [f"T{i + 1}" for i in range(len(vals))]
+        if tflag == 1:
+            if T is None:
+                raise user.error(f"TFLAG = 1 (T1.. are factors on the PSHELL T) but PSHELL "
+                                 f"{prop.label()} (line {prop.line}) has T blank; give the "
+                                 "PSHELL T, or the thicknesses with TFLAG blank")
+            v = [T * (1.0 if x is None else x) for x in vals]
+        else:
+            blank = [n for n, x in zip(names, vals, strict=True) if x is None]
+            if blank and T is None:
+                raise user.error(f"corner thickness {', '.join(blank)} is blank and PSHELL "
+                                 f"{prop.label()} (line {prop.line}) has T blank: give every "
+                                 f"{names[0]}-{names[-1]} or the PSHELL T")
+            v = [T if x is None else x for x in vals]
+        v = np.array(v, dtype=float)
+        if not np.isfinite(v).all() or (v < 0).any() or not (v > 0).any():
+            raise user.error(f"corner thicknesses {names[0]}-{names[-1]} = "
+                             f"{', '.join(f'{x:g}' for x in v)}"
+                             + (" (times PSHELL T)" if tflag == 1 else "")
+                             + "; valid: >= 0 and not all zero")
+        t[k] = v.mean()
+        if v.max() - v.min() > 1e-12 * v.max():
+            varying += 1
+    return t, varying
 
 
 def line_data(items, X, conn, cd_frames, gid, sorter):
@@ -151,10 +205,15 @@ def split_second_order(els: dict, X: np.ndarray, max_gid: int):
 
 
 def cell_arrays(cell_type, items, fa, fast, gid, sorter):
-    """``eid, pid, conn, zoffs, theta_given, card_of`` of one cell type: card-by-card
-    ``items`` (node indices already resolved) and the fast-path arrays ``fa``, in file
-    order.  ``theta_given`` holds the THETA/MCID field of shells ('' when blank)."""
+    """``eid, pid, conn, zoffs, theta_given, card_of, corners`` of one cell type:
+    card-by-card ``items`` (node indices already resolved) and the fast-path arrays ``fa``,
+    in file order.  ``theta_given`` holds the THETA/MCID field of shells ('' when blank),
+    ``corners`` the :func:`corner_thickness` of each shell (None: none given)."""
     k = len(items)
+    corners = None
+    if cell_type in ("quad", "triangle"):
+        corners = np.empty(k, dtype=object)
+        corners[:] = [corner_thickness(it[0]) for it in items]
     eid = np.array([it[1] for it in items], dtype=np.int64)
     pid = np.array([it[2] for it in items], dtype=np.int64)
     conn = np.array([it[3] for it in items], dtype=np.int64)
@@ -166,7 +225,7 @@ def cell_arrays(cell_type, items, fa, fast, gid, sorter):
         theta = np.array([it[0].raw(zi - 1) if it[0].name in ("CQUAD4", "CTRIA3")
                           else "" for it in items], dtype=object)
     if fa is None:
-        return eid, pid, conn, zoff, theta, lambda j: items[j][0]
+        return eid, pid, conn, zoff, theta, lambda j: items[j][0], corners
     name = "CQUAD4" if cell_type == "quad" else "CTRIA3"
     lazy = _fast.Lazy(lambda j: fast.card(name, j), len(fa["eid"]))
     fconn = index_of(gid, sorter, fa["g"], lazy, "a node")
@@ -180,7 +239,8 @@ def cell_arrays(cell_type, items, fa, fast, gid, sorter):
     return (np.concatenate([eid, fa["eid"]])[order], np.concatenate([pid, fa["pid"]])[order],
             np.concatenate([conn.reshape(k, fconn.shape[1]), fconn])[order],  # noqa: E501
             np.concatenate([zoff, fa["zoffs"]])[order],
-            np.concatenate([theta, _decoded(fa["theta"])])[order], card_of)
+            np.concatenate([theta, _decoded(fa["theta"])])[order], card_of,
+            np.concatenate([corners, np.full(len(fa["eid"]), None, dtype=object)])[order])
 
 
 def _decoded(col: np.ndarray) -> np.ndarray:

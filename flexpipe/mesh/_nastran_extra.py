@@ -2,10 +2,16 @@
 
 * ``SPC``, ``SPC1`` (``THRU``), ``SPCADD`` -> DOF sets ``"SPC<sid>"`` of
   (node index, component); ``GRID`` field ``PS`` -> set ``"GRID_PS"`` (always applied).
-  Enforced values ``D`` are irrelevant to normal modes and not kept.
-* Case control ``SPC = n`` and ``METHOD = m`` with ``EIGRL m`` (``V1, V2, ND``) ->
-  ``Mesh.solution`` (``spc``, ``f_min``, ``f_max``, ``n_modes``), which
-  ``flexpipe modes`` applies.
+  Enforced values ``D`` are irrelevant to normal modes and not kept.  As the QRG says for
+  SPC1 (remark 3), grid ids in a ``G1 THRU G2`` range need not exist and those that do
+  not are skipped (one warning counts them); a range with no GRID at all, and an
+  explicitly listed grid that does not exist, are errors naming the card and line.
+* Case control ``SPC = n`` and ``METHOD = m`` (also ``METHOD(STRUCTURE) = m``) with
+  ``EIGRL m`` (``V1, V2, ND``) -> ``Mesh.solution`` (``spc``, ``f_min``, ``f_max``,
+  ``n_modes``), which ``flexpipe modes`` applies; ``PARAM, COUPMASS`` -> ``lumped_mass``,
+  the executive ``SOL`` -> ``sol`` (``flexpipe modes`` takes Nastran's default lumped
+  mass for a deck with a SOL statement and no COUPMASS, see
+  :func:`flexpipe.cli.modes.mass_choice`).
 * ``RBE3`` -> :class:`~flexpipe.mesh.Interpolation` (exact weighted-average constraint,
   :mod:`flexpipe.fem.interpolation`).  ``REFC`` are the dependent components of the
   reference grid; ``UM`` (moving the dependency to other grids) is not supported and
@@ -24,6 +30,8 @@ applies exactly); RBE2/RBAR and RBE3 components must be rotation-invariant there
 """
 
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 
@@ -70,11 +78,54 @@ def grid_list(card: Card, start: int, stop_words=()) -> tuple[list[int], int]:
     return out, k
 
 
-def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of, frames):
+def grid_ranges(card: Card, start: int) -> tuple[list[int], list[tuple[int, int]]]:
+    """Grid ids listed from field ``start`` and the ``G1 THRU G2`` ranges (not expanded):
+    ``(explicit ids, [(G1, G2), ...])``.  Ends at the first non-integer field."""
+    ids, ranges, k = [], [], start
+    while k < len(card.fields):
+        s = card.raw(k)
+        if s.upper() == "THRU" and ids:
+            lo, hi = ids.pop(), card.int(k + 1, "THRU")
+            if hi < lo:
+                raise card.error(f"THRU range {lo} THRU {hi} is empty; valid: G2 > G1")
+            ranges.append((lo, hi))
+            k += 2
+            continue
+        if s and not card.is_int(k):
+            break
+        if s:
+            ids.append(int(s))
+        k += 1
+    return ids, ranges
+
+
+def spc1_grids(card: Card, ids_in) -> tuple[list[int], int]:
+    """Grid ids of an SPC1 card and the number of range ids skipped.
+
+    ``ids_in(lo, hi)`` -> the GRID ids of the deck in ``lo..hi``.  Ids of a ``THRU``
+    range that are not GRIDs are skipped (QRG, SPC1 remark 3); a range holding no GRID is
+    an error.  Explicitly listed ids are kept (a missing one is an error later).
+    """
+    ids, ranges = grid_ranges(card, 2)
+    skipped = 0
+    for lo, hi in ranges:
+        have = ids_in(lo, hi)
+        if len(have) == 0:
+            raise card.error(f"THRU range {lo} THRU {hi} contains no GRID: none of its "
+                             f"{hi - lo + 1} ids is a grid point of the deck")
+        skipped += hi - lo + 1 - len(have)
+        ids.extend(int(g) for g in have)
+    return ids, skipped
+
+
+def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of, frames,
+             ids_in=None):
     """DOF sets ``{"SPC<sid>": (k, 2)}`` and directional constraints.
 
     ``index(ids, card)`` -> node indices; ``cd_of(node)`` -> CD id; ``frames(nodes,
-    card)`` -> displacement frames.  Components of a grid with a CD system that are not
+    card)`` -> displacement frames; ``ids_in(lo, hi)`` -> the GRID ids in ``lo..hi`` (for
+    SPC1 ``THRU`` ranges, whose missing ids are skipped; None: every id must exist).
+    Components of a grid with a CD system that are not
     rotation-invariant become directions ``{"SPC<sid>": (m, 5)}`` with rows (node, group
     0 = translation / 1 = rotation, direction x, y, z in basic).
     """
@@ -87,13 +138,30 @@ def spc_sets(spc: list[Card], spc1: list[Card], spcadd: list[Card], index, cd_of
             g = c.int(base, "G")
             comps = components(c, base + 1, "C", allow_zero=True)
             raw.setdefault(sid, []).append((c, [g], comps))
+    skipped = []
     for c in spc1:
         sid = c.int(0, "SID")
         comps = components(c, 1, "C")
-        grids, _ = grid_list(c, 2)
+        if ids_in is None:
+            grids, _ = grid_list(c, 2)
+        else:
+            grids, n_skip = spc1_grids(c, ids_in)
+            if n_skip:
+                skipped.append((c, n_skip))
         if not grids:
             raise c.error("lists no grid points")
         raw.setdefault(sid, []).append((c, grids, comps))
+    if skipped:
+        import warnings
+
+        from flexpipe.mesh.validate import MeshWarning
+        first = ", ".join(f"SPC1 {c.label()} ({Path(c.file).name} line {c.line}): {n}"
+                          for c, n in skipped[:3])
+        warnings.warn(MeshWarning(
+            f"{skipped[0][0].file}: SPC1 THRU ranges hold {sum(n for _, n in skipped)} id(s) "
+            f"that are not GRIDs; skipped, as Nastran does ({first}"
+            + (f", ... {len(skipped)} cards" if len(skipped) > 3 else "") + ")"),
+            stacklevel=4)
     sets, dirs = {}, {}
     for sid, items in raw.items():
         rows, drows = [], []
@@ -278,6 +346,9 @@ def solution(case: dict, deck, dof_sets: dict, path) -> dict:
     if "COUPMASS" in deck.params:
         c = deck.params["COUPMASS"]
         out["lumped_mass"] = c.int(1, "COUPMASS") <= 0
+        out["coupmass"] = c.int(1, "COUPMASS")
+    if "SOL" in case:
+        out["sol"] = case["SOL"][0]
     return out
 
 

@@ -9,6 +9,8 @@ and raises :class:`~flexpipe.errors.InputError`.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from flexpipe.errors import InputError
@@ -113,6 +115,8 @@ def constraint_cards(mesh, nid, next_eid: int) -> list[str]:
     if any(sol.get(k) is not None for k in ("n_modes", "f_min", "f_max")):
         out.append(_card("EIGRL", [1, sol.get("f_min"), sol.get("f_max"),
                                    sol.get("n_modes")]))
+    if sol.get("lumped_mass") is not None:      # PARAM, COUPMASS of the source deck
+        out.append(_card("PARAM", ["COUPMASS", -1 if sol["lumped_mass"] else 1]))
     return out
 
 
@@ -120,10 +124,14 @@ def header(mesh) -> tuple[str, str]:
     """Executive/case control before the bulk data and the closing line, or ('', '')."""
     sol = mesh.solution
     lines = []
-    if sol.get("spc"):
-        lines.append(f"SPC = {sol['spc'][3:]}")
+    spc = str(sol.get("spc") or "")
+    if spc.startswith("SPC") and spc[3:].isdigit():  # the sets the bulk data writes
+        lines.append(f"SPC = {spc[3:]}")
+    elif spc:
+        warnings.warn(f"the constraint set {spc!r} has no Nastran SPC id (SPC<n>); it is not "
+                      "written", stacklevel=3)
     if any(sol.get(k) is not None for k in ("n_modes", "f_min", "f_max")):
         lines.append("METHOD = 1")
-    if not lines:
+    if not lines and sol.get("sol") is None:
         return "", ""
     return "SOL 103\nCEND\n" + "\n".join(lines) + "\nBEGIN BULK\n", "ENDDATA\n"

@@ -3,20 +3,58 @@
 Keywords read
 -------------
 ``*NODE`` (``NSET=``), ``*ELEMENT`` (``TYPE=``, ``ELSET=``), ``*NSET``/``*ELSET``
-(lists, set names, ``GENERATE``), ``*SOLID SECTION``, ``*SHELL SECTION`` (thickness),
-``*BEAM GENERAL SECTION`` (``SECTION=GENERAL``: A, I11, I12, I22, J; n1; E, G;
-``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``, ``BOX``, ``I``,
-``L``; n1), ``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``,
+(lists, set names, ``GENERATE``), ``*SOLID SECTION``, ``*SHELL SECTION`` and ``*SHELL
+GENERAL SECTION`` (isotropic ``MATERIAL=`` and thickness, or ``COMPOSITE`` plies;
+``OFFSET=SPOS|SNEG|<fraction>`` -> the shell offset ``zoffset`` = -OFFSET x thickness,
+the Nastran ZOFFS: Abaqus OFFSET is the distance from the mid-surface to the nodes'
+reference surface along the normal, so SPOS puts the mid-surface t/2 *below* the nodes;
+``DENSITY=`` mass per area, added as PSHELL NSM is; section parameters that do not change M
+and K - ``SECTION INTEGRATION``, ``CONTROLS``, ``POISSON``, ... - are accepted, any other
+one is an error naming it), ``*BEAM GENERAL SECTION`` (``SECTION=GENERAL``: A, I11, I12,
+I22, J; n1; E, G; ``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, ``PIPE``,
+``BOX``, ``I``, ``L``; n1), ``*MATERIAL`` with ``*ELASTIC`` (isotropic) and ``*DENSITY``,
 ``MASS``/``ROTARYI`` elements with ``*MASS``/``*ROTARY INERTIA``, ``*KINEMATIC
 COUPLING`` and ``*COUPLING`` + ``*KINEMATIC`` (rigid spiders, like Nastran RBE2),
 ``*COUPLING`` + ``*DISTRIBUTING`` on a ``*SURFACE, TYPE=NODE`` (= Nastran RBE3, weights
-from the surface), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connectors with
+from the surface; ``REF NODE=`` a node or a one-node set, as Abaqus/CAE writes for a
+reference point), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connectors with
 ``*CONNECTOR SECTION`` / ``*CONNECTOR BEHAVIOR`` (linear uncoupled elasticity and
 damping: Nastran CBUSH), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
-positioning.  Reading stops at the first ``*STEP``; keywords that do not change M or K
-are listed in one warning and in ``Mesh.info["dropped"]``.  Helpers in
-:mod:`flexpipe.mesh._abaqus_extra` (sections, masses, couplings, springs, connectors) and
-:mod:`flexpipe.mesh._abaqus_deck` (lines, ``*INCLUDE``, parameters, sets).
+positioning.
+
+Boundary conditions and steps (as a Nastran SOL 103 deck's ``SPC = n`` and EIGRL)
+------------------------------------------------------------------------------------
+``*BOUNDARY`` in the model data and in the steps (node, node set or ``Instance.label``;
+first and last DOF 1-6, or the types ``ENCASTRE``, ``PINNED``, ``XSYMM``, ``YSYMM``,
+``ZSYMM``, ``XASYMM``, ``YASYMM``, ``ZASYMM``; ``OP=NEW`` removes the constraints before it)
+-> the DOF set ``Mesh.dof_sets["SPC1"]`` named by ``Mesh.solution["spc"]``: the
+representation of a Nastran ``SPC = 1`` set, which ``flexpipe modes`` holds fixed and the
+.bdf writer writes as SPC1 cards (``Mesh.info["converted"]["*BOUNDARY"]`` says so).  The
+constraints used are those in effect in the first step with ``*FREQUENCY`` (else at the end
+of the first step, else those of the model data); that step's number of eigenvalues and
+frequency range (``EIGENSOLVER=LANCZOS`` / ``AMS``: n, f_min, f_max; ``SUBSPACE``: n, f_max)
+-> ``solution["n_modes"]``, ``["f_min"]``, ``["f_max"]``.  A non-zero prescribed value is
+held at zero with a warning (the modes of a ``*FREQUENCY`` step do the same);
+``TYPE=VELOCITY``/``ACCELERATION``, other parameters, DOF outside 1-6 and ``*MODEL CHANGE``
+are errors.  Other keywords of the steps (loads, output requests) and the steps after the
+frequency step are not used; they are listed in one warning and in ``Mesh.info["dropped"]``
+with the model data's keywords that do not change M or K.
+
+Parts and assembly (Abaqus/CAE decks)
+-------------------------------------
+Part nodes and elements keep their labels.  Labels in the assembly and in the steps are
+in the assembly's own namespace: an assembly-level ``*NODE`` (a CAE reference point,
+numbered from 1 like the part's nodes) or element (``MASS`` on a reference point) gets
+the id ``offset + label``, the offset being the smallest power of ten above the largest
+part label (part nodes 1..441: assembly node 1 is node 1001; ``Mesh.info["converted"]``
+says so), and ``Part-1-1.12`` means part node 12.  An assembly set named like a part set
+(CAE numbers both ``Set-1``, ...) is a different set: it is stored as ``"Assembly.Set-1"``
+(``<assembly name>.<set>``), and a bare set name in the assembly and the steps means the
+assembly's set.  See :mod:`flexpipe.mesh._abaqus_deck`.
+
+Helpers in :mod:`flexpipe.mesh._abaqus_extra` (sections, boundary conditions, masses,
+couplings, springs, connectors) and :mod:`flexpipe.mesh._abaqus_deck` (lines,
+``*INCLUDE``, parameters, sets, namespaces).
 
 Element types: ``C3D4*`` -> tetra, ``C3D10*`` -> tetra10, ``C3D8*`` -> hexahedron,
 ``C3D6*`` -> wedge, ``C3D5*`` -> pyramid, ``S3*``/``STRI3`` -> triangle, ``S4*`` -> quad,
@@ -42,12 +80,14 @@ from flexpipe.errors import MeshError
 from flexpipe.mesh._abaqus_deck import _Deck, _Lines, _members, _params, _rows
 from flexpipe.mesh._abaqus_extra import (
     _beam_section,
+    _boundary,
     _composite,
     _connectors,
     _couplings,
     _couplings2,
+    _frequency,
     _masses,
-    _plies,
+    _section_props,
     _springs,
 )
 from flexpipe.mesh._abaqus_extra import values as _values
@@ -76,15 +116,21 @@ UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "DISTRIBUTING COUPLING", "RIGI
                         "NONSTRUCTURAL MASS")
 #: keywords this reader acts on (a near miss of one of these is taken as a typo)
 HANDLED_KEYWORDS = ("NODE", "ELEMENT", "NSET", "ELSET", "SOLID SECTION", "SHELL SECTION",
-                    "BEAM SECTION", "BEAM GENERAL SECTION", "MATERIAL", "ELASTIC", "DENSITY",
-                    "MASS", "ROTARY INERTIA", "KINEMATIC COUPLING", "COUPLING",
-                    "DISTRIBUTING", "KINEMATIC", "SURFACE", "SPRING", "INSTANCE", "STEP",
-                    "INCLUDE", "CONNECTOR SECTION", "CONNECTOR BEHAVIOR",
-                    "CONNECTOR ELASTICITY", "CONNECTOR DAMPING")
-#: keywords that do not change M or K (listed in ``Mesh.info["dropped"]``)
-IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY",
-                    "END INSTANCE", "BOUNDARY", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
-                    "NODE OUTPUT", "ELEMENT OUTPUT", "RESTART", "SURFACE INTERACTION")
+                    "SHELL GENERAL SECTION", "BEAM SECTION", "BEAM GENERAL SECTION",
+                    "MATERIAL", "ELASTIC", "DENSITY", "MASS", "ROTARY INERTIA",
+                    "KINEMATIC COUPLING", "COUPLING", "DISTRIBUTING", "KINEMATIC", "SURFACE",
+                    "SPRING", "PART", "END PART", "ASSEMBLY", "END ASSEMBLY", "INSTANCE",
+                    "END INSTANCE", "STEP", "END STEP", "BOUNDARY", "FREQUENCY", "INCLUDE",
+                    "CONNECTOR SECTION", "CONNECTOR BEHAVIOR", "CONNECTOR ELASTICITY",
+                    "CONNECTOR DAMPING")
+#: keywords that do not change M or K (listed in ``Mesh.info["dropped"]``); real keywords
+#: that would otherwise look like near misses of the ones read (``*NODAL THICKNESS`` and
+#: ``*DISTRIBUTION`` only act through section parameters, which are refused; ``*PLASTIC``
+#: does not change the linear M and K)
+IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
+                    "NODE OUTPUT", "ELEMENT OUTPUT", "RESTART", "SURFACE INTERACTION",
+                    "NODAL THICKNESS", "SURFACE SECTION", "SURFACE BEHAVIOR", "PLASTIC",
+                    "DISTRIBUTION", "DISTRIBUTION TABLE")
 
 
 def _parse(path: Path) -> _Deck:
@@ -103,17 +149,32 @@ def _parse(path: Path) -> _Deck:
                             file=deck.pending[2], line=deck.pending[3])
         if kw not in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING"):
             deck.behavior = None            # connector behaviour options end here
-        if kw == "STEP":
-            break
+        if deck.done:                       # steps after the frequency step are not used
+            deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
+            for _ in lines.data():
+                pass
+            continue
+        if deck.step is not None or kw == "STEP":
+            _step_keyword(deck, kw, p, lines, f, ln)
+            continue
+        ctx = deck.ctx(p)
         if kw == "NODE":
             start = len(deck.node_ids)
             for lf, lln, t in lines.data():
                 v = _values(lf, lln, t, "*NODE line", count=3)
-                deck.node_ids.append(int(v[0]))
+                label = v[0]
+                if not (np.isfinite(label) and label == int(label) and label >= 0):
+                    raise MeshError(f"*NODE label '{t.split(',')[0].strip()}'; valid: an "
+                                    "integer >= 0", file=lf, line=lln)
+                nid = int(label) + (deck.node_offset if ctx == "asm" else 0)
+                if ctx == "asm":
+                    deck.asm_labels[nid] = int(label)
+                deck.node_ids.append(nid)
                 deck.coords.append((v[1:4] + [0.0])[:3])
                 deck.node_where.append((lf, lln))
             if "NSET" in p:
-                deck.nsets.setdefault(p["NSET"], []).extend(deck.node_ids[start:])
+                deck.nsets.setdefault(deck.define_set("NSET", p["NSET"]), []).extend(
+                    deck.node_ids[start:])
         elif kw == "ELEMENT":
             etype = p.get("TYPE", "").upper()
             if etype not in TYPE_OF:
@@ -123,32 +184,37 @@ def _parse(path: Path) -> _Deck:
             t = TYPE_OF[etype]
             buf, first = [], None
             new = []
+            noff, eoff = (deck.node_offset, deck.elem_offset) if ctx == "asm" else (0, 0)
             for lf, lln, dt in lines.data():
-                try:
-                    buf += [int(x) for x in dt.split(",") if x.strip()]
-                except ValueError:
-                    raise MeshError(f"element line '{dt[:60]}' must hold integer ids",
-                                    file=lf, line=lln) from None
+                buf += [x.strip() for x in dt.split(",") if x.strip()]
                 first = first or (lf, lln)
                 if dt.rstrip().endswith(",") and len(buf) < NODES[t] + 1 + (t == "line"):
                     continue            # a trailing comma continues the element
-                if t == "line" and len(buf) == 4:  # optional third node: the n1 direction
-                    deck.n1_node[buf[0]] = buf.pop()
-                if len(buf) != NODES[t] + 1:
+                try:                    # labels of this namespace (fast path)
+                    ids = [int(buf[0]) + eoff] + [int(x) + noff for x in buf[1:]]
+                except ValueError:      # Instance.label, or not a label
+                    ids = [deck.elem_id(buf[0], ctx)] + [deck.node_id(x, ctx)
+                                                         for x in buf[1:]]
+                if None in ids:
+                    raise MeshError(f"element line '{dt[:60]}' must hold integer ids (or "
+                                    "Instance.label)", file=lf, line=lln)
+                if t == "line" and len(ids) == 4:  # optional third node: the n1 direction
+                    deck.n1_node[ids[0]] = ids.pop()
+                if len(ids) != NODES[t] + 1:
                     raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has "
-                                    f"{len(buf) - 1} nodes, expected {NODES[t]} (end a line "
+                                    f"{len(ids) - 1} nodes, expected {NODES[t]} (end a line "
                                     "with a comma to continue an element)", file=first[0],
                                     line=first[1])
-                deck.eids[t].append(buf[0])
-                deck.conn[t].append(buf[1:])
+                deck.eids[t].append(ids[0])
+                deck.conn[t].append(ids[1:])
                 deck.ewhere[t].append(first)
-                new.append(buf[0])
+                new.append(ids[0])
                 buf, first = [], None
             if buf:
                 raise MeshError(f"*ELEMENT TYPE={etype}: element {buf[0]} has {len(buf) - 1} "
                                 f"nodes, expected {NODES[t]}", file=first[0], line=first[1])
             if "ELSET" in p:
-                deck.elsets.setdefault(p["ELSET"], []).extend(new)
+                deck.elsets.setdefault(deck.define_set("ELSET", p["ELSET"]), []).extend(new)
         elif kw in ("NSET", "ELSET"):
             table = deck.nsets if kw == "NSET" else deck.elsets
             name = p.get(kw)
@@ -157,27 +223,17 @@ def _parse(path: Path) -> _Deck:
             if kw == "NSET" and "ELSET" in p:
                 raise MeshError("*NSET with ELSET= is not supported; list the nodes", file=f,
                                 line=ln)
-            key = deck.set_key(table, name) or name
-            table.setdefault(key, []).extend(_members(deck, table, p, lines, f"*{kw} {name}"))
-        elif kw in ("SOLID SECTION", "SHELL SECTION"):
+            key = deck.define_set(kw, name)
+            table.setdefault(key, []).extend(_members(deck, table, p, lines, f"*{kw} {name}",
+                                                      ctx))
+        elif kw in ("SOLID SECTION", "SHELL SECTION", "SHELL GENERAL SECTION"):
             rows = list(lines.data())
-            props = {}
-            if kw == "SHELL SECTION":
-                if "COMPOSITE" in p:
-                    deck.sections.append((p.get("ELSET"), {"composite": _plies(rows, p, f, ln)},
-                                          None, None, f, ln))
-                    continue
-                if not rows:
-                    raise MeshError("*SHELL SECTION needs a data line with the thickness",
-                                    file=f, line=ln)
-                props["thickness"] = _values(*rows[0], "shell thickness", count=1)[0]
-                if not (np.isfinite(props["thickness"]) and props["thickness"] > 0):
-                    raise MeshError(f"*SHELL SECTION thickness {props['thickness']}; valid: "
-                                    "> 0", file=rows[0][0], line=rows[0][1])
-            deck.sections.append((p.get("ELSET"), props, p.get("MATERIAL"), None, f, ln))
+            props = _section_props(kw, p, rows, f, ln)
+            mat = None if "composite" in props else p.get("MATERIAL")
+            deck.sections.append((deck.elset(p.get("ELSET"), ctx), props, mat, None, f, ln))
         elif kw in ("BEAM GENERAL SECTION", "BEAM SECTION"):
             props, mat, n1 = _beam_section(p, lines, f, ln)
-            deck.sections.append((p.get("ELSET"), props, mat, n1, f, ln))
+            deck.sections.append((deck.elset(p.get("ELSET"), ctx), props, mat, n1, f, ln))
         elif kw == "MATERIAL":
             material = p.get("NAME", "")
             deck.materials[material.upper()] = {}
@@ -218,16 +274,17 @@ def _parse(path: Path) -> _Deck:
             m = _values(*rows[0], "*MASS", count=1)[0]
             if not (np.isfinite(m) and m >= 0):
                 raise MeshError(f"*MASS {m:g}; valid: >= 0", file=rows[0][0], line=rows[0][1])
-            deck.masses.append((p.get("ELSET"), m, f, ln))
+            deck.masses.append((deck.elset(p.get("ELSET"), ctx), m, f, ln))
         elif kw == "ROTARY INERTIA":
             rows = _rows(lines, f, ln, "*ROTARY INERTIA")
             v = (_values(*rows[0], "*ROTARY INERTIA", count=3) + [0.0] * 3)[:6]
             I = np.array([[v[0], v[3], v[4]], [v[3], v[1], v[5]], [v[4], v[5], v[2]]])
-            deck.inertias.append((p.get("ELSET"), I, f, ln))
+            deck.inertias.append((deck.elset(p.get("ELSET"), ctx), I, f, ln))
         elif kw == "KINEMATIC COUPLING":
             ref = p.get("REF NODE")
-            if not ref or not ref.isdigit():
-                raise MeshError("*KINEMATIC COUPLING needs REF NODE=<node id>", file=f, line=ln)
+            if not ref:
+                raise MeshError("*KINEMATIC COUPLING needs REF NODE=<node id or node set>",
+                                file=f, line=ln)
             rows = []
             for lf, lln, t in lines.data():
                 tok = [x.strip() for x in t.split(",")]
@@ -237,20 +294,20 @@ def _parse(path: Path) -> _Deck:
                 if not 1 <= first <= last <= 6:
                     raise MeshError(f"*KINEMATIC COUPLING DOF range {first}..{last}; valid: "
                                     "first <= last within 1..6", file=lf, line=lln)
-                rows.append((tok[0], first, last, lf, lln))
-            deck.couplings.append((int(ref), rows, f, ln))
+                rows.append((deck.node_ref(tok[0], ctx), first, last, lf, lln))
+            deck.couplings.append((deck.node_ref(ref, ctx), rows, f, ln))
         elif kw == "SURFACE":
             name = p.get("NAME", "")
             if p.get("TYPE", "ELEMENT").upper() != "NODE":
                 raise MeshError(f"*SURFACE {name}: only TYPE=NODE surfaces are supported "
                                 "(for *COUPLING)", file=f, line=ln)
-            deck.surfaces[name.upper()] = [(lf, lln, t) for lf, lln, t in lines.data()]
+            deck.surfaces[name.upper()] = [(lf, lln, t, ctx) for lf, lln, t in lines.data()]
         elif kw == "COUPLING":
             ref, surf = p.get("REF NODE", ""), p.get("SURFACE", "")
-            if not ref.isdigit() or not surf:
-                raise MeshError("*COUPLING needs REF NODE=<node id> and SURFACE=<name>",
-                                file=f, line=ln)
-            deck.pending = (int(ref), surf, f, ln)
+            if not ref or not surf:
+                raise MeshError("*COUPLING needs REF NODE=<node id or node set> and "
+                                "SURFACE=<name>", file=f, line=ln)
+            deck.pending = (deck.node_ref(ref, ctx), surf, f, ln)
         elif kw in ("DISTRIBUTING", "KINEMATIC") and deck.pending is not None:
             if p.get("WEIGHTING METHOD", "UNIFORM").upper() != "UNIFORM":
                 raise MeshError("*DISTRIBUTING: only WEIGHTING METHOD=UNIFORM is supported",
@@ -274,8 +331,8 @@ def _parse(path: Path) -> _Deck:
                 raise MeshError("*CONNECTOR SECTION with an orientation line is not supported "
                                 "(connector axes are the global axes)", file=rows[1][0],
                                 line=rows[1][1])
-            deck.connectors.append((p.get("ELSET"), types, p.get("BEHAVIOR", "").upper(), f,
-                                    ln))
+            deck.connectors.append((deck.elset(p.get("ELSET"), ctx), types,
+                                    p.get("BEHAVIOR", "").upper(), f, ln))
         elif kw == "CONNECTOR BEHAVIOR":
             deck.behavior = p.get("NAME", "").upper()
             deck.behaviors.setdefault(deck.behavior, {"K": {}, "B": {}})
@@ -300,42 +357,124 @@ def _parse(path: Path) -> _Deck:
                 raise MeshError("*SPRING with ORIENTATION= or NONLINEAR is not supported",
                                 file=f, line=ln)
             rows = _rows(lines, f, ln, "*SPRING", 2)
-            deck.springs.append((p.get("ELSET"), rows, f, ln))
+            deck.springs.append((deck.elset(p.get("ELSET"), ctx), rows, f, ln))
+        elif kw == "BOUNDARY":              # model data: zero-valued constraints
+            deck.bc_model += _boundary(deck, p, lines, f, ln)[0]
+        elif kw in ("FREQUENCY", "END STEP"):
+            raise MeshError(f"*{kw} outside a step (it is history data: after *STEP)",
+                            file=f, line=ln)
+        elif kw == "PART":
+            deck.scope = "part"
+        elif kw == "END PART":
+            deck.scope = "model"
+        elif kw == "ASSEMBLY":
+            _enter_assembly(deck, p)
+        elif kw == "END ASSEMBLY":
+            deck.scope = "model"
         elif kw == "INSTANCE":
             deck.instances += 1
             if deck.instances > 1 or list(lines.data()):
                 raise MeshError("several or positioned *INSTANCEs are not supported; write the "
                                 "deck flat (Abaqus: input file without parts and assemblies)",
                                 file=f, line=ln)
+            deck.scope, deck.instance_name = "instance", p.get("NAME")
+        elif kw == "END INSTANCE":
+            deck.scope = "assembly"
         elif kw in UNSUPPORTED_KEYWORDS or kw in ("DISTRIBUTING", "KINEMATIC"):
             raise MeshError(f"*{kw} is not supported (rigid spiders: *KINEMATIC COUPLING or "
                             "*COUPLING + *KINEMATIC; RBE3-type: *COUPLING + *DISTRIBUTING); "
                             "remove or convert it", file=f, line=ln)
         else:
             if kw not in IGNORED_KEYWORDS:
-                import difflib
-
-                close = difflib.get_close_matches(kw, HANDLED_KEYWORDS, n=1, cutoff=0.8)
-                if close:
-                    raise MeshError(f"unknown keyword *{kw}: a misspelt *{close[0]}? (a "
-                                    "keyword that is not read could change the structure)",
-                                    file=f, line=ln)
+                _near_miss(kw, HANDLED_KEYWORDS, f, ln)
             deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
             for _ in lines.data():
                 pass
     if deck.pending is not None:
         raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
                         file=deck.pending[2], line=deck.pending[3])
+    if deck.step is not None:               # a last step without *END STEP
+        _end_step(deck)
     return deck
 
 
-def _dup(ids, where, what):
+def _near_miss(kw, known, f, ln):
+    """A keyword that is not read but close to one that is: taken as a typo (an error)."""
+    import difflib
+
+    close = difflib.get_close_matches(kw, known, n=1, cutoff=0.8)
+    if close:
+        raise MeshError(f"unknown keyword *{kw}: a misspelt *{close[0]}? (a keyword that is "
+                        "not read could change the structure)", file=f, line=ln)
+
+
+def _enter_assembly(deck: _Deck, p) -> None:
+    """``*ASSEMBLY``: labels of assembly-level nodes and elements get ids above the parts'."""
+    deck.has_assembly, deck.scope = True, "assembly"
+    deck.asm_name = p.get("NAME") or "Assembly"
+    eids = [e for t in deck.eids for e in deck.eids[t]]
+    deck.node_offset = 10 ** len(str(max(deck.node_ids))) if deck.node_ids else 0
+    deck.elem_offset = 10 ** len(str(max(eids))) if eids else 0
+
+
+#: name of the DOF set of the deck's *BOUNDARY constraints: a Nastran SPC set's name, so
+#: that ``flexpipe modes`` applies it and the .bdf writer writes it (SPC = 1, SPC1 cards)
+BC_SET = "SPC1"
+#: keywords read inside a step (the rest of a step is listed as not used)
+STEP_KEYWORDS = ("STEP", "END STEP", "BOUNDARY", "FREQUENCY")
+
+
+def _step_keyword(deck: _Deck, kw: str, p, lines, f, ln) -> None:
+    """One keyword of history data: ``*BOUNDARY`` and ``*FREQUENCY`` are read."""
+    if kw == "STEP":
+        if deck.step is not None:
+            raise MeshError(f"*STEP inside the step that starts at line {deck.step['line']}: "
+                            "that step has no *END STEP", file=f, line=ln)
+        deck.steps += 1
+        if deck.bc_active is None:
+            deck.bc_active = list(deck.bc_model)
+        deck.step = {"new": False, "freq": None, "file": f, "line": ln}
+        for _ in lines.data():              # the step's description line
+            pass
+    elif kw == "END STEP":
+        _end_step(deck)
+    elif kw == "BOUNDARY":
+        rows, op_new = _boundary(deck, p, lines, f, ln)
+        if op_new and not deck.step["new"]:  # OP=NEW: the step's first one removes all
+            deck.bc_active, deck.step["new"] = [], True
+        deck.bc_active += rows
+    elif kw == "FREQUENCY":
+        deck.step["freq"] = _frequency(p, list(lines.data()), f, ln)
+    elif kw == "MODEL CHANGE":
+        raise MeshError("*MODEL CHANGE is not supported (it removes or adds elements in a "
+                        "step); write the deck with the elements of the frequency step only",
+                        file=f, line=ln)
+    else:
+        _near_miss(kw, STEP_KEYWORDS, f, ln)
+        deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
+        for _ in lines.data():
+            pass
+
+
+def _end_step(deck: _Deck) -> None:
+    if deck.step is None:
+        return
+    step, deck.step = deck.step, None
+    if deck.steps == 1:
+        deck.bc_first = list(deck.bc_active)
+    if step["freq"] is not None:            # the first frequency step: its set-up is used
+        deck.bc_used, deck.frequency, deck.done = list(deck.bc_active), step["freq"], True
+
+
+def _dup(ids, where, what, labels=None):
     ids = np.asarray(ids, dtype=np.int64)
     order = np.argsort(ids, kind="stable")
     d = np.flatnonzero(ids[order][1:] == ids[order][:-1])
     if d.size:
         a, b = where[order[d[0]]], where[order[d[0] + 1]]
-        raise MeshError(f"{what} {int(ids[order[d[0]]])} is defined twice: "
+        i = int(ids[order[d[0]]])
+        name = f"{i} (assembly-level {what} {labels[i]})" if labels and i in labels else i
+        raise MeshError(f"{what} {name} is defined twice: "
                         f"{Path(a[0]).name} line {a[1]} and {Path(b[0]).name} line {b[1]}",
                         file=b[0], line=b[1])
 
@@ -347,7 +486,7 @@ def read_abaqus(path) -> Mesh:
     if not deck.node_ids:
         raise MeshError("no *NODE data found: not an Abaqus input deck?", file=str(path))
     gid = np.asarray(deck.node_ids, dtype=np.int64)
-    _dup(gid, deck.node_where, "node")
+    _dup(gid, deck.node_where, "node", deck.asm_labels)
     sorter = np.argsort(gid, kind="stable")
 
     def index(ids, where, what):
@@ -358,8 +497,16 @@ def read_abaqus(path) -> Mesh:
         if bad.size:
             k = int(bad[0])
             w = where(k)
-            raise MeshError(f"{what} refers to node {int(ids.ravel()[k])}, which is not "
-                            "defined", file=w[0], line=w[1])
+            i = int(ids.ravel()[k])
+            if deck.has_assembly and deck.node_offset and i > deck.node_offset:
+                label = i - deck.node_offset
+                raise MeshError(
+                    f"{what} refers to assembly-level node {label} (id {i}), which is not "
+                    f"defined: in a deck with *ASSEMBLY a bare node label in the assembly and "
+                    f"the steps is an assembly node; write {deck.instance_name or 'Instance'}."
+                    f"{label} for node {label} of the part", file=w[0], line=w[1])
+            raise MeshError(f"{what} refers to node {i}, which is not defined", file=w[0],
+                            line=w[1])
         return idx.reshape(ids.shape)
 
     all_e = [(e, t, k) for t in deck.eids for k, e in enumerate(deck.eids[t])]
@@ -381,7 +528,7 @@ def read_abaqus(path) -> Mesh:
             raise MeshError(f"{what} refers to ELSET '{name}', which is not defined", file=f,
                             line=ln)
         out = defaultdict(list)
-        for e in deck.elsets[key]:
+        for e in dict.fromkeys(deck.elsets[key]):   # a set: each element once (masses)
             if e not in where_e:
                 raise MeshError(f"ELSET '{key}' lists element {e}, which is not defined",
                                 file=f, line=ln)
@@ -397,9 +544,11 @@ def read_abaqus(path) -> Mesh:
     node_sets = {name: index(ids, lambda k: (str(path), None), f"NSET '{name}'")
                  for name, ids in deck.nsets.items()}
     sections, orient, mat_ref = {}, {}, {}
+    zoffset = {}
     for elset, props, mat, n1, f, ln in deck.sections:
         key, members = cells_of(elset, f, ln, "section")
         sec = dict(props)
+        offset, nsm = sec.pop("offset", 0.0), sec.pop("nsm", 0.0)
         if mat:
             m = deck.materials.get(mat.upper())
             if m is None:
@@ -409,10 +558,18 @@ def read_abaqus(path) -> Mesh:
                 raise MeshError(f"material '{mat}' has no *ELASTIC data", file=f, line=ln)
             sec.update(E=m["E"], nu=m["nu"], rho=m.get("rho", 0.0))
         if "composite" in sec:
-            sec = _composite(deck, sec.pop("composite"), f, ln)
+            sec = _composite(deck, sec.pop("composite"), f, ln, nsm)
             for t in ("quad", "triangle"):
                 for c in members.get(t, []):
                     mat_ref.setdefault(t, {})[c] = (1.0, 0.0, 0.0)   # Abaqus: global X
+        elif nsm:                           # DENSITY=: mass per area, as PSHELL NSM
+            if "rho" not in sec:
+                raise MeshError("section DENSITY= (mass per area) needs MATERIAL= with a "
+                                "*DENSITY", file=f, line=ln)
+            sec["rho"] = sec["rho"] + nsm / sec["thickness"]
+        for t in ("quad", "triangle") if "thickness" in sec else ():
+            for c in members.get(t, []):    # OFFSET -> ZOFFS: mid-surface at node + z n
+                zoffset.setdefault(t, {})[c] = -offset * sec["thickness"]
         sections[key] = sec
         if n1 is not None and "line" in members:
             orient.update({c: n1 for c in members["line"]})
@@ -429,6 +586,11 @@ def read_abaqus(path) -> Mesh:
             data["K"] = spring_k[t]
         if t == "connector":
             data = conn_data
+        if any(zoffset.get(t, {}).values()):
+            z = np.zeros(len(eids))
+            for c, v in zoffset[t].items():
+                z[c] = v
+            data["zoffset"] = z
         if t in mat_ref:
             ref = np.full((len(eids), 3), np.nan)
             for c, v in mat_ref[t].items():
@@ -448,15 +610,51 @@ def read_abaqus(path) -> Mesh:
             data["orientation"] = ori
         out_blocks.append(CellBlock("spring" if t == "connector" else t, conn, eids,
                                     np.zeros(len(eids), np.int64), data))
+    dof_sets, solution = _solution(deck, index)
+    converted = {}
+    if BC_SET in dof_sets:
+        rows = dof_sets[BC_SET]
+        converted["*BOUNDARY"] = (f"{len(rows)} DOF on {len(np.unique(rows[:, 0]))} nodes -> "
+                                  f"DOF set {BC_SET} (held fixed, as a Nastran SPC = 1)")
+    if deck.asm_labels:
+        converted["assembly-level *NODE"] = (
+            f"{len(deck.asm_labels)} node(s), label n -> id {deck.node_offset} + n (e.g. "
+            f"{min(deck.asm_labels.values())} -> {min(deck.asm_labels)})")
     mesh = Mesh(points=np.asarray(deck.coords, dtype=float), blocks=tuple(out_blocks),
                 node_ids=gid, node_sets=node_sets, cell_sets=cell_sets, point_masses=masses,
                 rigid_links=links + more_links, sections=sections, source=str(path),
-                interpolations=interp,
-                info={"read": {t: len(e) for t, _, e in blocks}, "converted": {},
+                interpolations=interp, dof_sets=dof_sets, solution=solution,
+                info={"read": {t: len(e) for t, _, e in blocks}, "converted": converted,
                       "dropped": dict(deck.dropped)})
     if deck.dropped:
         warnings.warn(MeshWarning(f"{path}: keywords not used for M and K: "
                                   + ", ".join(f"*{k} x{n}" for k, n in deck.dropped.items())),
                       stacklevel=3)
     return drop_orientation_nodes(mesh, n1_nodes)
+
+
+def _solution(deck: _Deck, index):
+    """``Mesh.dof_sets`` / ``Mesh.solution`` from ``*BOUNDARY`` and ``*FREQUENCY``: the
+    constraints in effect in the first ``*FREQUENCY`` step (model data, then the steps up
+    to it, ``OP=NEW`` removing what was before) - else at the end of the first step, else
+    the model data's - as the DOF set :data:`BC_SET` that ``flexpipe modes`` holds fixed
+    (``solution["spc"]``, as a Nastran ``SPC = 1``), and that step's number of
+    eigenvalues and frequency range (``n_modes``, ``f_min``, ``f_max``, as an EIGRL)."""
+    rows = deck.bc_used if deck.bc_used is not None else (
+        deck.bc_first if deck.bc_first is not None else deck.bc_model)
+    dof_sets, solution = {}, {}
+    pairs = []
+    for ref, dofs, f, ln in rows:
+        ids = deck.nodes_of(ref, "*BOUNDARY", f, ln)
+        idx = index(ids, lambda _, f=f, ln=ln: (f, ln), "*BOUNDARY")
+        cc = np.array([int(ch) - 1 for ch in dofs])
+        pairs.append(np.column_stack([np.repeat(idx, len(cc)), np.tile(cc, len(idx))]))
+    if pairs:
+        dof_sets[BC_SET] = np.unique(np.vstack(pairs), axis=0)
+        solution["spc"] = BC_SET
+    if deck.frequency is not None:
+        n, f_min, f_max = deck.frequency[:3]
+        solution.update({k: v for k, v in (("n_modes", n), ("f_min", f_min),
+                                            ("f_max", f_max)) if v is not None})
+    return dof_sets, solution
 

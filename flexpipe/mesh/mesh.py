@@ -162,7 +162,8 @@ class Mesh:
         Named sets of (node index, component 0..5), e.g. Nastran SPC sets ``"SPC1"``.
     solution : mapping
         Solution set-up read from the file: ``"spc"`` (name of the DOF set held at zero),
-        ``"n_modes"``, ``"f_min"``, ``"f_max"`` (EIGRL), ``"lumped_mass"`` (COUPMASS).
+        ``"n_modes"``, ``"f_min"``, ``"f_max"`` (EIGRL), ``"lumped_mass"`` and
+        ``"coupmass"`` (PARAM COUPMASS), ``"sol"`` (the executive SOL, e.g. 103).
     info : mapping
         What the reader read, converted and dropped (card/keyword -> count or note).
     """

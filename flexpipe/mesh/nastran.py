@@ -4,7 +4,10 @@ Cards read
 ----------
 Grids and systems: ``GRID`` (``CP`` and ``CD`` in any ``CORD1R/1C/1S/2R/2C/2S``, ``PS``).
 Elements: ``CTETRA`` (4/10), ``CHEXA`` (8), ``CPENTA`` (6), ``CPYRAM`` (5), ``CQUAD4``,
-``CTRIA3`` (``ZOFFS`` applied), ``CQUAD8``/``CTRIA6`` (converted: each split into four
+``CTRIA3`` (``ZOFFS`` applied; corner thicknesses ``T1..`` with ``TFLAG`` - blank Ti = the
+PSHELL T, TFLAG 1 = factors on it - become one thickness per element, the mean of its
+corners: cell sets ``PID<n>_T<k>`` whose sections override the PID's, one warning when
+corners differ within an element), ``CQUAD8``/``CTRIA6`` (converted: each split into four
 CQUAD4/CTRIA3 through its mid-side grids - a CQUAD8 gains a centre grid - conforming with
 split neighbours; second-order CHEXA/CPENTA/CPYRAM become linear on their corner grids,
 with a warning), ``CBAR``/``CBEAM`` (orientation ``X`` or ``G0`` in the ``CD`` system
@@ -79,6 +82,7 @@ from flexpipe.mesh._nastran_elements import (
     conm1,
     conm2,
     element,
+    element_thickness,
     line_data,
     rbe2,
     split_second_order,
@@ -110,7 +114,7 @@ def read_nastran(path) -> Mesh:
     n_fast_el = {ct: 0 if a is None else len(a["eid"]) for ct, a in fshell.items()}
     if not deck.grids and not len(fgrid["gid"]):
         raise MeshError("no GRID cards found: not a Nastran bulk-data deck?", file=str(path))
-    case = case_control(control)
+    case = case_control(control, path)
     wtmass = 1.0
     if "WTMASS" in deck.params:
         wtmass = deck.params["WTMASS"].real(1, "WTMASS")
@@ -147,6 +151,7 @@ def read_nastran(path) -> Mesh:
     grids = _fast.Lazy(grid_card, len(gid))
     check_unique(gid, grids, "GRID")
     sorter = np.argsort(gid, kind="stable")
+    deck_gids = gid[sorter]                  # sorted GRID ids (for SPC1 THRU ranges)
     done = cp == 0
 
     def grid_xyz(g, user, stack):
@@ -232,10 +237,12 @@ def read_nastran(path) -> Mesh:
         fa = fshell.get(ct)
         return min(s0 + ([int(fa["seq"][0])] if fa is not None else []))
 
+    corner_sets: dict = {}            # (PID, thickness) -> cell set of corner-T shells
+    corner_use = [0, 0, None]         # elements with corner T, with unequal corners, first
     for cell_type in sorted(els, key=first_seq):
         items = els[cell_type]
         cols = cell_arrays(cell_type, items, fshell.get(cell_type), fast, gid, sorter)
-        eid, pid, conn, zoff, theta, user_of = cols
+        eid, pid, conn, zoff, theta, user_of, corners = cols
         data = {}
         if cell_type == "line":
             ori, w, g0, rel = line_data(items, X, conn, cd_frames, gid, sorter)
@@ -276,6 +283,27 @@ def read_nastran(path) -> Mesh:
                 sections[name] = (nprops.composite(card, mats, wtmass)
                                   if card.name in ("PCOMP", "PCOMPG")
                                   else nprops.section(card, mats, wtmass))
+            if corners is not None:
+                _corner_thickness(int(p), card, sections[name], bi, members, corners,
+                                  user_of, wtmass, cell_sets, corner_sets, corner_use, info)
+
+    for name, sec in corner_sets.values():
+        sections[name] = sec       # after the PID sections: these override them
+    if corner_use[0]:
+        sets = [v[0] for v in corner_sets.values()]
+        info["converted"]["corner thicknesses"] = (
+            f"{corner_use[0]} shell element(s) with T1.. -> the mean per element "
+            + (f"(cell sets {', '.join(sets[:4])}{', ...' if len(sets) > 4 else ''})" if sets
+               else "(equal to the PSHELL T)"))
+    if corner_use[1]:
+        u = corner_use[2]
+        warnings.warn(MeshWarning(
+            f"{path}: {corner_use[1]} shell element(s) have unequal corner thicknesses "
+            f"T1.. (e.g. {u.name} {u.label()}, {Path(u.file).name} line {u.line}); "
+            "flexpipe's shells have one thickness per element, so each takes the mean of its "
+            "corners (Nastran varies it over the element: the mass is the same for triangles "
+            "and parallelograms, the bending stiffness of a tapered element differs slightly)"),
+            stacklevel=3)
 
     # ---- springs
     pelas = {}
@@ -343,8 +371,11 @@ def read_nastran(path) -> Mesh:
               for c in deck.elements.get("RBE3", [])]
 
     # ---- constraints and solution set-up
+    def ids_in(lo, hi):
+        return deck_gids[np.searchsorted(deck_gids, lo):np.searchsorted(deck_gids, hi, "right")]
+
     dof_sets, spc_dirs = extra.spc_sets(deck.spc["SPC"], deck.spc["SPC1"], deck.spc["SPCADD"],
-                                        index, lambda nd: bool(cd[nd]), cd_frames)
+                                        index, lambda nd: bool(cd[nd]), cd_frames, ids_in)
     ps = [(int(k), ch) for k in np.flatnonzero(has_ps) for ch in extra.components(
         grids[k], 6, "PS", allow_zero=True)]
     if ps:
@@ -385,6 +416,61 @@ def read_nastran(path) -> Mesh:
         warnings.warn(MeshWarning(f"{path}: cards not used for M and K (loads, output, "
                                   f"other solutions or unknown): {listing}"), stacklevel=3)
     return mesh
+
+
+def _corner_thickness(p, card, sec, bi, members, corners, user_of, wtmass, cell_sets,
+                      corner_sets, corner_use, info) -> None:
+    """Shells of PID ``p`` (rows ``members`` of block ``bi``) with corner thicknesses T1..:
+    cell sets ``PID<p>_T<k>`` of one mean thickness each (sections after the PID's, which
+    they override); a note for the missing-thickness error when the PSHELL T is blank and
+    elements give none."""
+    given = [j for j in members if corners[j] is not None]
+    if card.name != "PSHELL":
+        if given:
+            u = user_of(int(given[0]))
+            warnings.warn(MeshWarning(
+                f"{u.file} line {u.line}: {len(given)} element(s) of {card.name} "
+                f"{card.label()} give corner thicknesses T1..; ignored: the laminate's plies "
+                "set the thickness"), stacklevel=4)
+        return
+    T = card.real(2, "T", None)
+    if given:
+        t, varying = element_thickness(members, corners, user_of, T, card)
+        corner_use[0] += len(given)
+        if varying and corner_use[2] is None:
+            corner_use[2] = user_of(int(next(j for j in given if _unequal(corners[j], T))))
+        corner_use[1] += varying
+        nsm = card.real(7, "NSM", 0.0) * wtmass
+        differs = np.isfinite(t) & ((t != T) if T is not None else True)
+        for u in np.unique(t[differs]):
+            key = (p, float(u))
+            if key not in corner_sets:
+                new = dict(sec, thickness=float(u))
+                if "rho" in sec:
+                    new["rho"] = sec["rho"] - (nsm / T if nsm and T else 0.0) + nsm / u
+                k = sum(1 for q, _ in corner_sets if q == p) + 1
+                corner_sets[key] = (f"PID{p}_T{k}", new)
+            name = corner_sets[key][0]
+            cell_sets.setdefault(name, {})[bi] = np.asarray(members)[t == u]
+    else:
+        t = np.full(len(members), np.nan if T is None else T)
+    bare = np.flatnonzero(~np.isfinite(t))
+    if len(bare) and str(p) not in info["missing_properties"]:
+        u = user_of(int(members[bare[0]]))
+        n_t = 4 if u.name in ("CQUAD4", "CQUAD8") else 3
+        info["missing_properties"][str(p)] = {
+            "text": f"PSHELL {p} ({Path(card.file).name} line {card.line}) has T blank and "
+                    f"{len(bare)} of its element(s) give no corner thicknesses T1-T{n_t} "
+                    f"either (e.g. {u.name} {u.label()}, {Path(u.file).name} line "
+                    f"{u.line}; Nastran needs one of them: PSHELL T, or TFLAG and T1..T{n_t} "
+                    f"on the {u.name} continuation line)",
+            "element": int(u.int(0, "EID")), "line": u.line}
+
+
+def _unequal(cj, T) -> bool:
+    tflag, vals = cj
+    v = [(T if tflag == 0 else 1.0) if x is None else x for x in vals]
+    return max(v) - min(v) > 1e-12 * max(v)
 
 
 def drop_orientation_nodes(mesh: Mesh, nodes) -> Mesh:

@@ -12,9 +12,16 @@ line of ``$$$$``, followed by the data block.  The parts used here:
   data channel the start value holds along the whole road, as in OpenCRG, and a different
   ``END_S`` / ``END_B`` / ``END_PHI`` gives a warning).  Any other key is an error.
 * ``$KD_DEFINITION``: ``#:FMT``, ``U:reference line u,m,<start>,<increment>`` (used
-  when ``$ROAD_CRG`` gives no increment) and the channels ``D:long section <i>,m`` (by index, the
-  lateral position is ``v_right + (i-1) v_increment``) or ``D:long section at v = <v>,m``
-  and ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.
+  when ``$ROAD_CRG`` gives no START_U, and no INCREMENT or END_U) and the channels
+  ``D:long section <i>,m`` (by index, the lateral position is
+  ``v_right + (i-1) v_increment``) or ``D:long section at v = <v>,m`` and
+  ``D:reference line phi,rad`` / ``slope,m/m`` / ``banking,m/m``.
+* Values a file leaves out are derived as OpenCRG derives them (:func:`_u_axis`,
+  :func:`_v_axis`): START_U 0; INCREMENT ``(END_U - START_U) / (records - 1)``; END_U
+  from the number of records; LONG_SECTION_V_INCREMENT ``(LEFT - RIGHT) / (sections - 1)``;
+  RIGHT ``LEFT - (sections - 1) INCREMENT``, or the sections centred on the reference line
+  when neither border is given; an increment with nothing to derive it from is OpenCRG's
+  fallback 0.01 m, with a warning.
 * The data block, one row per ``u`` sample with one value per ``D:`` channel.  ``FMT`` is
   four letters: ``K``ompact (rows run on without alignment) or ``L``ong (every row starts a
   new 80-byte/80-character record); ``R``eal (single) or ``D``ouble precision;
@@ -245,23 +252,8 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
         return default
 
     u_channel = _u_channel(sections["KD_DEFINITION"], path)
-    u0 = get("REFERENCE_LINE_START_U", u_channel[0] if u_channel else 0.0)
-    u1 = get("REFERENCE_LINE_END_U")
-    du = get("REFERENCE_LINE_INCREMENT", u_channel[1] if u_channel else None)
-    if not (du > 0.0 and u1 > u0):
-        raise InputError(f"need REFERENCE_LINE_END_U > START_U and INCREMENT > 0, got "
-                         f"{u0:g}, {u1:g}, {du:g}", file=path, line=p.get(
-                             "REFERENCE_LINE_INCREMENT", (0, None))[1])
-    if (u1 - u0) / du > 1e8:
-        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m in steps of {du:g} m "
-                         "gives more than 1e8 cross sections; check both values", file=path,
-                         line=p.get("REFERENCE_LINE_END_U", (0, None))[1])
-    n_u = int(round((u1 - u0) / du)) + 1
-    if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
-        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
-                         f"of the increment {du:g} m", file=path,
-                         line=p.get("REFERENCE_LINE_END_U", (0, None))[1])
     fmt, channels = _channels(sections["KD_DEFINITION"], path)
+    u0, du, u1, n_u = _u_axis(p, u_channel, path, sections["ROAD_CRG"]["_line"])
     kinds = [c[0] for c in channels]
     sec_idx = [i for i, c in enumerate(channels) if c[0] in ("index", "v")]
     if len(sec_idx) < 2:
@@ -271,17 +263,11 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
         raise InputError("mixes 'long section <i>' and 'long section at v =' channels",
                          file=path, line=sections["KD_DEFINITION"]["_line"])
     if "index" in kinds:
-        v_right, dv = get("LONG_SECTION_V_RIGHT"), get("LONG_SECTION_V_INCREMENT")
         numbers = [channels[i][1] for i in sec_idx]
         if numbers != [float(i + 1) for i in range(len(sec_idx))]:
             raise InputError(f"long sections are numbered {numbers}, expected 1..{len(numbers)}",
                              file=path, line=channels[sec_idx[0]][2])
-        v = v_right + dv * np.arange(len(sec_idx))
-        v_left = p.get("LONG_SECTION_V_LEFT", (None,))[0]
-        if v_left is not None and abs(v[-1] - v_left) > 1e-6 * max(1.0, abs(v_left)):
-            raise InputError(f"{len(sec_idx)} long sections from {v_right:g} m by {dv:g} m end "
-                             f"at {v[-1]:g} m, but LONG_SECTION_V_LEFT = {v_left:g} m",
-                             file=path, line=p["LONG_SECTION_V_LEFT"][1])
+        v = _v_axis(p, len(sec_idx), path, sections["ROAD_CRG"]["_line"])
     else:
         v = np.array([channels[i][1] for i in sec_idx])
     order = np.argsort(v)
@@ -297,6 +283,20 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
         reject_text_as_binary(data, fmt, sep_line + 1, path)
         vals = parse_binary_values(data, fmt, len(channels), n_u, path)
         row_line = None
+    if n_u is None:  # END_U or INCREMENT derived from the number of records (OpenCRG)
+        n_u = vals.shape[0]
+        if n_u < 2:
+            raise InputError(f"the data block holds {n_u} cross section(s); a road needs at "
+                             "least 2", file=path, line=sep_line)
+        if du is None:
+            du = (u1 - u0) / (n_u - 1)
+            if u_channel and abs(u_channel[1] - du) > 1e-6 * max(du, 1e-3):
+                warnings.warn(f"{path}: the 'U:reference line u' increment {u_channel[1]:g} m "
+                              f"differs from (REFERENCE_LINE_END_U - START_U) / (records - 1) "
+                              f"= {du:g} m; OpenCRG uses the latter", UserWarning,
+                              stacklevel=2)
+        else:
+            u1 = u0 + (n_u - 1) * du
     u = u0 + du * np.arange(n_u)
     z = vals[:, sec_idx][:, order]
     v = v[order]
@@ -327,6 +327,91 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
                   cause="heights look like millimetres (or a slope or banking like per "
                         "cent); OpenCRG heights are in metres, slopes and banking in m/m")
     return road
+
+
+#: OpenCRG's increment when a file gives none (the reference loader's fallback), m
+DEFAULT_INCREMENT = 0.01
+
+
+def _u_axis(p, u_channel, path, section_line):
+    """``(u0, du, u1, n_u)`` of the reference line; ``du`` or ``u1`` None and ``n_u``
+    None when they follow from the number of records.
+
+    As OpenCRG: START_U, else the ``U:`` channel's start, else 0; INCREMENT, else
+    ``(END_U - START_U) / (records - 1)`` when END_U is given, else the ``U:`` channel's
+    increment, else 0.01 m (with a warning); END_U, else ``START_U + (records - 1)
+    INCREMENT``.
+    """
+    def line(key):
+        return p[key][1] if key in p else section_line
+
+    u0 = p["REFERENCE_LINE_START_U"][0] if "REFERENCE_LINE_START_U" in p else (
+        u_channel[0] if u_channel else 0.0)
+    u1 = p["REFERENCE_LINE_END_U"][0] if "REFERENCE_LINE_END_U" in p else None
+    if "REFERENCE_LINE_INCREMENT" in p:
+        du = p["REFERENCE_LINE_INCREMENT"][0]
+    elif u1 is not None:
+        du = None
+    elif u_channel:
+        du = u_channel[1]
+    else:
+        du = DEFAULT_INCREMENT
+        warnings.warn(f"{path}: $ROAD_CRG gives no REFERENCE_LINE_INCREMENT or END_U and "
+                      f"there is no 'U:reference line u' channel; OpenCRG's default increment "
+                      f"{DEFAULT_INCREMENT:g} m is used", UserWarning, stacklevel=3)
+    if du is not None and not du > 0.0:
+        raise InputError(f"REFERENCE_LINE_INCREMENT must be > 0, got {du:g}", file=path,
+                         line=line("REFERENCE_LINE_INCREMENT"), key="REFERENCE_LINE_INCREMENT")
+    if u1 is not None and not u1 > u0:
+        raise InputError(f"need REFERENCE_LINE_END_U > START_U, got {u0:g}, {u1:g}", file=path,
+                         line=line("REFERENCE_LINE_END_U"), key="REFERENCE_LINE_END_U")
+    if u1 is None or du is None:
+        return u0, du, u1, None
+    if (u1 - u0) / du > 1e8:
+        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m in steps of {du:g} m "
+                         "gives more than 1e8 cross sections; check both values", file=path,
+                         line=line("REFERENCE_LINE_END_U"))
+    n_u = int(round((u1 - u0) / du)) + 1
+    if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
+        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
+                         f"of the increment {du:g} m", file=path,
+                         line=line("REFERENCE_LINE_END_U"))
+    return u0, du, u1, n_u
+
+
+def _v_axis(p, n_v, path, section_line):
+    """Lateral positions of ``n_v`` numbered long sections, as OpenCRG derives them:
+    LONG_SECTION_V_INCREMENT, else ``(LEFT - RIGHT) / (n_v - 1)``, else 0.01 m (with a
+    warning); LONG_SECTION_V_RIGHT, else ``LEFT - (n_v - 1) INCREMENT``, else centred on
+    the reference line.  A given LEFT must agree with RIGHT and INCREMENT."""
+    def value(key):
+        return p[key][0] if key in p else None
+
+    right, left, dv = (value(f"LONG_SECTION_V_{k}") for k in ("RIGHT", "LEFT", "INCREMENT"))
+    if dv is None:
+        if right is not None and left is not None:
+            dv = (left - right) / (n_v - 1)
+            if not dv > 0.0:
+                raise InputError(f"LONG_SECTION_V_LEFT = {left:g} m must lie left of "
+                                 f"LONG_SECTION_V_RIGHT = {right:g} m (v is positive to the "
+                                 "left)", file=path, line=p["LONG_SECTION_V_LEFT"][1],
+                                 key="LONG_SECTION_V_LEFT")
+        else:
+            dv = DEFAULT_INCREMENT
+            warnings.warn(f"{path}: $ROAD_CRG gives no LONG_SECTION_V_INCREMENT and not both "
+                          f"LONG_SECTION_V_RIGHT and LEFT; OpenCRG's default increment "
+                          f"{DEFAULT_INCREMENT:g} m is used", UserWarning, stacklevel=3)
+    elif not dv > 0.0:
+        raise InputError(f"LONG_SECTION_V_INCREMENT must be > 0, got {dv:g}", file=path,
+                         line=p["LONG_SECTION_V_INCREMENT"][1], key="LONG_SECTION_V_INCREMENT")
+    if right is None:
+        right = -0.5 * (n_v - 1) * dv if left is None else left - (n_v - 1) * dv
+    v = right + dv * np.arange(n_v)
+    if left is not None and abs(v[-1] - left) > 1e-6 * max(1.0, abs(left)):
+        raise InputError(f"{n_v} long sections from {right:g} m by {dv:g} m end at {v[-1]:g} "
+                         f"m, but LONG_SECTION_V_LEFT = {left:g} m", file=path,
+                         line=p["LONG_SECTION_V_LEFT"][1], key="LONG_SECTION_V_LEFT")
+    return v
 
 
 def _reference_line(p, kinds, vals, u, path, get):

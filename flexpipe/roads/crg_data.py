@@ -13,8 +13,11 @@ import numpy as np
 from flexpipe.errors import InputError
 
 
-def parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int, first_line: int, path):
-    """Values of a formatted data block, shape (n_u, n_ch), and each row's first line."""
+def parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int | None, first_line: int,
+                      path):
+    """Values of a formatted data block, shape (n_u, n_ch), and each row's first line;
+    ``n_u`` None reads every row the block holds (a row left incomplete at its end is an
+    error)."""
     width = 10 if fmt[1] == "R" else 20
     lines = raw.decode("latin-1").splitlines()
     values, rows_line, row = [], [], []
@@ -51,15 +54,30 @@ def parse_text_values(raw: bytes, fmt: str, n_ch: int, n_u: int, first_line: int
         if fmt[0] == "L" and row and len(row) < n_ch and len(fields) < per_line:
             raise InputError(f"data row has {len(row)} values, expected {n_ch}", file=path,
                              line=k)
+    if n_u is None:
+        if row:
+            raise InputError(f"the data block ends inside a row: its last row has {len(row)} "
+                             f"of {n_ch} values (truncated file?)", file=path,
+                             line=rows_line[-1])
+        return np.array(values).reshape(-1, n_ch), np.array(rows_line[:len(values)])
     raise InputError(f"data block holds {len(values)} complete rows, expected {n_u} "
                      f"(from REFERENCE_LINE_START_U/END_U/INCREMENT)", file=path)
 
 
-def parse_binary_values(raw: bytes, fmt: str, n_ch: int, n_u: int, path):
+def parse_binary_values(raw: bytes, fmt: str, n_ch: int, n_u: int | None, path):
+    """Values of a binary data block, shape (n_u, n_ch); ``n_u`` None reads every row the
+    block holds, less the all-NaN rows that pad its last 80-byte record (as OpenCRG)."""
     dtype = np.dtype(">f4") if fmt[1] == "R" else np.dtype(">f8")
     row_bytes = n_ch * dtype.itemsize
     if fmt[0] == "L":
         row_bytes = -(-row_bytes // 80) * 80
+    if n_u is None:
+        n_u = len(raw) // row_bytes
+        if len(raw) % 80 == 0:
+            vals = parse_binary_values(raw, fmt, n_ch, n_u, path)
+            while n_u > 0 and np.all(np.isnan(vals[n_u - 1])):
+                n_u -= 1
+            return vals[:n_u]
     need = row_bytes * n_u
     if len(raw) % 80:
         raise InputError(f"binary data block has {len(raw)} bytes, not a whole number of "

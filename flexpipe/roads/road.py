@@ -31,7 +31,7 @@ import numpy as np
 
 from flexpipe._args import as_path, checked_number
 from flexpipe._arrays import readonly
-from flexpipe._io import atomic_path, read_numeric_rows
+from flexpipe._io import atomic_path, header_columns, read_numeric_table
 from flexpipe.errors import InputError
 from flexpipe.roads._plausible import check_heights
 from flexpipe.roads.refline import ReferenceLine
@@ -375,12 +375,68 @@ def _lateral_weights(y: np.ndarray, lateral):
     return j, f - j
 
 
+#: column names a road CSV header may use, by role (see :func:`read_csv`)
+ROAD_COLUMNS = {
+    "distance": ("distance", "x", "s", "u"),
+    "left": ("left", "z_left", "left_z", "height_left", "left_height", "h_left"),
+    "right": ("right", "z_right", "right_z", "height_right", "right_height", "h_right"),
+    "height": ("height", "z", "h"),
+}
+
+
+def _road_layout(table, path):
+    """Column index and factor to metres of (distance, left, right), from the header or,
+    without one, by position."""
+    if table.header is None:
+        return None
+    try:
+        xy = header_columns(table.header, names={"x": ("x",), "y": ("y",)}, file=path,
+                            line=table.header_line, kind="path")
+    except InputError:
+        xy = []
+    if {role for role, _ in xy} == {"x", "y"}:
+        raise InputError(f"the header ({', '.join(map(repr, table.header))}) names x and y "
+                         "points: this is a driver path (flexpipe run --path, "
+                         "flexpipe.driver.read_path), not a road; a road header names the "
+                         "distance and the track heights, e.g. 'distance_m,left_m,right_m'",
+                         file=path, line=table.header_line)
+    cols = header_columns(table.header, names=ROAD_COLUMNS, file=path,
+                          line=table.header_line, kind="road")
+    where = {role: (i, f) for i, (role, f) in enumerate(cols)}
+    given = ", ".join(repr(h) for h in table.header)
+    hint = ("a road header names the distance and either the left and the right track or "
+            "one height for both, e.g. 'distance_m,left_m,right_m' or 'distance_m,height_m'")
+    if "distance" not in where:
+        raise InputError(f"road file header ({given}) has no distance column; {hint}",
+                         file=path, line=table.header_line)
+    if "height" in where and ("left" in where or "right" in where):
+        raise InputError(f"road file header ({given}) has a height column and a track "
+                         f"column; {hint}", file=path, line=table.header_line)
+    if "height" in where:
+        return where["distance"], where["height"], where["height"]
+    if "left" not in where or "right" not in where:
+        missing = "right" if "left" in where else "left"
+        raise InputError(f"road file header ({given}) has no {missing} track column; {hint}",
+                         file=path, line=table.header_line)
+    return where["distance"], where["left"], where["right"]
+
+
 def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road:
     """Read a road from a CSV file.
 
-    The file holds one sample per line: ``distance, left, right`` (m), or
-    ``distance, height`` for the same height under both tracks.  Lines starting with ``#``
-    and blank lines are ignored; the first other line may be a header of column names.
+    The file holds one sample per line: ``distance, left, right`` or ``distance, height``
+    (the same height under both tracks).  Lines starting with ``#`` and blank lines are
+    ignored (a UTF-8 byte order mark too).  The first other line may be a header of
+    column names; it then says which column is which and in what unit:
+
+    * distance: ``distance``, ``x``, ``s`` or ``u``;
+    * tracks: ``left`` and ``right`` (also ``z_left``, ``height_left``, ``left_z``, ...),
+      or one ``height`` (``z``, ``h``) for both tracks;
+    * each optionally with a length unit, ``distance_m``, ``left_mm``, ``x [mm]``,
+      ``z (m)``: m, cm, mm or km, converted to metres (no unit: metres).
+
+    Columns may come in any order (``distance_m,right_m,left_m`` is read as written).  A
+    file without a header is read by position, in metres.
 
     Parameters
     ----------
@@ -398,38 +454,47 @@ def read_csv(path, *, track_width: float = 1.5, name: str | None = None) -> Road
     Raises
     ------
     InputError
-        Naming the file and line: a non-numeric or non-finite value, a wrong number of
-        columns, a distance that does not increase strictly, fewer than two samples,
-        heights that change more than a drivable road can (likely millimetres; see
-        :mod:`flexpipe.roads._plausible`).
+        Naming the file and line: a header column that is not a road column (the message
+        lists the names) or in a unit that is not a length, a non-numeric or non-finite
+        value, a wrong number of columns, a distance that does not increase strictly,
+        fewer than two samples, heights that change more than a drivable road can (likely
+        millimetres; see :mod:`flexpipe.roads._plausible`).
     """
     path = as_path(path, "path")
     track_width = checked_number(track_width, "track_width", lo=0.0, unit="m")
     rows, line_no = [], []
     ncol = None
     columns = "'distance, left, right' in metres"
-    for k, _text, values in read_numeric_rows(path, kind="road", columns=columns):
+    table = read_numeric_table(path, kind="road", columns=columns)
+    layout = _road_layout(table, path)
+    for k, _text, values in table.rows:
         if ncol is None:
             ncol = len(values)
+            if layout is not None and ncol != len(table.header):
+                raise InputError(f"{ncol} columns but the header on line {table.header_line} "
+                                 f"names {len(table.header)}", file=path, line=k)
             if ncol not in (2, 3):
                 raise InputError(f"{ncol} columns; expected 3 (distance, left, right) or 2 "
                                  "(distance, height)", file=path, line=k)
+            if layout is None:
+                layout = ((0, 1.0), (1, 1.0), (ncol - 1, 1.0))
         elif len(values) != ncol:
             raise InputError(f"{len(values)} columns where earlier lines have {ncol}",
                              file=path, line=k)
-        if rows and values[0] <= rows[-1][0]:
-            raise InputError(f"distance {values[0]:g} m does not increase (previous sample "
+        sample = [values[i] * f for i, f in layout]
+        if rows and sample[0] <= rows[-1][0]:
+            raise InputError(f"distance {sample[0]:g} m does not increase (previous sample "
                              f"{rows[-1][0]:g} m on line {line_no[-1]}); distances must "
                              "increase strictly", file=path, line=k)
-        rows.append(values)
+        rows.append(sample)
         line_no.append(k)
     if len(rows) < 2:
         raise InputError(f"{len(rows)} data line(s); a road needs at least 2 samples",
                          file=path, line=line_no[-1] if line_no else 1)
     data = np.array(rows)
-    right = data[:, 2] if ncol == 3 else data[:, 1]
-    road = Road(x=data[:, 0], left=data[:, 1], right=right, track_width=track_width,
+    two = layout[1][0] != layout[2][0]
+    road = Road(x=data[:, 0], left=data[:, 1], right=data[:, 2], track_width=track_width,
                 name=path.stem if name is None else name, source=str(path))
-    check_heights(data[:, 0], data[:, 1:], file=path, lines=line_no,
-                  labels=("left track", "right track") if ncol == 3 else ("tracks",))
+    check_heights(data[:, 0], data[:, 1:] if two else data[:, 1:2], file=path, lines=line_no,
+                  labels=("left track", "right track") if two else ("tracks",))
     return road

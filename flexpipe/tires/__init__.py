@@ -1,4 +1,5 @@
-"""Tyres: TeimOrbit ``.tir`` files, PAC2002 Magic Formula, Fiala/brush, vertical, relaxation.
+"""Tyres: TeimOrbit ``.tir`` files, PAC2002 / MF 5.2 Magic Formula, Fiala/brush, vertical,
+relaxation.
 
 Public API
 ----------
@@ -21,6 +22,22 @@ Conventions
   y left, z up) — the same handedness as the W-axes, so no sign change is needed; the W-axes
   are rotated into the global frame with the contact frame ``WheelForces.frame``.
 
+Magic Formula version
+---------------------
+flexpipe evaluates the Magic Formula 5.2 equations (Pacejka 2002; Adams PAC2002, TNO
+MF-Tyre 5.2).  ``[MODEL] PROPERTY_FILE_FORMAT`` ``'PAC2002'`` and ``'MF_05'`` (MF-Tyre 5.x:
+the same equations and coefficient names) are read alike; ``[MODEL] FITTYP``, when given,
+must be 6 or 21 (MF 5.2; Adams PAC2002 files usually have none).  An MF 6.x fit (FITTYP
+60, 61, 62) is refused with an :class:`~flexpipe.errors.InputError` naming FITTYP: its
+equations differ (cornering stiffness shape PKY4, camber stiffness PKY6/PKY7, pressure
+terms), so evaluating it as MF 5.2 would give plausible but wrong forces.  MF 6.x
+coefficients in an MF 5.2 file are ignored; when one has a value that would change an
+MF 6.x result (PKY4 other than 2, PKY5-PKY7, PEY5, QSX4-QSX14, QSY5, QSY6 non-zero, QSY7
+other than 1, or inflation-pressure terms PPX*, PPY*, PPZ*, QPZ*, PPMX1, QSY8 non-zero
+while ``[OPERATING_CONDITIONS] INFLPRES`` differs from ``NOMPRES`` or ``[TIRE_CONDITIONS]
+IP`` from ``IP_NOM``) the file gets one :class:`UserWarning` naming each such key and its
+line.  A 0 in PKY4 or QSY7 is taken as the placeholder PAC2002 files write.
+
 USE_MODE (Adams PAC2002 meaning, as documented in the reference files' headers)
 -------------------------------------------------------------------------------
 0 Fz only; 1 Fx and My only; 2 Fy, Mx, Mz only; 3 all, uncombined; 4 all, combined slip
@@ -32,8 +49,9 @@ warning.
 
 Sections honoured
 -----------------
-[UNITS] (conversion to SI), [MODEL] (PROPERTY_FILE_FORMAT, USE_MODE, TYRESIDE = LEFT,
-RIGHT or SYMMETRIC, VXLOW, LONGVL), [DIMENSION] (UNLOADED_RADIUS, WIDTH), [VERTICAL]
+[UNITS] (conversion to SI), [MODEL] (PROPERTY_FILE_FORMAT, FITTYP, USE_MODE, TYRESIDE =
+LEFT, RIGHT or SYMMETRIC, VXLOW, LONGVL), [DIMENSION] (UNLOADED_RADIUS; WIDTH is optional
+and descriptive only: :attr:`TireProperties.width` is None without it), [VERTICAL]
 (VERTICAL_STIFFNESS, VERTICAL_DAMPING, FNOMIN, BREFF/DREFF/FREFF, flexpipe extension
 VERTICAL_STIFFNESS_CUBIC),
 [DEFLECTION_LOAD_CURVE] {pen fz} (Duffing fit), [LONG_SLIP_RANGE], [SLIP_ANGLE_RANGE],
@@ -43,7 +61,16 @@ LCY, LMUY, LEY, LKY, LHY, LVY, LGAY, LTR, LRES, LGAZ, LXAL, LYKA, LVYKA, LS, LSG
 LMX, LVMX, LMY, LCZ), [LONGITUDINAL_COEFFICIENTS], [LATERAL_COEFFICIENTS],
 [ALIGNING_COEFFICIENTS], [OVERTURNING_COEFFICIENTS] (QSX1-3), [ROLLING_COEFFICIENTS]
 (QSY1-4), and for FIALA files [PARAMETER].  Accepted but not used: inflation-pressure
-terms (PPX*, PPY*, QPZ*, ...), turn slip, belt dynamics, QSX4+, QSY5+, [SHAPE].
+terms (PPX*, PPY*, QPZ*, ...), turn slip, belt dynamics, QSX4+, QSY5+, PKY4+, PEY5 (see
+above for the warning), [SHAPE].  [MDI_HEADER] is descriptive: its ``KEY = value`` entries
+are kept, anything else (free text, TeimOrbit ``(COMMENTS)`` blocks with their
+``{comment_string}`` header and quoted rows) is skipped; a ``(COMMENTS)`` block is skipped
+in the other free sections too ([MODEL], [SHAPE], ...) and is an error in a coefficient
+section.
+
+Warnings (:class:`UserWarning`) about a file name the file and line and are issued from
+one code location, so under Python's default warning filter each is shown once per
+process even when the file is read again (e.g. ``read_tir`` and then ``tire_from_file``).
 """
 
 from flexpipe.tires.contact import SlipState, TireModel, WheelForces, iso_to_sae

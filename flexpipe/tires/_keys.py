@@ -2,13 +2,16 @@
 
 The tables here decide which entries :func:`flexpipe.tires.read_tir` accepts:
 
-* ``STRICT_SECTIONS`` — coefficient sections of ``PAC2002`` files (and the ``[PARAMETER]``
-  section of ``FIALA`` files).  A key that is not listed is a user error (a typo such as
-  ``PKY11`` would otherwise silently become a default of zero).  The lists contain the
-  PAC2002 / MF-Tyre 5.2 coefficients plus the MF 6.x extensions that PAC2002-labelled files
-  in the wild carry (inflation pressure ``PPX*``/``PPY*``/``QPZ*``, extra overturning
-  ``QSX4..`` and rolling ``QSY5..`` terms, turn slip); the extensions are accepted but not
-  used by the model (see the package documentation).
+* ``STRICT_SECTIONS`` — coefficient sections of ``PAC2002`` / ``MF_05`` files (and the
+  ``[PARAMETER]`` section of ``FIALA`` files).  A key that is not listed is a user error (a
+  typo such as ``PKY11`` would otherwise silently become a default of zero).  The lists
+  contain the PAC2002 / MF-Tyre 5.2 coefficients plus the MF 6.x extensions that
+  PAC2002-labelled files in the wild carry (inflation pressure ``PPX*``/``PPY*``/``QPZ*``,
+  extra overturning ``QSX4..`` and rolling ``QSY5..`` terms, turn slip); the extensions are
+  accepted but not used by the model: ``MF6_ONLY`` lists those that change the forces, and
+  a file that gives one of them a value other than its neutral one gets a warning.
+* ``MF52_FORMATS`` / ``MF52_FITTYP`` / ``MF6_FITTYP`` — the ``[MODEL] PROPERTY_FILE_FORMAT``
+  and ``FITTYP`` values of Magic Formula 5.2 files (evaluated) and of MF 6.x fits (refused).
 * ``KNOWN_SECTIONS`` — other sections whose unknown keys only warn.
 * ``UNIT_DIMENSIONS`` — exponents ``(length, force, angle, mass, time, pressure)`` of the
   dimensional keys; these are converted to SI according to ``[UNITS]``.  Magic Formula
@@ -53,6 +56,54 @@ FIALA_PARAMETER = [
     "CSLIP", "CALPHA", "CGAMMA", "UMIN", "UMAX", "RELAX_LENGTH_X", "RELAX_LENGTH_Y",
     "ROLLING_RESISTANCE",
 ]
+
+#: ``[MODEL] PROPERTY_FILE_FORMAT`` values evaluated with the MF 5.2 equations of
+#: :mod:`flexpipe.tires.pac2002`: Adams ``PAC2002`` and TNO MF-Tyre 5.x ``MF_05`` files
+#: (the same equations and coefficient names; Project Chrono's PAC2002 reader, where the
+#: reference files come from, accepts both alike).
+MF52_FORMATS = ("PAC2002", "MF_05")
+#: ``[MODEL] FITTYP`` of a Magic Formula 5.2 fit (MF-Tyre writes 6 or 21; Adams PAC2002
+#: files usually have no FITTYP at all).
+MF52_FITTYP = (6, 21)
+#: ``[MODEL] FITTYP`` of the Magic Formula 6.x fits (MF-Tyre / MF-Swift 6.x), which
+#: flexpipe does not evaluate: version shown in the error.
+MF6_FITTYP = {60: "6.0", 61: "6.1", 62: "6.2"}
+
+#: Coefficients of the MF 6.x equations that the MF 5.2 / PAC2002 equations do not have:
+#: ``(section, key) -> (neutral values, what it changes)``.  A value other than a neutral
+#: one would change the forces under MF 6.x but is ignored here, so it warns.  Neutral:
+#: the value that gives the MF 5.2 result, plus 0 where 0 is only a placeholder (PKY4 = 0
+#: would give no cornering stiffness, QSY7 = 0 a rolling resistance independent of the
+#: load; PAC2002 files list them as 0).
+MF6_ONLY = {
+    ("LATERAL_COEFFICIENTS", "PKY4"): ((2.0, 0.0), "the shape of the cornering "
+                                       "stiffness over the load"),
+    ("LATERAL_COEFFICIENTS", "PKY5"): ((0.0,), "the camber effect on the load of peak "
+                                       "cornering stiffness"),
+    ("LATERAL_COEFFICIENTS", "PKY6"): ((0.0,), "the camber stiffness Kygamma"),
+    ("LATERAL_COEFFICIENTS", "PKY7"): ((0.0,), "the load dependency of the camber stiffness"),
+    ("LATERAL_COEFFICIENTS", "PEY5"): ((0.0,), "the camber effect on the Fy curvature"),
+    ("ROLLING_COEFFICIENTS", "QSY5"): ((0.0,), "the camber effect on the rolling resistance"),
+    ("ROLLING_COEFFICIENTS", "QSY6"): ((0.0,), "the camber and load effect on the rolling "
+                                       "resistance"),
+    ("ROLLING_COEFFICIENTS", "QSY7"): ((1.0, 0.0), "the load exponent of the rolling "
+                                       "resistance"),
+    **{("OVERTURNING_COEFFICIENTS", k): ((0.0,), "the overturning moment Mx")
+       for k in _seq("QSX", 4, 14)},
+}
+#: Inflation-pressure coefficients (MF 6.x and later PAC2002 versions): neutral when 0 or
+#: when the file's pressure equals its nominal pressure (``[OPERATING_CONDITIONS]
+#: INFLPRES``/``NOMPRES`` or ``[TIRE_CONDITIONS] IP``/``IP_NOM``).
+PRESSURE_TERMS = (
+    [("LONGITUDINAL_COEFFICIENTS", k) for k in _seq("PPX", 1, 4)]
+    + [("LATERAL_COEFFICIENTS", k) for k in _seq("PPY", 1, 5)]
+    + [("ALIGNING_COEFFICIENTS", k) for k in ("PPZ1", "PPZ2", "QPZ1", "QPZ2")]
+    + [("OVERTURNING_COEFFICIENTS", k) for k in ("PPMX1", "QPX1")]
+    + [("ROLLING_COEFFICIENTS", "QSY8")]
+)
+#: ``(section, actual pressure key, nominal pressure key)`` pairs read for PRESSURE_TERMS.
+PRESSURE_PAIRS = (("OPERATING_CONDITIONS", "INFLPRES", "NOMPRES"),
+                  ("TIRE_CONDITIONS", "IP", "IP_NOM"))
 
 #: Coefficient sections of a PAC2002 file: unknown keys are errors.
 PAC2002_STRICT = {

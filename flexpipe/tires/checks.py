@@ -1,9 +1,14 @@
 """Checks of a ``.tir`` file: key names, units, and physical ranges (values in SI, after the
 ``[UNITS]`` conversion).
 
-Key names: an unknown key in a PAC2002 coefficient section (or FIALA ``[PARAMETER]``) is an
-error; elsewhere an unknown key or section warns, unless it is one edit away from a known
-one (a typo that would silently fall back to a default), which is an error.
+Key names: an unknown key in a PAC2002 / MF_05 coefficient section (or FIALA
+``[PARAMETER]``) is an error; elsewhere an unknown key or section warns, unless it is one
+edit away from a known one (a typo that would silently fall back to a default), which is an
+error.
+
+Magic Formula version: ``[MODEL] FITTYP`` must be 6 or 21 (MF 5.2) when given; an MF 6.x
+fit is an error (:func:`check_fittyp`).  MF 6.x coefficients with a non-neutral value in an
+MF 5.2 file warn, since they are ignored (:func:`warn_unused_mf6`).
 
 Every value that would make the tyre model divide by zero, return NaN, or give plausible
 but wrong forces is rejected with an :class:`~flexpipe.errors.InputError` naming the file,
@@ -151,7 +156,7 @@ def check_tir(path, fmt: str, use_mode: int, sections, lines, tables) -> None:
             fail(sec, lo_key if lo is not None else hi_key, lo_v if lo is not None else hi_v,
                  f"{lo_key} < {hi_key} (got {lo_v:g} and {hi_v:g})")
     _check_tyre_side(path, sections, lines)
-    if fmt == "PAC2002":
+    if fmt in _keys.MF52_FORMATS:
         mode = abs(int(use_mode)) % 10
         long_, lat = mode in (1, 3, 4), mode in (2, 3, 4)
         for sec, key, why in (_MF_POSITIVE["LONG"] if long_ else ()) + (
@@ -304,6 +309,102 @@ def probe_forces(tire, path) -> None:
                 "check the Magic Formula / Fiala coefficients for zeros or overflow", file=path)
 
 
+# ---------------------------------------------------------------- warnings
+def file_warning(message: str) -> None:
+    """Warn (:class:`UserWarning`) about a tyre file, always from this one code location.
+
+    The message names the file (and line), so under Python's default warning filter each
+    message is shown once per process: reading or building the same file again (a script
+    calling :func:`~flexpipe.tires.read_tir` and then
+    :func:`~flexpipe.tires.tire_from_file`, a car with the file on several corners) does
+    not repeat it, while a filter ``"always"`` (e.g. :func:`pytest.warns`) still sees every
+    read.
+    """
+    warnings.warn(message, UserWarning, stacklevel=1)
+
+
+# ---------------------------------------------------------------- Magic Formula version
+def check_fittyp(path, sections, lines) -> None:
+    """``[MODEL] FITTYP``, when given, must mark an MF 5.2 fit (:data:`_keys.MF52_FITTYP`).
+
+    An MF 6.x fit (FITTYP 60, 61, 62) evaluated with the MF 5.2 equations gives plausible
+    but wrong forces (its PKY4..PKY7, PEY5, pressure and QSX4.. terms are missing from
+    them), so it is refused rather than read.
+    """
+    raw = sections.get("MODEL", {}).get("FITTYP")
+    if raw is None:
+        return
+    line = lines.get(("MODEL", "FITTYP"))
+    supported = ("flexpipe evaluates PAC2002 / MF 5.2 (FITTYP 6 or 21, or no FITTYP as in "
+                 "Adams PAC2002 files) only")
+    try:
+        value = float(raw)
+    except (TypeError, ValueError):
+        value = math.nan
+    if not math.isfinite(value) or value != int(value):
+        raise InputError(f"[MODEL] FITTYP = '{raw}' is not a Magic Formula version number; "
+                         f"{supported}", file=path, line=line, key="FITTYP")
+    fittyp = int(value)
+    if fittyp in _keys.MF52_FITTYP:
+        return
+    if fittyp in _keys.MF6_FITTYP:
+        raise InputError(
+            f"[MODEL] FITTYP = {fittyp} marks a Magic Formula {_keys.MF6_FITTYP[fittyp]} fit "
+            f"(MF-Tyre/MF-Swift 6.x), which is not supported: {supported}; the MF 6.x "
+            "equations differ (cornering stiffness shape PKY4, camber stiffness PKY6/PKY7, "
+            "inflation pressure terms PPX*/PPY*/PPZ*, overturning QSX4..), so its "
+            "coefficients would give wrong forces; use an MF 5.2 / PAC2002 fit of the tyre",
+            file=path, line=line, key="FITTYP")
+    raise InputError(f"[MODEL] FITTYP = {fittyp} is not a Magic Formula 5.2 fit; valid: "
+                     f"{' or '.join(str(v) for v in _keys.MF52_FITTYP)}: {supported}; "
+                     f"MF 6.x fits ({', '.join(str(v) for v in _keys.MF6_FITTYP)}) are not "
+                     "supported either", file=path, line=line, key="FITTYP")
+
+
+def warn_unused_mf6(path, sections, lines) -> None:
+    """One warning listing the MF 6.x coefficients of an MF 5.2 / PAC2002 file that have a
+    non-neutral value (:data:`_keys.MF6_ONLY`, and :data:`_keys.PRESSURE_TERMS` when the
+    file's inflation pressure differs from its nominal one): they are ignored."""
+
+    def num(sec, key):
+        v = sections.get(sec, {}).get(key)
+        return v if isinstance(v, float) else None
+
+    found = []
+    for (sec, key), (neutral, what) in _keys.MF6_ONLY.items():
+        v = num(sec, key)
+        if v is not None and v not in neutral:
+            shown = " or ".join(f"{n:g}" for n in neutral)
+            found.append((lines[(sec, key)], f"[{sec}] {key} = {v:g} (line "
+                          f"{lines[(sec, key)]}; {what}; neutral: {shown})"))
+    pressure = None
+    for sec, key, nom_key in _keys.PRESSURE_PAIRS:
+        p, p0 = num(sec, key), num(sec, nom_key)
+        if p is not None and p0 is not None and not math.isclose(p, p0, rel_tol=1e-9):
+            pressure = (f"{key} = {p:g} Pa differs from {nom_key} = {p0:g} Pa (line "
+                        f"{lines[(sec, key)]})")
+            break
+    if pressure is not None:
+        for sec, key in _keys.PRESSURE_TERMS:
+            v = num(sec, key)
+            if v:
+                found.append((lines[(sec, key)], f"[{sec}] {key} = {v:g} (line "
+                              f"{lines[(sec, key)]}; inflation pressure term)"))
+    if not found:
+        return
+    found.sort()
+    n = len(found)
+    text = (f"{path}: {'an MF 6.x coefficient' if n == 1 else f'{n} MF 6.x coefficients'} "
+            f"with a non-neutral value {'is' if n == 1 else 'are'} ignored: "
+            f"{'; '.join(t for _, t in found)}. flexpipe evaluates the PAC2002 / MF 5.2 "
+            f"equations, which have no such term{'' if n == 1 else 's'}, so the forces are "
+            "not those an MF 6.x evaluation of this file would give")
+    if pressure is not None and any("pressure term" in t for _, t in found):
+        text += (f"; the pressure terms would act because {pressure}, but flexpipe gives the "
+                 "forces at the nominal pressure")
+    file_warning(text)
+
+
 # ---------------------------------------------------------------- keys and units
 def unit_factors(path, units: dict, lines: dict) -> dict[str, float]:
     factors = {}
@@ -329,7 +430,8 @@ def scale(exponents, factors) -> float:
 
 
 def check_keys(path, fmt, sections, lines):
-    strict = {"PAC2002": _keys.PAC2002_STRICT, "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
+    strict = {"PAC2002": _keys.PAC2002_STRICT, "MF_05": _keys.PAC2002_STRICT,
+              "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
     for name, sec in sections.items():
         allowed = strict.get(name)
         if allowed is None:
@@ -341,8 +443,8 @@ def check_keys(path, fmt, sections, lines):
                         raise InputError(f"unknown section [{name}] (did you mean "
                                          f"[{close[0]}]?)", file=path,
                                          line=lines[(name, "")], key=name)
-                    warnings.warn(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
-                                  " kept but not used", UserWarning, stacklevel=4)
+                    file_warning(f"{path}, line {lines[(name, '')]}: unknown section [{name}]"
+                                 " kept but not used")
                 continue
             for key in sec:
                 if key not in allowed:
@@ -351,9 +453,8 @@ def check_keys(path, fmt, sections, lines):
                         raise InputError(f"unknown key {key} in [{name}] (did you mean "
                                          f"{close[0]}?)", file=path, line=lines[(name, key)],
                                          key=key)
-                    warnings.warn(f"{path}, line {lines[(name, key)]}: key {key} is not a "
-                                  f"known entry of [{name}]; ignored", UserWarning,
-                                  stacklevel=4)
+                    file_warning(f"{path}, line {lines[(name, key)]}: key {key} is not a "
+                                 f"known entry of [{name}]; ignored")
             continue
         for key in sec:
             if key not in allowed:

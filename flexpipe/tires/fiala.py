@@ -93,8 +93,8 @@ class FialaTire(TireModel):
     @classmethod
     def from_properties(cls, props, *, relaxation: bool | None = None,
                         vertical_law: str = "auto") -> FialaTire:
-        """From a ``FIALA`` file ([PARAMETER] CSLIP, CALPHA, UMIN, UMAX, ...) or a ``PAC2002``
-        file (stiffnesses and peak friction of the Magic Formula at FNOMIN, camber 0)."""
+        """From a ``FIALA`` file ([PARAMETER] CSLIP, CALPHA, UMIN, UMAX, ...) or a ``PAC2002`` /
+        ``MF_05`` file (stiffnesses and peak friction of the Magic Formula at FNOMIN, camber 0)."""
         from flexpipe.tires.pac2002 import MagicFormula
 
         fmt = props.property_file_format
@@ -108,7 +108,7 @@ class FialaTire(TireModel):
                 rolling_resistance=props.number("PARAMETER", "ROLLING_RESISTANCE", 0.0),
                 relax_length_x=props.relaxation_length_longitudinal(),
                 relax_length_y=props.relaxation_length_lateral())
-        elif fmt == "PAC2002":
+        elif props.is_mf52:
             mf = MagicFormula.from_properties(props, use_mode=3)
             fn = props.fnomin
             kx, ky = mf.slip_stiffness(fn)
@@ -121,7 +121,8 @@ class FialaTire(TireModel):
                 relax_length_y=None if np.isnan(sa) else float(sa))
         else:
             raise InputError(f"PROPERTY_FILE_FORMAT '{fmt}' cannot give Fiala parameters; "
-                             "valid: 'FIALA', 'PAC2002'", file=props.path,
+                             "valid: 'FIALA', 'PAC2002', 'MF_05'", file=props.path,
+                             line=props.lines.get(("MODEL", "PROPERTY_FILE_FORMAT")),
                              key="PROPERTY_FILE_FORMAT")
         return cls(
             params=p, vertical=VerticalModel.from_properties(props, law=vertical_law),

@@ -8,7 +8,7 @@ import numpy as np
 
 from flexpipe._args import as_path, checked_bool, checked_choice
 from flexpipe.errors import InputError
-from flexpipe.tires import _fast
+from flexpipe.tires import _fast, _keys
 from flexpipe.tires.checks import probe_forces
 from flexpipe.tires.contact import SlipState, TireModel, WheelForces
 from flexpipe.tires.fiala import FialaTire
@@ -56,7 +56,7 @@ class Pac2002Tire(TireModel):
     def from_properties(cls, props: TireProperties, *, use_mode: int | None = None,
                         relaxation: bool | None = None, vertical_law: str = "auto"
                         ) -> Pac2002Tire:
-        """Build from a ``PAC2002`` :class:`TireProperties`.
+        """Build from a ``PAC2002`` or ``MF_05`` (MF 5.2) :class:`TireProperties`.
 
         Parameters
         ----------
@@ -70,11 +70,15 @@ class Pac2002Tire(TireModel):
         """
         if relaxation is not None:
             relaxation = checked_bool(relaxation, "relaxation")
-        if props.property_file_format != "PAC2002":
-            raise InputError(f"PROPERTY_FILE_FORMAT is '{props.property_file_format}', the "
-                             "PAC2002 model needs 'PAC2002'", file=props.path,
-                             line=props.lines.get(("MODEL", "PROPERTY_FILE_FORMAT")),
-                             key="PROPERTY_FILE_FORMAT")
+        if not props.is_mf52:
+            raise InputError(
+                f"PROPERTY_FILE_FORMAT is '{props.property_file_format}'; the PAC2002 model "
+                "evaluates the Magic Formula 5.2 equations and reads "
+                f"{' or '.join(repr(f) for f in _keys.MF52_FORMATS)} files (Adams PAC2002, "
+                "MF-Tyre 5.x); MF-Tyre/MF-Swift 6.x files (e.g. 'MF-TYRE' with FITTYP 61 or "
+                "62) are not supported, and a 'FIALA' file needs model='fiala'",
+                file=props.path, line=props.lines.get(("MODEL", "PROPERTY_FILE_FORMAT")),
+                key="PROPERTY_FILE_FORMAT")
         refs = [props.get("VERTICAL", k) for k in ("BREFF", "DREFF", "FREFF")]
         have = any(r is not None for r in refs)
         return cls(
@@ -189,8 +193,8 @@ def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
     path : str or Path
         Tyre property file.
     model : {"pac2002", "fiala"}
-        ``pac2002`` needs a PAC2002 file; ``fiala`` accepts a FIALA file or derives
-        its parameters from a PAC2002 file.
+        ``pac2002`` needs a PAC2002 or MF_05 (Magic Formula 5.2) file; ``fiala`` accepts a
+        FIALA file or derives its parameters from a PAC2002 / MF_05 file.
     **options
         Passed to :meth:`Pac2002Tire.from_properties` / :meth:`FialaTire.from_properties`:
         ``relaxation`` (None or bool), ``vertical_law`` (``"auto"``, ``"linear"``,

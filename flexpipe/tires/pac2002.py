@@ -22,12 +22,12 @@ The curvature factors E are limited to <= 1 as the model requires.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, make_dataclass
 
 import numpy as np
 
 from flexpipe.tires import _keys
+from flexpipe.tires.checks import file_warning
 
 _SCALING_DEFAULT_ONE = set(_keys.SCALING)
 _COEFF_SECTIONS = ("SCALING_COEFFICIENTS", "LONGITUDINAL_COEFFICIENTS", "LATERAL_COEFFICIENTS",
@@ -122,7 +122,7 @@ class MagicFormula:
         Parameters
         ----------
         props : TireProperties
-            A ``PAC2002`` property file.
+            A ``PAC2002`` or ``MF_05`` (MF 5.2) property file.
         use_mode : int, optional
             Override of ``abs(USE_MODE) % 10``, 0-4 (e.g. 3 to switch combined slip off;
             see :mod:`flexpipe.tires`).
@@ -137,10 +137,10 @@ class MagicFormula:
         coeffs = Pac2002Coefficients(**values)
         mode = abs(props.use_mode) % 10 if use_mode is None else int(use_mode)
         if mode == 4 and not (coeffs.RBX1 or coeffs.RBY1):
-            warnings.warn(
+            file_warning(
                 f"{props.path}: USE_MODE 4 (combined slip) but the file has no combined-slip "
                 "coefficients (RBX1, RBY1 ...): PAC2002 weighting is then 1, i.e. forces are "
-                "NOT reduced under combined slip", UserWarning, stacklevel=2)
+                "NOT reduced under combined slip")
         fnom = props.fnomin
 
         def num(sec, key, default):  # a number, or an error naming file, line and key

@@ -8,16 +8,23 @@ Format handled
   string (``'meter'`` or ``"meter"``) or a bare word (kept as a string);
 * tables: a ``{col1 col2 ...}`` header inside a section followed by rows of numbers, e.g.
   ``[DEFLECTION_LOAD_CURVE] {pen fz}`` or ``[SHAPE] {radial width}``; kept as read-only
-  arrays in :attr:`TireProperties.tables`.
+  arrays in :attr:`TireProperties.tables`;
+* ``[MDI_HEADER]`` is descriptive: its ``KEY = value`` entries are kept, any other line is
+  skipped; a TeimOrbit comment block (a ``(COMMENTS)`` line, an optional one-column
+  ``{comment_string}`` header and ``'quoted'`` rows) is skipped in ``[MDI_HEADER]`` and the
+  other free sections (:data:`flexpipe.tires._keys.FREE_SECTIONS`).
 
 Checks (all raise :class:`~flexpipe.errors.InputError` naming the file and line): a line
 that is neither a section, key, table header nor table row; a key before the first
 section; a duplicate key; a non-numeric or non-finite value in a coefficient section; the
 physical ranges of :mod:`flexpipe.tires.checks`; an unknown key in a coefficient section
-of a ``PAC2002`` file (or in ``[PARAMETER]`` of a ``FIALA`` file); an unknown unit name; a
-key or section name one letter away from a known one. Missing required sections raise
-naming the file and the section.
-Unknown sections are kept and produce a :class:`UserWarning`.
+of a ``PAC2002`` / ``MF_05`` file (or in ``[PARAMETER]`` of a ``FIALA`` file); an unknown
+unit name; a key or section name one letter away from a known one; a ``[MODEL] FITTYP``
+other than 6 or 21 (MF 5.2), in particular an MF 6.x fit (60, 61, 62). Missing required
+sections raise naming the file and the section.
+Unknown sections, and MF 6.x coefficients with a non-neutral value in an MF 5.2 file (see
+:mod:`flexpipe.tires`), are kept and produce a :class:`UserWarning`, shown once per process
+and file under the default warning filter (:func:`flexpipe.tires.checks.file_warning`).
 
 Units
 -----
@@ -30,7 +37,6 @@ from __future__ import annotations
 
 import math
 import re
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,11 +46,20 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.tires import _keys
-from flexpipe.tires.checks import check_keys, check_tir, scale, unit_factors
+from flexpipe.tires.checks import (
+    check_fittyp,
+    check_keys,
+    check_tir,
+    file_warning,
+    scale,
+    unit_factors,
+    warn_unused_mf6,
+)
 
 _SECTION_RE = re.compile(r"^\[\s*([A-Za-z0-9_\- ]+?)\s*\]$")
 _KEY_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
 _TABLE_RE = re.compile(r"^\{(.*)\}$")
+_SUBBLOCK_RE = re.compile(r"^\(\s*([A-Za-z0-9_]+)\s*\)$")
 _NUMBER_RE = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?$")
 
 #: USE_MODE values honoured (sign = mirroring, tens = transient behaviour).
@@ -148,8 +163,15 @@ class TireProperties:
     # ------------------------------------------------------------------ typed accessors
     @property
     def property_file_format(self) -> str:
-        """``[MODEL] PROPERTY_FILE_FORMAT`` upper case, e.g. ``'PAC2002'`` or ``'FIALA'``."""
+        """``[MODEL] PROPERTY_FILE_FORMAT`` upper case, e.g. ``'PAC2002'``, ``'MF_05'`` or
+        ``'FIALA'``."""
         return str(self.get("MODEL", "PROPERTY_FILE_FORMAT", "")).upper()
+
+    @property
+    def is_mf52(self) -> bool:
+        """True for a Magic Formula 5.2 file (``PROPERTY_FILE_FORMAT`` ``'PAC2002'`` or
+        ``'MF_05'``), evaluated by :class:`flexpipe.tires.Pac2002Tire`."""
+        return self.property_file_format in _keys.MF52_FORMATS
 
     @property
     def use_mode(self) -> int:
@@ -167,9 +189,20 @@ class TireProperties:
         return self.number("DIMENSION", "UNLOADED_RADIUS")
 
     @property
-    def width(self) -> float:
-        """Nominal section width, m."""
+    def width(self) -> float | None:
+        """Nominal section width, m, or None when ``[DIMENSION]`` has no WIDTH (the tyre
+        models do not use it; it is descriptive only)."""
+        if self.get("DIMENSION", "WIDTH") is None:
+            return None
         return self.number("DIMENSION", "WIDTH")
+
+    @property
+    def fittyp(self) -> int | None:
+        """``[MODEL] FITTYP`` (Magic Formula version number: 6 or 21 = MF 5.2), or None."""
+        try:
+            return int(float(self.get("MODEL", "FITTYP")))
+        except (TypeError, ValueError):   # absent (or, in a FIALA file, not a number)
+            return None
 
     @property
     def vertical_stiffness(self) -> float:
@@ -261,11 +294,11 @@ def _parse_value(raw: str):
     return raw
 
 
-#: Sections a PAC2002 file needs, by USE_MODE % 10.
+#: Sections a PAC2002 / MF_05 file needs, by USE_MODE % 10.
 def _required_sections(fmt: str, use_mode: int) -> list[str]:
     if fmt == "FIALA":
         return ["MODEL", "DIMENSION", "VERTICAL", "PARAMETER"]
-    if fmt != "PAC2002":
+    if fmt not in _keys.MF52_FORMATS:
         return ["MODEL"]
     req = ["MODEL", "DIMENSION", "VERTICAL"]
     mode = abs(use_mode) % 10
@@ -310,6 +343,7 @@ def read_tir(path) -> TireProperties:
     tables: dict[str, tuple[tuple[str, ...], list, int]] = {}
     current = None
     table_open = None
+    comments = 0    # in a (COMMENTS) block: 1 right after its header line, 2 in its rows
     for lineno, line in enumerate(text.splitlines(), start=1):
         body = _strip_comment(line).strip()
         if not body:
@@ -320,11 +354,39 @@ def read_tir(path) -> TireProperties:
             sections.setdefault(current, {})
             lines.setdefault((current, ""), lineno)
             table_open = None
+            comments = 0
             continue
         if current is None:
             raise InputError(f"entry '{body}' appears before the first [SECTION] header",
                              file=path, line=lineno)
+        if comments:   # TeimOrbit comment block: {comment_string} header, 'quoted' rows
+            header = _TABLE_RE.match(body)
+            if body[0] in "'\"" or (comments == 1 and header
+                                     and len(header.group(1).split()) == 1):
+                comments = 2
+                continue
+            comments = 0
+        m = _SUBBLOCK_RE.match(body)
+        if m and m.group(1).upper() == "COMMENTS":
+            if current not in _keys.FREE_SECTIONS:
+                raise InputError(
+                    f"[{current}] holds a (COMMENTS) block; comment blocks are read (and "
+                    "skipped) only in the free sections "
+                    f"({', '.join('[' + s + ']' for s in sorted(_keys.FREE_SECTIONS))}): "
+                    "move it to [MDI_HEADER] or turn its lines into $ comments",
+                    file=path, line=lineno, key="COMMENTS")
+            comments = 1
+            table_open = None
+            continue
         m = _KEY_RE.match(body)
+        if current == "MDI_HEADER":
+            # descriptive only: keep its well-formed KEY = value entries, skip the rest
+            # (free text, tables, repeated keys) instead of parsing it
+            if m and _parse_value(m.group(2)) != "" and \
+                    m.group(1).upper() not in sections[current]:
+                sections[current][m.group(1).upper()] = _parse_value(m.group(2))
+                lines[(current, m.group(1).upper())] = lineno
+            continue
         if m:
             key, value = m.group(1).upper(), _parse_value(m.group(2))
             table_open = None
@@ -342,6 +404,10 @@ def read_tir(path) -> TireProperties:
                                  "number", file=path, line=lineno, key=key)
             sections[current][key] = value
             lines[(current, key)] = lineno
+            if current == "MODEL" and key == "FITTYP":
+                # at once: an MF 6.x file should fail on its version, not on a later entry
+                # this reader does not know (empty values, MF 6.x-only keys, ...)
+                check_fittyp(path, sections, lines)
             continue
         m = _TABLE_RE.match(body)
         if m:
@@ -366,7 +432,8 @@ def read_tir(path) -> TireProperties:
             row_lines.append(lineno)
             continue
         raise InputError(f"cannot parse '{body}' in [{current}]: expected KEY = value, "
-                         "a [SECTION] header or a {{table}} header", file=path, line=lineno)
+                         "a [SECTION] header, a {column ...} table header or a (COMMENTS) "
+                         "block", file=path, line=lineno)
 
     if not sections:
         raise InputError("no [SECTION] found: not a TeimOrbit tyre property file", file=path)
@@ -385,14 +452,17 @@ def read_tir(path) -> TireProperties:
             raise InputError(f"required section [{name}] is empty (truncated file?)",
                              file=path, line=lines[(name, "")], key=name)
     if "PROPERTY_FILE_FORMAT" not in sections["MODEL"]:
-        raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002' or 'FIALA')",
+        raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002', 'MF_05' or "
+                         "'FIALA')",
                          file=path, line=lines[("MODEL", "")], key="PROPERTY_FILE_FORMAT")
     check_keys(path, fmt, sections, lines)
 
     factors = unit_factors(path, sections.get("UNITS", {}), lines)
-    if fmt == "PAC2002" and factors["ANGLE"] != 1.0:
-        warnings.warn(f"{path}: [UNITS] ANGLE is not radian; Magic Formula coefficients are "
-                      "still interpreted as radian-based", UserWarning, stacklevel=2)
+    if fmt in _keys.MF52_FORMATS and factors["ANGLE"] != 1.0:
+        file_warning(f"{path}, line {lines.get(('UNITS', 'ANGLE'))}: [UNITS] ANGLE = "
+                     f"'{sections['UNITS']['ANGLE']}' is not radian; the angle ranges are "
+                     "converted, but Magic Formula coefficients are still interpreted as "
+                     "radian-based (as the Magic Formula defines them)")
     for (sec, key), dims in _keys.UNIT_DIMENSIONS.items():
         value = sections.get(sec, {}).get(key)
         if isinstance(value, float):
@@ -410,6 +480,8 @@ def read_tir(path) -> TireProperties:
         data.setflags(write=False)
         frozen_tables[name] = TirTable(cols, data, lineno, tuple(row_lines))
     check_tir(path, fmt, int(use_mode), sections, lines, frozen_tables)
+    if fmt in _keys.MF52_FORMATS:
+        warn_unused_mf6(path, sections, lines)
 
     return TireProperties(
         path=path,

@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.tires.checks import file_warning
 
 
 @dataclass(frozen=True)
@@ -115,13 +115,12 @@ class VerticalModel:
         d_max = float(np.max(table.column("pen")))
         k_file = props.get("VERTICAL", "VERTICAL_STIFFNESS")
         if isinstance(k_file, float) and abs(k * lcz - k_file * lcz) > 0.05 * k_file * lcz:
-            warnings.warn(
+            file_warning(
                 f"{props.path}, line {table.line}: the [DEFLECTION_LOAD_CURVE] table is used "
                 f"for the vertical force (fit k = {k * lcz:.6g} N/m, k3 = {k3 * lcz:.6g} "
                 f"N/m^3); [VERTICAL] VERTICAL_STIFFNESS = {k_file:g} N/m (line "
                 f"{props.lines.get(('VERTICAL', 'VERTICAL_STIFFNESS'))}) differs by more "
-                "than 5 % and is not used (vertical_law='linear' uses it instead)",
-                UserWarning, stacklevel=3)
+                "than 5 % and is not used (vertical_law='linear' uses it instead)")
         try:
             return cls(k=k * lcz, c=c, k3=k3 * lcz, d_max=d_max)
         except InputError as exc:

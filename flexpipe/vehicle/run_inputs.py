@@ -56,12 +56,33 @@ def as_car(car) -> Car:
     raise InputError(f"car must be a Car or a car file, got {type(car).__name__}", key="car")
 
 
-def as_path(path, needed: float):
+def road_start(road) -> tuple[float, float, float]:
+    """Global position ``(x, y)`` (m) and heading (rad) of a road's first sample on its
+    reference line: ``(x[0], 0, 0)`` for a road along the x axis (CSV, generated), the
+    start of the plan of a placed OpenCRG road."""
+    if road is None:
+        return 0.0, 0.0, 0.0
+    if road.plan is None:
+        return float(road.x[0]), 0.0, 0.0
+    return float(road.plan.x[0]), float(road.plan.y[0]), float(road.plan.phi_start)
+
+
+def as_path(path, needed: float, road=None):
+    """The path of a run.  ``None`` or ``"straight"``: a straight path of ``needed + 50``
+    metres from the first sample of ``road`` along its start heading (:func:`road_start`;
+    from the origin along x for a road that starts there, or without a road), so that the
+    car starts at the same run-in on any road; a file or a Path object is used as given."""
     from flexpipe.driver import Path as DPath
     from flexpipe.driver import read_path, straight
 
     if path is None or (isinstance(path, str) and path == "straight"):
-        return straight(needed + 50.0, ds=1.0)
+        x0, y0, heading = road_start(road)
+        if x0 == 0.0 and y0 == 0.0 and heading == 0.0:
+            return straight(needed + 50.0, ds=1.0)
+        line = straight(needed + 50.0, ds=1.0, heading=heading)
+        return DPath.from_xy(line.x + x0, line.y + y0, name="straight",
+                             source=f"straight(length={needed + 50.0:g}) from the road's "
+                                    f"first sample ({x0:g}, {y0:g}) m")
     if isinstance(path, DPath):
         return path
     if isinstance(path, (str, Path)):
@@ -96,9 +117,12 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
               inertia_coupling: str = "auto") -> RunArguments:
     """Check the arguments of :func:`~flexpipe.vehicle.simulation.simulate` (same meaning,
     same units: speed in m/s, times in s) without reducing or integrating anything: the
-    numbers, the body model, the car, road, path and driver files, that the road
-    and path are long enough, and for a flexible or full body that the car file's mount
-    ``node_ids`` are nodes of the body mesh (which reads the mesh when a mount gives ids).
+    numbers, the body model, the car, road, path and driver files, that the path is long
+    enough and the road lies under it (:func:`_check_road_covers`; the default straight
+    path starts at the road's first sample, :func:`as_path`, so a road starting at 100 m
+    is driven from 100 m on as one starting at 0 is from 0), and for a flexible or full
+    body that the car file's mount ``node_ids`` are nodes of the body mesh (which reads
+    the mesh when a mount gives ids).
 
     Raises
     ------
@@ -162,9 +186,11 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     needed = start + travel + 10.0
     road_obj = as_road(road, needed)
     path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
-        else as_path(path, needed)  # path="road": follow the road's reference line
+        else as_path(path, needed, road_obj)  # path="road": follow the road's reference line
     what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
-    road_obj.require_length(needed, what=what, start=road_obj.x[0])
+    if road is not None:  # (the default flat road is flat beyond its ends too)
+        _check_road_covers(road_obj, path_obj, needed, what=what,
+                           given=not (path is None or path in ("straight", "road")))
     path_obj.require_length(travel + 10.0, what=what, start=start)
     if driver is None:
         steering = speed_pi = None
@@ -189,6 +215,31 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,
                         max_mode_hz=max_mode_hz, f_max=f_max, rates=rates, start=start,
                         road=road_obj, path=path_obj, steering=steering, speed_pi=speed_pi)
+
+
+def _check_road_covers(road, path, needed: float, *, what: str, given: bool) -> None:
+    """Raise :class:`InputError` unless the road lies under the path from its start to
+    ``needed`` metres along it (the car's body origin starts ``START_MARGIN_M`` beyond the
+    rear wheels and stops 10 m short of that end): the road's distance ``x`` (``u`` along
+    the reference line of an OpenCRG road) of those path points must lie within the
+    road's samples, where a road holds its end heights."""
+    s = np.concatenate([[0.0], path.s[(path.s > 0.0) & (path.s < needed)], [needed]])
+    x, y = path.point_at(s)
+    u = road.to_uv(x, y)[0]
+    lo, hi = float(np.min(u)), float(np.max(u))
+    x0, x1 = float(road.x[0]), float(road.x[-1])
+    tol = 1e-9 * max(1.0, abs(x0), abs(x1))
+    if lo >= x0 - tol and hi <= x1 + tol:
+        return
+    coord = "x" if road.plan is None else "u (along its reference line)"
+    if given:
+        why = (f"the path '{path.name}' is used as given (only the default straight path "
+               "starts at the road's first sample): use a road whose distances cover the "
+               "path, a path on the road, or --path road to follow the road")
+    else:
+        why = "use a longer road or a shorter run"
+    raise InputError(f"road '{road.name}' covers {x0:g} .. {x1:g} m; {what} needs {coord} "
+                     f"from {lo:g} to {hi:g} m; {why}", file=road.source or None)
 
 
 def _check_ride_height(car) -> None:

@@ -171,7 +171,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         :mod:`flexpipe.roads.crg_mods`); others along the x axis.
     path : flexpipe.driver.Path, str, Path or None
         Path the driver follows (file ``.csv``/``.toml``); ``None`` or ``"straight"`` for
-        the x axis; ``"road"`` for the road's reference line (:meth:`Road.reference_path`).
+        a straight path from the road's first sample along its start heading (the x axis
+        from 0 for a road starting at 0, or no road); ``"road"`` for the road's reference
+        line (:meth:`Road.reference_path`).
     speed : float
         Target (and initial) speed, m/s (0 for a car at rest).
     t_end : float
@@ -251,7 +253,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     Raises
     ------
     InputError
-        Bad arguments, bad car file, road or path too short.
+        Bad arguments, bad car file, path too short, or the road not under the path (a
+        given path is not moved onto a road that starts elsewhere).
     """
     a = check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body, h=h,
                   output_step=output_step, driver=driver, f_max=f_max,
