@@ -82,13 +82,15 @@ class _Deck:
         self.instances = 0
         self.n1_node: dict[int, int] = {}   # beam element id -> orientation node id
         self.surfaces: dict[str, list] = {}    # NAME -> [(file, line, text, ctx)]
-        self.pending = None     # (ref, surface, file, line) of an open *COUPLING
-        self.couplings2 = []    # (KINEMATIC|DISTRIBUTING, ref, surface, file, line, dofs)
+        self.pending = None     # (ref, surface, file, line, radius) of an open *COUPLING
+        self.couplings2 = []    # (KINEMATIC|DISTRIBUTING, ref, surface, file, line,
+                        #  influence radius or None, dofs)
         self.springs = []       # (elset, rows, file, line)
         self.connectors = []    # (elset, connection types, behavior, file, line)
         self.behaviors: dict[str, dict] = {}
         self.behavior = None
         self.dropped: dict[str, int] = {}
+        self.dropped_at: dict[str, tuple] = {}   # keyword -> (file, line) of the first
         # part / assembly namespaces (see the module docstring)
         self.scope = "model"    # model | part | assembly | instance
         self.has_assembly = False

@@ -181,11 +181,19 @@ def _couplings2(deck, index):
     from flexpipe.mesh.mesh import Interpolation
 
     links, interp = [], []
-    for kind, ref, surf, f, ln, dofs in deck.couplings2:
+    for kind, ref, surf, f, ln, radius, dofs in deck.couplings2:
         r = ref_node(deck, ref, index, "*COUPLING REF NODE", f, ln)
         nodes, w = _surface_nodes(deck, surf, f, ln, index)
         nodes, first = np.unique(nodes, return_index=True)
         w = w[first]
+        if radius is not None:          # INFLUENCE RADIUS: the surface nodes within it
+            X = np.asarray(deck.coords, dtype=float)
+            near = np.linalg.norm(X[nodes] - X[r], axis=1) <= radius
+            if not near.any():
+                raise MeshError(f"*COUPLING INFLUENCE RADIUS={radius:g}: none of the "
+                                f"{len(nodes)} nodes of SURFACE {surf} is within it of the "
+                                "reference node", file=f, line=ln)
+            nodes, w = nodes[near], w[near]
         if r in set(nodes.tolist()):
             raise MeshError("*COUPLING: the reference node is also a surface node", file=f,
                             line=ln)
@@ -415,100 +423,3 @@ def _section_props(kw, p, rows, f, ln) -> dict:
         if nsm:
             props["nsm"] = nsm
     return props
-
-
-#: named *BOUNDARY types and the DOF they hold (Abaqus conventions)
-BC_TYPES = {"ENCASTRE": "123456", "PINNED": "123", "XSYMM": "156", "YSYMM": "246",
-            "ZSYMM": "345", "XASYMM": "234", "YASYMM": "135", "ZASYMM": "126"}
-_BC_PARAMS = ("OP", "TYPE", "AMPLITUDE", "FIXED")
-
-
-def _boundary(deck, p, lines, f, ln):
-    """Rows ``(node id or node set key, dofs "123", file, line)`` of a ``*BOUNDARY``
-    block, and whether it has ``OP=NEW``.  A non-zero value is held at zero with a
-    warning: a natural-frequency analysis (as Abaqus's ``*FREQUENCY`` step) fixes the DOF."""
-    bad = [k for k in p if k not in _BC_PARAMS]
-    if bad:
-        raise MeshError(f"*BOUNDARY parameter {bad[0]} is not supported; valid: OP=MOD|NEW, "
-                        "TYPE=DISPLACEMENT, AMPLITUDE, FIXED", file=f, line=ln)
-    op = p.get("OP", "MOD").upper()
-    if op not in ("MOD", "NEW"):
-        raise MeshError(f"*BOUNDARY OP={p['OP']}; valid: MOD, NEW", file=f, line=ln)
-    kind = p.get("TYPE", "DISPLACEMENT").upper()
-    if kind != "DISPLACEMENT":
-        raise MeshError(f"*BOUNDARY TYPE={p['TYPE']} is not supported; valid: DISPLACEMENT "
-                        "(zero displacements and rotations held fixed)", file=f, line=ln)
-    ctx = deck.ctx()
-    rows, nonzero = [], []
-    for lf, lln, t in lines.data():
-        tok = [x.strip() for x in t.split(",")]
-        tok += [""] * (4 - len(tok))
-        if not tok[0] or not tok[1]:
-            raise MeshError("*BOUNDARY line needs 'node or node set, first DOF[, last DOF[, "
-                            "value]]' or 'node or node set, type' (ENCASTRE, PINNED, XSYMM, ...)",
-                            file=lf, line=lln)
-        if not tok[1].isdigit():
-            dofs = BC_TYPES.get(tok[1].upper())
-            if dofs is None:
-                raise MeshError(f"*BOUNDARY type '{tok[1]}' is not known; valid: a DOF number "
-                                f"1..6 or {', '.join(BC_TYPES)}", file=lf, line=lln)
-        else:
-            first = int(tok[1])
-            last = int(tok[2]) if tok[2].isdigit() else first
-            if tok[2] and not tok[2].isdigit():
-                raise MeshError(f"*BOUNDARY last DOF '{tok[2]}'; valid: an integer 1..6",
-                                file=lf, line=lln)
-            if not 1 <= first <= last <= 6:
-                raise MeshError(f"*BOUNDARY DOF {first}..{last}; valid: first <= last within "
-                                "1..6 (displacements 1-3, rotations 4-6)", file=lf, line=lln)
-            dofs = "".join(str(d) for d in range(first, last + 1))
-            if tok[3]:
-                v = parse_real(tok[3])
-                if v is None or not np.isfinite(v):
-                    raise MeshError(f"*BOUNDARY value '{tok[3]}' is not a number", file=lf,
-                                    line=lln)
-                if v:
-                    nonzero.append((lf, lln, tok[0], tok[3]))
-        rows.append((deck.node_ref(tok[0], ctx), dofs, lf, lln))
-    if nonzero:
-        lf, lln, what, v = nonzero[0]
-        warnings.warn(MeshWarning(
-            f"{lf} line {lln}: *BOUNDARY prescribes non-zero values ({len(nonzero)} line(s), "
-            f"e.g. {what} = {v}); the natural modes hold these DOF fixed (as a *FREQUENCY "
-            "step does), the values are not used"), stacklevel=5)
-    return rows, op == "NEW"
-
-
-def _frequency(p, rows, f, ln):
-    """``(n, f_min, f_max, file, line)`` of a ``*FREQUENCY`` step (None where blank)."""
-    solver = p.get("EIGENSOLVER", "LANCZOS").upper()
-    if solver not in ("LANCZOS", "AMS", "SUBSPACE"):
-        raise MeshError(f"*FREQUENCY EIGENSOLVER={p['EIGENSOLVER']}; valid: LANCZOS, AMS, "
-                        "SUBSPACE", file=f, line=ln)
-    if not rows:
-        raise MeshError("*FREQUENCY needs a data line (number of eigenvalues, frequency range)",
-                        file=f, line=ln)
-    lf, lln, t = rows[0]
-    tok = [x.strip() for x in t.split(",")] + [""] * 3
-    n = None
-    if tok[0]:
-        if not tok[0].isdigit() or int(tok[0]) < 1:
-            raise MeshError(f"*FREQUENCY number of eigenvalues '{tok[0]}'; valid: an integer "
-                            ">= 1 or blank", file=lf, line=lln)
-        n = int(tok[0])
-    fields = (None, tok[1]) if solver == "SUBSPACE" else (tok[1], tok[2])
-    rng = []
-    for what, s in zip(("minimum", "maximum"), fields, strict=True):
-        v = parse_real(s) if s else None
-        if s and (v is None or not np.isfinite(v) or v < 0):
-            raise MeshError(f"*FREQUENCY {what} frequency '{s}'; valid: a frequency >= 0 "
-                            "(cycles per time) or blank", file=lf, line=lln)
-        rng.append(v)
-    f_min, f_max = rng
-    if n is None and f_max is None:
-        raise MeshError("*FREQUENCY gives neither the number of eigenvalues nor a maximum "
-                        "frequency", file=lf, line=lln)
-    if f_min is not None and f_max is not None and f_min >= f_max:
-        raise MeshError(f"*FREQUENCY range {f_min:g}..{f_max:g}; valid: minimum < maximum",
-                        file=lf, line=lln)
-    return n, f_min, f_max, lf, lln

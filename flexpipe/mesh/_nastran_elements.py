@@ -90,6 +90,46 @@ CORNER_T = {"CQUAD4": (range(10, 14), 9), "CTRIA3": (range(11, 14), 10),
             "CQUAD8": (range(10, 14), 16), "CTRIA6": (range(10, 13), 13)}
 
 
+#: shell card -> data index of ZOFFS (THETA/MCID is the field before it) (QRG)
+ZOFFS_FIELD = {"CQUAD4": 7, "CTRIA3": 6, "CQUAD8": 15, "CTRIA6": 9}
+
+
+def second_order_refs(els: dict, X: np.ndarray) -> dict:
+    """Material x axis of each CQUAD8/CTRIA6 with a THETA angle (``card.seq`` -> vector):
+    the parent's element x axis (CQUAD4 / CTRIA3 convention on its corner grids) turned
+    by THETA about its normal.  The four sub-shells of the split then take this direction
+    (projected onto each), not THETA from their own x axes, which differ from the
+    parent's.  Call before :func:`split_second_order` (node indices resolved)."""
+    from flexpipe.mesh._bulk import parse_real
+
+    out = {}
+    for key, zi in (("quad8", 15), ("triangle6", 9)):
+        for c, _eid, _pid, g in els.get(key, []):
+            s = c.raw(zi - 1)
+            if not s or s.lstrip("+-").isdigit():
+                continue                    # blank, or an MCID: projected per sub-shell
+            v = parse_real(s)
+            if v is None or not np.isfinite(v):
+                raise c.error(f"THETA = '{s}' is not a number (or MCID id)")
+            P = X[np.asarray(g[:4] if key == "quad8" else g[:3])]
+            if key == "quad8":
+                e1 = P[1] + P[2] - P[0] - P[3]
+                n = np.cross(P[2] - P[0], P[3] - P[1])
+            else:
+                e1 = P[1] - P[0]
+                n = np.cross(P[1] - P[0], P[2] - P[0])
+            if not np.linalg.norm(n) > 0:
+                continue                    # degenerate: left to the sub-shells' checks
+            n = n / np.linalg.norm(n)
+            e1 = e1 - (e1 @ n) * n
+            if not np.linalg.norm(e1) > 0:
+                continue
+            e1 = e1 / np.linalg.norm(e1)
+            a = np.radians(v)
+            out[c.seq] = np.cos(a) * e1 + np.sin(a) * np.cross(n, e1)
+    return out
+
+
 def corner_thickness(card: Card):
     """``(TFLAG, [T1, T2, ...])`` of a shell card that gives corner thicknesses (None for
     a blank Ti), or None when it gives none (blank Ti with TFLAG 0 or 1: the PSHELL T)."""
@@ -219,11 +259,11 @@ def cell_arrays(cell_type, items, fa, fast, gid, sorter):
     conn = np.array([it[3] for it in items], dtype=np.int64)
     zoff = theta = None
     if cell_type in ("quad", "triangle"):
-        zi = 7 if cell_type == "quad" else 6
-        zoff = np.array([it[0].real(zi, "ZOFFS", 0.0) if it[0].name in ("CQUAD4", "CTRIA3")
-                         else 0.0 for it in items])
-        theta = np.array([it[0].raw(zi - 1) if it[0].name in ("CQUAD4", "CTRIA3")
-                          else "" for it in items], dtype=object)
+        zi = [ZOFFS_FIELD.get(it[0].name) for it in items]
+        zoff = np.array([it[0].real(z, "ZOFFS", 0.0) if z else 0.0
+                         for it, z in zip(items, zi, strict=True)])
+        theta = np.array([it[0].raw(z - 1) if z else ""
+                          for it, z in zip(items, zi, strict=True)], dtype=object)
     if fa is None:
         return eid, pid, conn, zoff, theta, lambda j: items[j][0], corners
     name = "CQUAD4" if cell_type == "quad" else "CTRIA3"

@@ -17,7 +17,8 @@ I22, J; n1; E, G; ``DENSITY=``), ``*BEAM SECTION`` (``SECTION=RECT``, ``CIRC``, 
 COUPLING`` and ``*COUPLING`` + ``*KINEMATIC`` (rigid spiders, like Nastran RBE2),
 ``*COUPLING`` + ``*DISTRIBUTING`` on a ``*SURFACE, TYPE=NODE`` (= Nastran RBE3, weights
 from the surface; ``REF NODE=`` a node or a one-node set, as Abaqus/CAE writes for a
-reference point), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connectors with
+reference point; ``INFLUENCE RADIUS=r``: only the surface nodes within r of the reference
+node are coupled), ``SPRING1``/``SPRING2`` with ``*SPRING``, ``CONN3D2`` connectors with
 ``*CONNECTOR SECTION`` / ``*CONNECTOR BEHAVIOR`` (linear uncoupled elasticity and
 damping: Nastran CBUSH), ``*INCLUDE``, and a single ``*PART``/``*INSTANCE`` without
 positioning.
@@ -80,17 +81,24 @@ from flexpipe.errors import MeshError
 from flexpipe.mesh._abaqus_deck import _Deck, _Lines, _members, _params, _rows
 from flexpipe.mesh._abaqus_extra import (
     _beam_section,
-    _boundary,
     _composite,
     _connectors,
     _couplings,
     _couplings2,
-    _frequency,
     _masses,
     _section_props,
     _springs,
 )
 from flexpipe.mesh._abaqus_extra import values as _values
+from flexpipe.mesh._abaqus_steps import (
+    BC_SET,
+    _boundary,
+    _end_step,
+    _solution,
+    _step_keyword,
+    near_miss,
+)
+from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh.mesh import CellBlock, Mesh
 from flexpipe.mesh.nastran import drop_orientation_nodes
 from flexpipe.mesh.validate import MeshWarning
@@ -130,7 +138,18 @@ HANDLED_KEYWORDS = ("NODE", "ELEMENT", "NSET", "ELSET", "SOLID SECTION", "SHELL 
 IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "AMPLITUDE", "INITIAL CONDITIONS", "OUTPUT",
                     "NODE OUTPUT", "ELEMENT OUTPUT", "RESTART", "SURFACE INTERACTION",
                     "NODAL THICKNESS", "SURFACE SECTION", "SURFACE BEHAVIOR", "PLASTIC",
-                    "DISTRIBUTION", "DISTRIBUTION TABLE")
+                    "DISTRIBUTION", "DISTRIBUTION TABLE", "CONNECTOR MOTION", "CONNECTOR STOP",
+                    "TRANSVERSE SHEAR STIFFNESS")
+#: what a keyword of :data:`IGNORED_KEYWORDS` would do, said in the "not used" warning
+IGNORED_NOTES = {
+    "CONNECTOR MOTION": "prescribed connector motion, a load/boundary condition of a step; "
+                        "the connector keeps its free components",
+    "CONNECTOR STOP": "stops limiting the connector's relative motion, a nonlinear contact "
+                      "condition; the linear connector has no stops",
+    "TRANSVERSE SHEAR STIFFNESS": "the given transverse shear stiffness values are replaced "
+                                  "by flexpipe's own (its shells and beams compute them from "
+                                  "the section's material and geometry)",
+}
 
 
 def _parse(path: Path) -> _Deck:
@@ -147,10 +166,11 @@ def _parse(path: Path) -> _Deck:
         if deck.pending is not None and kw not in ("DISTRIBUTING", "KINEMATIC"):
             raise MeshError("*COUPLING must be followed by *DISTRIBUTING or *KINEMATIC",
                             file=deck.pending[2], line=deck.pending[3])
-        if kw not in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING"):
+        if kw not in ("CONNECTOR ELASTICITY", "CONNECTOR DAMPING", "CONNECTOR STOP"):
             deck.behavior = None            # connector behaviour options end here
         if deck.done:                       # steps after the frequency step are not used
             deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
+            deck.dropped_at.setdefault(kw, (f, ln))
             for _ in lines.data():
                 pass
             continue
@@ -307,7 +327,13 @@ def _parse(path: Path) -> _Deck:
             if not ref or not surf:
                 raise MeshError("*COUPLING needs REF NODE=<node id or node set> and "
                                 "SURFACE=<name>", file=f, line=ln)
-            deck.pending = (deck.node_ref(ref, ctx), surf, f, ln)
+            radius = None
+            if p.get("INFLUENCE RADIUS", "") != "":
+                radius = parse_real(p["INFLUENCE RADIUS"])
+                if radius is None or not (np.isfinite(radius) and radius > 0):
+                    raise MeshError(f"*COUPLING INFLUENCE RADIUS={p['INFLUENCE RADIUS']}; "
+                                    "valid: a distance > 0", file=f, line=ln)
+            deck.pending = (deck.node_ref(ref, ctx), surf, f, ln, radius)
         elif kw in ("DISTRIBUTING", "KINEMATIC") and deck.pending is not None:
             if p.get("WEIGHTING METHOD", "UNIFORM").upper() != "UNIFORM":
                 raise MeshError("*DISTRIBUTING: only WEIGHTING METHOD=UNIFORM is supported",
@@ -386,8 +412,9 @@ def _parse(path: Path) -> _Deck:
                             "remove or convert it", file=f, line=ln)
         else:
             if kw not in IGNORED_KEYWORDS:
-                _near_miss(kw, HANDLED_KEYWORDS, f, ln)
+                near_miss(kw, HANDLED_KEYWORDS, f, ln)
             deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
+            deck.dropped_at.setdefault(kw, (f, ln))
             for _ in lines.data():
                 pass
     if deck.pending is not None:
@@ -398,16 +425,6 @@ def _parse(path: Path) -> _Deck:
     return deck
 
 
-def _near_miss(kw, known, f, ln):
-    """A keyword that is not read but close to one that is: taken as a typo (an error)."""
-    import difflib
-
-    close = difflib.get_close_matches(kw, known, n=1, cutoff=0.8)
-    if close:
-        raise MeshError(f"unknown keyword *{kw}: a misspelt *{close[0]}? (a keyword that is "
-                        "not read could change the structure)", file=f, line=ln)
-
-
 def _enter_assembly(deck: _Deck, p) -> None:
     """``*ASSEMBLY``: labels of assembly-level nodes and elements get ids above the parts'."""
     deck.has_assembly, deck.scope = True, "assembly"
@@ -415,55 +432,6 @@ def _enter_assembly(deck: _Deck, p) -> None:
     eids = [e for t in deck.eids for e in deck.eids[t]]
     deck.node_offset = 10 ** len(str(max(deck.node_ids))) if deck.node_ids else 0
     deck.elem_offset = 10 ** len(str(max(eids))) if eids else 0
-
-
-#: name of the DOF set of the deck's *BOUNDARY constraints: a Nastran SPC set's name, so
-#: that ``flexpipe modes`` applies it and the .bdf writer writes it (SPC = 1, SPC1 cards)
-BC_SET = "SPC1"
-#: keywords read inside a step (the rest of a step is listed as not used)
-STEP_KEYWORDS = ("STEP", "END STEP", "BOUNDARY", "FREQUENCY")
-
-
-def _step_keyword(deck: _Deck, kw: str, p, lines, f, ln) -> None:
-    """One keyword of history data: ``*BOUNDARY`` and ``*FREQUENCY`` are read."""
-    if kw == "STEP":
-        if deck.step is not None:
-            raise MeshError(f"*STEP inside the step that starts at line {deck.step['line']}: "
-                            "that step has no *END STEP", file=f, line=ln)
-        deck.steps += 1
-        if deck.bc_active is None:
-            deck.bc_active = list(deck.bc_model)
-        deck.step = {"new": False, "freq": None, "file": f, "line": ln}
-        for _ in lines.data():              # the step's description line
-            pass
-    elif kw == "END STEP":
-        _end_step(deck)
-    elif kw == "BOUNDARY":
-        rows, op_new = _boundary(deck, p, lines, f, ln)
-        if op_new and not deck.step["new"]:  # OP=NEW: the step's first one removes all
-            deck.bc_active, deck.step["new"] = [], True
-        deck.bc_active += rows
-    elif kw == "FREQUENCY":
-        deck.step["freq"] = _frequency(p, list(lines.data()), f, ln)
-    elif kw == "MODEL CHANGE":
-        raise MeshError("*MODEL CHANGE is not supported (it removes or adds elements in a "
-                        "step); write the deck with the elements of the frequency step only",
-                        file=f, line=ln)
-    else:
-        _near_miss(kw, STEP_KEYWORDS, f, ln)
-        deck.dropped[kw] = deck.dropped.get(kw, 0) + 1
-        for _ in lines.data():
-            pass
-
-
-def _end_step(deck: _Deck) -> None:
-    if deck.step is None:
-        return
-    step, deck.step = deck.step, None
-    if deck.steps == 1:
-        deck.bc_first = list(deck.bc_active)
-    if step["freq"] is not None:            # the first frequency step: its set-up is used
-        deck.bc_used, deck.frequency, deck.done = list(deck.bc_active), step["freq"], True
 
 
 def _dup(ids, where, what, labels=None):
@@ -627,34 +595,10 @@ def read_abaqus(path) -> Mesh:
                 info={"read": {t: len(e) for t, _, e in blocks}, "converted": converted,
                       "dropped": dict(deck.dropped)})
     if deck.dropped:
-        warnings.warn(MeshWarning(f"{path}: keywords not used for M and K: "
-                                  + ", ".join(f"*{k} x{n}" for k, n in deck.dropped.items())),
-                      stacklevel=3)
+        where = {k: f" (first at {f} line {ln})" for k, (f, ln) in deck.dropped_at.items()}
+        warnings.warn(MeshWarning(
+            f"{path}: keywords not used for M and K: "
+            + ", ".join(f"*{k} x{n}" + (f" - {IGNORED_NOTES[k]}{where.get(k, '')}"
+                                        if k in IGNORED_NOTES else "")
+                        for k, n in deck.dropped.items())), stacklevel=3)
     return drop_orientation_nodes(mesh, n1_nodes)
-
-
-def _solution(deck: _Deck, index):
-    """``Mesh.dof_sets`` / ``Mesh.solution`` from ``*BOUNDARY`` and ``*FREQUENCY``: the
-    constraints in effect in the first ``*FREQUENCY`` step (model data, then the steps up
-    to it, ``OP=NEW`` removing what was before) - else at the end of the first step, else
-    the model data's - as the DOF set :data:`BC_SET` that ``flexpipe modes`` holds fixed
-    (``solution["spc"]``, as a Nastran ``SPC = 1``), and that step's number of
-    eigenvalues and frequency range (``n_modes``, ``f_min``, ``f_max``, as an EIGRL)."""
-    rows = deck.bc_used if deck.bc_used is not None else (
-        deck.bc_first if deck.bc_first is not None else deck.bc_model)
-    dof_sets, solution = {}, {}
-    pairs = []
-    for ref, dofs, f, ln in rows:
-        ids = deck.nodes_of(ref, "*BOUNDARY", f, ln)
-        idx = index(ids, lambda _, f=f, ln=ln: (f, ln), "*BOUNDARY")
-        cc = np.array([int(ch) - 1 for ch in dofs])
-        pairs.append(np.column_stack([np.repeat(idx, len(cc)), np.tile(cc, len(idx))]))
-    if pairs:
-        dof_sets[BC_SET] = np.unique(np.vstack(pairs), axis=0)
-        solution["spc"] = BC_SET
-    if deck.frequency is not None:
-        n, f_min, f_max = deck.frequency[:3]
-        solution.update({k: v for k, v in (("n_modes", n), ("f_min", f_min),
-                                            ("f_max", f_max)) if v is not None})
-    return dof_sets, solution
-

@@ -4,15 +4,17 @@ Cards read
 ----------
 Grids and systems: ``GRID`` (``CP`` and ``CD`` in any ``CORD1R/1C/1S/2R/2C/2S``, ``PS``).
 Elements: ``CTETRA`` (4/10), ``CHEXA`` (8), ``CPENTA`` (6), ``CPYRAM`` (5), ``CQUAD4``,
-``CTRIA3`` (``ZOFFS`` applied; corner thicknesses ``T1..`` with ``TFLAG`` - blank Ti = the
-PSHELL T, TFLAG 1 = factors on it - become one thickness per element, the mean of its
-corners: cell sets ``PID<n>_T<k>`` whose sections override the PID's, one warning when
-corners differ within an element), ``CQUAD8``/``CTRIA6`` (converted: each split into four
-CQUAD4/CTRIA3 through its mid-side grids - a CQUAD8 gains a centre grid - conforming with
-split neighbours; second-order CHEXA/CPENTA/CPYRAM become linear on their corner grids,
-with a warning), ``CBAR``/``CBEAM`` (orientation ``X`` or ``G0`` in the ``CD`` system
-of GA, end offsets ``WA``/``WB`` applied), ``CROD``/``CONROD``, ``CELAS1``/``CELAS2``,
-``CBUSH``, ``CONM1``, ``CONM2``, ``RBE2``, ``RBE3``, ``RBAR``.
+``CTRIA3`` (``ZOFFS`` and ``THETA``/``MCID`` applied; corner thicknesses ``T1..`` with
+``TFLAG`` - blank Ti = the PSHELL T, TFLAG 1 = factors on it - become one thickness per
+element, the mean of its corners: cell sets ``PID<n>_T<k>`` whose sections override the
+PID's, one warning when corners differ within an element), ``CQUAD8``/``CTRIA6``
+(converted: each split into four CQUAD4/CTRIA3 through its mid-side grids - a CQUAD8 gains
+a centre grid - conforming with split neighbours; their ``ZOFFS`` applies to each part,
+``MCID`` is projected onto each part, ``THETA`` turns the parent's element x axis, which
+each part takes as its material axis; second-order CHEXA/CPENTA/CPYRAM become linear on
+their corner grids, with a warning), ``CBAR``/``CBEAM`` (orientation ``X`` or ``G0`` in
+the ``CD`` system of GA, end offsets ``WA``/``WB`` applied), ``CROD``/``CONROD``,
+``CELAS1``/``CELAS2``, ``CBUSH``, ``CONM1``, ``CONM2``, ``RBE2``, ``RBE3``, ``RBAR``.
 Properties and materials: see :mod:`flexpipe.mesh._nastran_props` (``PSHELL``,
 ``PSOLID``, ``PBAR``, ``PBEAM``, ``PBARL``, ``PBEAML``, ``PROD``, ``PELAS``, ``PBUSH``,
 ``PCOMP``/``PCOMPG`` with ``MAT8``/``MAT1`` plies, ``MAT1``); ``SET1`` lists of grids
@@ -85,6 +87,7 @@ from flexpipe.mesh._nastran_elements import (
     element_thickness,
     line_data,
     rbe2,
+    second_order_refs,
     split_second_order,
 )
 from flexpipe.mesh._nastran_elements import index_of as _index_of
@@ -218,6 +221,7 @@ def read_nastran(path) -> Mesh:
                          "a node")
         els[cell_type] = [(it[0], it[1], it[2], list(row))
                           for it, row in zip(items, conn, strict=True)]
+    so_ref = second_order_refs(els, X)   # CQUAD8/CTRIA6 THETA -> material axis
     new_pts, info["converted"] = split_second_order(els, X, int(gid.max()))
     for k, v in second.items():
         info["converted"][k] = f"{v} second-order -> linear (corner grids)"
@@ -258,6 +262,12 @@ def read_nastran(path) -> Mesh:
             if theta is not None and any(theta):
                 data["mat_theta"], data["mat_ref"] = nprops.shell_orientation(
                     theta, conn, X, systems, user_of)
+                if so_ref:     # split CQUAD8/CTRIA6: the parent's THETA direction
+                    for j in np.flatnonzero(np.array([bool(t) for t in theta])):
+                        c = user_of(int(j))
+                        if c.seq in so_ref:
+                            data["mat_theta"][j] = 0.0
+                            data["mat_ref"][j] = so_ref[c.seq]
         bi = len(blocks)
         blocks.append(CellBlock(cell_type, conn, eid, np.abs(pid), data))
         for p in np.unique(pid):
