@@ -235,19 +235,12 @@ def tire_text(path) -> str:
     without ``[DIMENSION] WIDTH``, which a run does not need, says "width not given"."""
     import numpy as np
 
-    from flexpipe.errors import InputError
-    from flexpipe.tires import Pac2002Tire, read_tir
-    from flexpipe.tires.checks import probe_forces
+    from flexpipe.tires import read_tir
+    from flexpipe.tires.model import tire_from_properties
     from flexpipe.vehicle.corners import static_loaded_radius
 
     props = read_tir(path)
-    try:  # what tire_from_file(path) builds, from the one reading
-        tire = Pac2002Tire.from_properties(props)
-    except InputError as exc:
-        if exc.file is not None:
-            raise
-        raise InputError(str(exc), file=props.path, key=exc.key) from None
-    probe_forces(tire, props.path)
+    tire = tire_from_properties(props)  # what tire_from_file(path) builds, one reading
     mf, fz = tire.mf, props.fnomin
     mux, muy = (float(np.asarray(m)) for m in mf.peak_friction(fz))
     kx, ky = (float(np.asarray(k)) for k in mf.slip_stiffness(fz))

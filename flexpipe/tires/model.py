@@ -218,9 +218,17 @@ def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
         raise InputError(f"unknown tyre model {model!r}; valid: {sorted(builders)}", file=path,
                          key="model")
     _check_options(model, options)
-    props = read_tir(path)
+    return tire_from_properties(read_tir(path), builder=builders[model], **options)
+
+
+def tire_from_properties(props, *, builder=None, **options) -> TireModel:
+    """Build and check a tyre model from an already read ``.tir`` file (``props``, from
+    :func:`read_tir`; ``builder`` a ``from_properties`` method, default PAC2002): the part
+    of :func:`tire_from_file` after the reading, for a caller that also needs ``props``.
+    Errors without a file are given the file's name."""
+    builder = Pac2002Tire.from_properties if builder is None else builder
     try:
-        tire = builders[model](props, **options)
+        tire = builder(props, **options)
     except InputError as exc:
         if exc.file is not None:
             raise
