@@ -132,6 +132,8 @@ IGNORED_KEYWORDS = ("HEADING", "PREPRINT", "AMPLITUDE", "INITIAL CONDITIONS", "O
                     "NODAL THICKNESS", "SURFACE SECTION", "SURFACE BEHAVIOR", "PLASTIC",
                     "DISTRIBUTION", "DISTRIBUTION TABLE", "CONNECTOR MOTION", "CONNECTOR STOP",
                     "TRANSVERSE SHEAR STIFFNESS")
+#: ignored keywords that say nothing about the model: listed in info, not warned
+SILENT_KEYWORDS = ("HEADING", "PREPRINT")
 #: what a keyword of :data:`IGNORED_KEYWORDS` would do, said in the "not used" warning
 IGNORED_NOTES = {
     "CONNECTOR MOTION": "prescribed connector motion, a load/boundary condition of a step; "
@@ -490,11 +492,12 @@ def read_abaqus(path) -> Mesh:
                 interpolations=interp, dof_sets=dof_sets, solution=solution,
                 info={"read": {t: len(e) for t, _, e in blocks}, "converted": converted,
                       "dropped": dict(deck.dropped)})
-    if deck.dropped:
+    told = {k: n for k, n in deck.dropped.items() if k not in SILENT_KEYWORDS}
+    if told:
         where = {k: f" (first at {f} line {ln})" for k, (f, ln) in deck.dropped_at.items()}
         warnings.warn(MeshWarning(
             f"{path}: keywords not used for M and K: "
             + ", ".join(f"*{k} x{n}" + (f" - {IGNORED_NOTES[k]}{where.get(k, '')}"
                                         if k in IGNORED_NOTES else "")
-                        for k, n in deck.dropped.items())), stacklevel=3)
+                        for k, n in told.items())), stacklevel=3)
     return drop_orientation_nodes(mesh, n1_nodes)

@@ -2,7 +2,9 @@
 
 Nodes, elements (C3D4, C3D10, C3D8, S3, S4, B31), every node and cell set as
 ``*NSET``/``*ELSET``, sections with their materials, point masses (``MASS``/``ROTARYI``
-elements) and rigid links (``*KINEMATIC COUPLING``).  Reals are written with 17
+elements), rigid links (``*KINEMATIC COUPLING``), interpolations (``*DISTRIBUTING``
+coupling), and the solution's constraint set and eigenvalue set-up (``*BOUNDARY``, a
+``*STEP`` with ``*FREQUENCY``).  Reals are written with 17
 significant digits, so a round trip is exact.
 """
 
@@ -195,7 +197,62 @@ def abaqus_text(mesh: Mesh) -> str:
                                                           np.asarray(it.weights), strict=True)]
         out += [f"*COUPLING, REF NODE={int(nid[it.ref])}, SURFACE={name}", "*DISTRIBUTING"]
         out += [f"{c}, {c}" for c in sorted(it.ref_dofs)]
-    if mesh.dof_sets or mesh.solution:
-        warnings.warn(MeshWarning("SPC sets and the solution set-up (EIGRL) are not written "
-                                  "to .inp (only to .bdf)"), stacklevel=3)
+    out += _history(mesh, nid)
     return "\n".join(out) + "\n"
+
+
+def _dof_runs(comps) -> list[tuple[int, int]]:
+    """Runs ``(first, last)`` of consecutive 1-based components."""
+    comps = sorted(comps)
+    runs, s0 = [], comps[0]
+    for a, b in zip(comps, comps[1:] + [None], strict=True):
+        if b != a + 1:
+            runs.append((s0, a))
+            s0 = b
+    return runs
+
+
+def _history(mesh: Mesh, nid) -> list[str]:
+    """``*BOUNDARY`` for the constraint set the solution uses (``solution["spc"]``, as
+    Nastran's ``SPC =``) and a ``*STEP`` with ``*FREQUENCY`` for its number of modes and
+    frequency range (as an EIGRL): what :mod:`flexpipe.mesh._abaqus_steps` reads back as
+    the same DOF set and set-up.  What Abaqus cannot hold is named in a warning."""
+    sol = mesh.solution
+    if sol.get("spc_directions") is not None:
+        from flexpipe.errors import InputError
+
+        raise InputError("the mesh carries SPCs in rotated displacement systems (CD), which "
+                         "the writer does not reproduce; keep the original deck",
+                         file=mesh.source or None)
+    out, lost = [], []
+    used = sol.get("spc")
+    if used is not None and used not in mesh.dof_sets:
+        lost.append(f"the constraint set {used!r} the solution names (not in the mesh)")
+    unused = sorted(k for k in mesh.dof_sets if k != used)
+    if unused:
+        lost.append(f"constraint set(s) {', '.join(unused)}, which the solution does not use "
+                    "(an .inp holds the one set in effect)")
+    if used in mesh.dof_sets and len(mesh.dof_sets[used]):
+        by_node: dict = {}
+        for n, c in np.asarray(mesh.dof_sets[used], dtype=np.int64).reshape(-1, 2):
+            by_node.setdefault(int(n), set()).add(int(c) + 1)
+        out.append("*BOUNDARY")
+        for n in sorted(by_node):
+            out += [f"{int(nid[n])}, {a}, {b}" for a, b in _dof_runs(by_node[n])]
+    n, f_min, f_max = (sol.get(k) for k in ("n_modes", "f_min", "f_max"))
+    if n is not None or f_max is not None:
+        fields = ["" if v is None else (str(int(v)) if k == 0 else _r(v))
+                  for k, v in enumerate((n, f_min, f_max))]
+        out += ["*STEP, NAME=modes", "*FREQUENCY, EIGENSOLVER=LANCZOS", ", ".join(fields),
+                "*END STEP"]
+    elif f_min is not None:
+        lost.append(f"the lower frequency bound {f_min:g} Hz without a number of modes or an "
+                    "upper bound (*FREQUENCY needs one of them)")
+    lumped = sol.get("lumped_mass")
+    if lumped or (lumped is None and sol.get("sol") is not None):
+        lost.append("the lumped mass of the Nastran solution (PARAM,COUPMASS,-1 or its "
+                    "default; flexpipe reads an .inp with the consistent mass)")
+    if lost:
+        warnings.warn(MeshWarning(f"not written to .inp (write .bdf to keep them): "
+                                  f"{'; '.join(lost)}"), stacklevel=4)
+    return out
