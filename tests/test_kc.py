@@ -124,7 +124,7 @@ def _info_figures(text: str) -> dict:
         if m and axle is not None:
             axle["kinematic"] = float(m.group(1))
         m = re.search(rf"(at the static tyre load|on the K&C rig, wheel_load_N) {num} N "
-                      rf"\((?:time runs|flexpipe kc)\): spring preload {num} N, wheel rate "
+                      rf"\((?:time runs[^)]*|flexpipe kc)\): spring preload {num} N, wheel rate "
                       rf"incl\. compliance {num} N/m", line)
         if m and axle is not None:
             key = "static" if m.group(1).startswith("at") else "rig"

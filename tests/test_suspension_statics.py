@@ -64,6 +64,20 @@ def test_wheel_rate_is_spring_rate_times_mr_squared_plus_bushing_torsion():
     assert wheel_rate(c) == pytest.approx(expected, rel=1e-5)
 
 
+def test_joints_rigid_wheel_rate_leaves_the_bushings_out():
+    """The time runs' kinematic mode: the same bushed corner's rate without the bushing
+    torsion, i.e. the lever rule K (a/b)^2 (flexpipe info's "joints rigid" figure)."""
+    from flexpipe.vehicle.suspension.statics import corner_figures
+
+    bush = Bushing([1e10, 1e10, 1e10, 150.0, 0.0, 0.0])
+    c = corner(bushings={"lower_arm_front": bush, "lower_arm_rear": bush,
+                         "upper_arm_front": bush, "upper_arm_rear": bush})
+    fig = corner_figures(c)
+    assert fig["wheel rate, joints rigid [N/m]"] == pytest.approx(K * (A / B) ** 2, rel=1e-6)
+    assert fig["wheel rate incl. compliance [N/m]"] == pytest.approx(
+        K * (A / B) ** 2 + 4 * 150.0 / B**2, rel=1e-5)
+
+
 def test_preload_times_mr_is_wheel_load_minus_part_weights():
     m_knuckle, m_lower, m_upper, g = 12.0, 3.0, 2.0, 9.81
     parts = {"knuckle": {"mass": m_knuckle, "cm": (0.0, 0.9, 0.35)},

@@ -156,9 +156,13 @@ def _axle_lines(car: Car, name: str, axle, load: float) -> list[str]:
 
     def at(label, f):
         return (f"      {label}: spring preload {f['spring preload [N]']:.0f} N, wheel rate "
-                f"incl. compliance {f['wheel rate incl. compliance [N/m]']:.0f} N/m")
+                f"incl. compliance {f['wheel rate incl. compliance [N/m]']:.0f} N/m, "
+                f"joints rigid {f['wheel rate, joints rigid [N/m]']:.0f} N/m")
 
-    out.append(at(f"at the static tyre load {load:.0f} N (time runs)", fig))
+    mode = car.suspension.mode
+    out.append(at(f"at the static tyre load {load:.0f} N (time runs, mode {mode}: the "
+                  f"{'joints-rigid' if mode == 'kinematic' else 'incl. compliance'} rate)",
+                  fig))
     given = car.suspension.axles[name]
     spring = given.left.spring()
     if given.wheel_load is not None or spring.free_length is not None:

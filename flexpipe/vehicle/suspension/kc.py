@@ -411,7 +411,11 @@ def design_figures(axle: Axle, *, h: float = H_DESIGN) -> dict:
             "bump steer [deg/m]": (hi["toe"] - lo["toe"]) / (2 * h),
             "roll centre height [mm]": roll_centre(r["patch"], r["patch_velocity"])[1] * 1e3,
             "spring motion ratio [-]": r.get("spring_mr", np.nan),
-            "anti-dive/anti-squat angle [deg]": r["side_view_angle"],
+            "patch side-view angle [deg]": r["side_view_angle"],
+            # > 0 resists pitch: anti-dive at the front (patch forward in bump), anti-lift
+            # and, with the drive at the patch, anti-squat at the rear (patch rearward)
+            "anti-dive (front) / anti-lift (rear) angle [deg]": (
+                r["side_view_angle"] if axle.name == "front" else -r["side_view_angle"]),
             "kinematic wheel rate [N/m]": (spring.rate * r["spring_mr"] ** 2
                                            if spring is not None else np.nan),
             "roll stiffness [N m/deg]": (k + k_bar) * track**2 / 2 * np.pi / 180}

@@ -67,8 +67,9 @@ def rates(lk: Linkage, pose: Pose) -> dict:
         convention, d/ds of the knuckle point at the contact patch), ``ic_y``/``ic_z``
         front-view instant centre (m), ``side_view_angle`` (deg, of the contact-patch
         path: atan(dx/dz), > 0 when the patch moves forward in bump, i.e. the side-view
-        swing arm's instant centre lies behind and above it: the anti-dive angle at the
-        front, anti-lift/anti-squat angle at the rear, for forces at the patch),
+        swing arm's instant centre lies behind and above it; for forces at the patch
+        that is anti-dive at the front but pro-lift at the rear, where anti-lift and
+        anti-squat need the patch to move rearward in bump, a negative angle),
         ``wheel_center_velocity``, ``part_dz`` (d z_cm / ds per part).
     """
     c = lk.c

@@ -73,6 +73,13 @@ def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4) -
     return (f[1] - f[0]) / (2 * h)
 
 
+def kinematic_corner(corner: CornerLinkage) -> CornerLinkage:
+    """``corner`` as the time runs' kinematic mode has it: every bushing replaced by the
+    joint it surrounds, every link rigid (:mod:`flexpipe.exu.linkage`)."""
+    return replace(corner, joints=tuple(replace(j, bushing=None) for j in corner.joints),
+                   links=tuple(replace(k, axial_stiffness=None) for k in corner.links))
+
+
 def corner_figures(corner: CornerLinkage) -> dict:
     """Spring figures of ``corner`` as preloaded, at the design position.
 
@@ -83,7 +90,10 @@ def corner_figures(corner: CornerLinkage) -> dict:
         [-]"``, ``"kinematic wheel rate [N/m]"`` (spring rate x motion ratio^2, joints
         rigid: the K&C rig's column of that name) and ``"wheel rate incl. compliance
         [N/m]"`` (:func:`wheel_rate`: bushings, the preloaded spring's geometric stiffness
-        and stops included; the K&C rig's wheel rate).
+        and stops included; the K&C rig's wheel rate) and ``"wheel rate, joints rigid
+        [N/m]"`` (the same with every bushing its joint and every link rigid: the wheel
+        rate of the time runs' kinematic mode; the preloaded spring's geometric stiffness
+        and the stops still in).
     """
     sp = corner.spring()
     if sp is None:
@@ -93,7 +103,8 @@ def corner_figures(corner: CornerLinkage) -> dict:
     return {"spring preload [N]": sp.static_force(sp.design_length),
             "spring motion ratio [-]": float(mr),
             "kinematic wheel rate [N/m]": float(sp.rate * mr**2),
-            "wheel rate incl. compliance [N/m]": wheel_rate(corner)}
+            "wheel rate incl. compliance [N/m]": wheel_rate(corner),
+            "wheel rate, joints rigid [N/m]": wheel_rate(kinematic_corner(corner))}
 
 
 def rig_corner(axle, corner: CornerLinkage) -> CornerLinkage:
