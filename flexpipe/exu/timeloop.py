@@ -96,6 +96,12 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     """
     mbs = system.mbs
     n_steps = int(round(t_end / h))
+    # the state the integration starts from: the initial configuration (a settled start,
+    # flexpipe.vehicle.settle, sets only that one; Exudyn copies it to the current one
+    # when the solver initializes, after this first step has read the state)
+    sd = mbs.systemData
+    sd.SetSystemState(sd.GetSystemState(exu.ConfigurationType.Initial),
+                      configuration=exu.ConfigurationType.Current)
     st = system.state(0.0)
     loads = step(st)
     if loads is None:

@@ -102,7 +102,12 @@ class CarController:
         ``body_motion() -> (q, p, R)`` recorded at every output row (``Result.motion``).
     driver_dt : float
         Driver (steering and speed controller) sampling period, s, independent of ``h``;
-        the driver acts at the first step at or after each sampling instant.
+        the driver acts at the first step at or after each sampling instant.  Its
+        commands reach the steering actuator and the drive/brake torque through a
+        first-order hold: each ramps linearly from where it is to the new command,
+        reaching it at the next sampling instant (a continuous steering angle with a
+        piecewise-constant rate; a staircase put 40 N at 100 Hz and its harmonics into
+        the lateral hub forces of a slalom).
     weight_N : float, optional
         The car's weight, N: a tyre normal force beyond ten times it stops the run
         (:func:`flexpipe.vehicle.watch.tire_problem`); ``None`` checks nothing.
@@ -174,6 +179,9 @@ class CarController:
         self.delta = 0.0
         self.delta_cmd = 0.0
         self.torque = 0.0
+        #: first-order hold of the driver's commands: (t0, t1, steer0, steer1, torque0,
+        #: torque1), both commands ramping linearly from t0 to t1 (None: no command yet)
+        self._hold = None
         self.step_no = 0
         self.status = 0
         self.message = ""
@@ -240,8 +248,25 @@ class CarController:
         p = st.body_p + tau * st.body_v
         yaw_p = yaw + tau * float(st.body_w[2])
         cmd = self.steering.steer(float(p[0]), float(p[1]), yaw_p, v)
-        self.delta_cmd = max(-self.max_angle, min(self.max_angle, cmd))
-        self.torque = self.speed_pi.torque(self.v_target, v, dt)
+        cmd = max(-self.max_angle, min(self.max_angle, cmd))
+        torque = self.speed_pi.torque(self.v_target, v, dt)
+        t = float(st.t)
+        # first-order hold: from the held values now to the new commands at the next
+        # sampling instant (the first one: the steering from the actuator's angle, the
+        # torque at once, as a car started at speed has it before the first sample)
+        t1 = self._next_driver_t + dt
+        if self._hold is None:
+            d0, q0 = self.delta, torque
+        else:
+            d0, q0 = self._held(t)
+        self._hold = (t, max(t1, t + 1e-12), d0, cmd, q0, torque)
+        self.delta_cmd = cmd
+
+    def _held(self, t: float):
+        """Steering command and drive torque of the first-order hold at time ``t``."""
+        t0, t1, d0, d1, q0, q1 = self._hold
+        u = min(1.0, max(0.0, (t - t0) / (t1 - t0)))
+        return d0 + u * (d1 - d0), q0 + u * (q1 - q0)
 
     # ------------------------------------------------------------------ step
     def __call__(self, st):
@@ -256,9 +281,14 @@ class CarController:
         elif st.t >= self._next_driver_t - 1e-9:
             self.driver(st, v, yaw)
             self._next_driver_t += self.driver_dt
-        # steering actuator: rate limit towards the command
+        # steering actuator: rate limit towards the held command at the end of the step
+        # (the angle the step reaches); the torque acts through the step, held at its middle
+        delta_ref = self.delta_cmd
+        if self.v_target != 0.0 and self._hold is not None:
+            delta_ref = self._held(st.t + self.h)[0]
+            self.torque = self._held(st.t + 0.5 * self.h)[1]
         dmax = self.max_rate * self.h
-        self.delta += max(-dmax, min(dmax, self.delta_cmd - self.delta))
+        self.delta += max(-dmax, min(dmax, delta_ref - self.delta))
         steer = self.wheel_angles(self.delta)
 
         # tyres: correct the relaxation over the step just taken, then linearize the
@@ -304,9 +334,12 @@ class CarController:
                              spin_torque=spin_torque,
                              steer=steer, rack_travel=s_rack)
             self._tire_lin = (ts, st, omega)
-            if self.step_no % self.output_every == 0:  # at t = 0: the tyre force now
+            if self.step_no % self.output_every == 0:
+                # at t = 0 the force the tyre element applies at the start state (the
+                # predicted force F0 at its linearization point), the force Exudyn's
+                # initial accelerations balance, so Newton's law of the parts holds
                 self._record(st, np.zeros(4), Fw, v, roll, pitch, yaw,
-                             now["force"] if F_applied is None else F_applied)
+                             ts.F0 if F_applied is None else F_applied)
             self.step_no += 1
             return loads
         # suspension: spring, damper (rate by the sign of the jounce rate) and the stops are
