@@ -351,7 +351,8 @@ def test_cae_deck_without_the_point_mass_is_the_ss_plate(tmp_path):
 
 
 def test_instance_qualified_and_bare_labels_in_a_cae_step(tmp_path):
-    mesh = _read(tmp_path, "q.inp", _cae_plate("Set-1, PINNED\nPlate-1.221, 3, 3"))
+    mesh = _read(tmp_path, "q.inp", _cae_plate("Set-1, PINNED\nPlate-1.221, 3, 3"),
+                 units="mm-t-s")  # the CAE deck is mm-t-s: without units it is refused
     assert [220, 2] in mesh.dof_sets["SPC1"].tolist()    # the part's node 221
     p = _write(tmp_path, "bare.inp", _cae_plate("Set-1, PINNED\n221, 3, 3"))
     with pytest.raises(MeshError, match=r"bare.inp, line \d+: \*BOUNDARY refers to "
@@ -451,3 +452,59 @@ def test_inp_writer_names_what_an_inp_cannot_hold(tmp_path):
     msg = " ".join(str(w.message) for w in got)
     assert "constraint set(s) SPC7, which the solution does not use" in msg
     assert "lumped mass of the Nastran solution" in msg
+
+
+# ------------------------------------------------- unit slips and set names (audit BYO)
+def test_mm_t_s_deck_read_without_units_is_refused_as_nastran_does(tmp_path):
+    """The whole deck in mm-t-s (E in MPa, rho in t/mm^3) read as SI: refused with the
+    material's name, file and line and the --units hint, as the Nastran reader does for a
+    MAT1 card (reference: mm-t-s steel has c = 5.2e6 m/s taken as SI, 1000x steel's)."""
+    text = _abaqus_plate([]).replace("2.1E11, 0.3", "210000., 0.3").replace("7850.", "7.85e-9")
+    path = tmp_path / "mm.inp"
+    path.write_text(text)
+    line = text.splitlines().index("*MATERIAL, NAME=STEEL") + 1
+    for scale in (1.0, 1e-3):  # --scale only converts lengths, not E and rho
+        with pytest.raises(MeshError) as e:
+            read_mesh(path, scale)
+        msg = str(e.value)
+        assert str(path) in msg and f"line {line}" in msg and "*MATERIAL STEEL" in msg
+        assert "units='mm-t-s'" in msg and "--units mm-t-s" in msg
+    mesh = read_mesh(path, units="mm-t-s")  # the same deck with its units: steel
+    assert mesh.sections["PLATE"]["E"] == pytest.approx(2.1e11)
+
+
+def test_abaqus_nset_names_match_ignoring_case(tmp_path):
+    import flexpipe as fp
+    from flexpipe.reduction.interface import resolve_interfaces
+
+    fe = assemble(_read(tmp_path, "p.inp", _abaqus_plate([])))
+    got = resolve_interfaces(fe, [fp.Interface((0.0, 0.0, 0.0), node_set="edge", name="e")])
+    assert got[0].nodes.size == len(_edge())
+
+
+def test_modes_arpack_failure_names_the_file_and_the_units(tmp_path, capsys, monkeypatch):
+    """A mesh in mm read as m can make ARPACK give up (the BYO audit's 4.4 km ladder):
+    one error line naming the file, the mesh's span and the units options, and a warning
+    before the solve; not a scipy traceback."""
+    import scipy.sparse.linalg as spla
+
+    import flexpipe.fem as fem
+
+    text = _abaqus_plate([])
+    for k, (x, y, z) in _plate_nodes().items():  # the plate in mm, E and rho SI
+        text = text.replace(f"\n{k}, {x!r}, {y!r}, {z!r}\n",
+                            f"\n{k}, {x * 1e3!r}, {y * 1e3!r}, {z!r}\n", 1)
+    path = _write(tmp_path, "mm.inp", text)
+
+    def fail(*a, **kw):
+        raise spla.ArpackNoConvergence("ARPACK error -1: No convergence", [], [])
+
+    monkeypatch.setattr(fem, "eigenmodes", fail)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", MeshWarning)
+        code = cli.main(["modes", str(path), "-o", str(tmp_path / "o"), "-q"])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "warning:" in err and "the mesh spans 500 m" in err  # before the solve
+    assert "Traceback" not in err and str(path) in err
+    assert "did not converge" in err and "--scale 0.001" in err and "--units mm-t-s" in err

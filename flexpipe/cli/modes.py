@@ -128,6 +128,34 @@ def _check_file_materials(mesh) -> None:
                 "--material steel|aluminium|magnesium or --E --nu --rho", file=mesh.source)
 
 
+#: span (largest bounding-box side) of a plausible vehicle part or body, m: outside it
+#: ``flexpipe modes`` warns of a unit slip (a 4.4 m body in mm read as m spans 4400 m)
+SPAN_RANGE_M = (0.01, 50.0)
+_UNITS_HINT = ("check the mesh's units: a mesh in mm needs --scale 0.001 (lengths only; "
+               "mesh_scale in a car file) or, for a solver deck in mm-t-s, --units mm-t-s "
+               "(mesh_units); and check E, the density and --thickness (m)")
+
+
+def _eigen_or_hint(eigenmodes, path, mesh, fe, span):
+    """``eigenmodes`` turning an ARPACK failure into an :class:`InputError` that names
+    the file, the mesh's size and mass, and the units to check."""
+    from scipy.sparse.linalg import ArpackError, ArpackNoConvergence
+
+    def solve(*a, **kw):
+        try:
+            return eigenmodes(*a, **kw)
+        except (ArpackNoConvergence, ArpackError) as exc:
+            lo, hi = mesh.points.min(axis=0), mesh.points.max(axis=0)
+            box = (f"({', '.join(f'{v:.4g}' for v in lo)}) .. "
+                   f"({', '.join(f'{v:.4g}' for v in hi)}) m")
+            raise InputError(
+                f"the eigensolver did not converge ({type(exc).__name__}: "
+                f"{str(exc).splitlines()[0][:120]}); the mesh spans {span:.4g} m (bounding "
+                f"box {box}) and weighs {fe.total_mass:.4g} kg, so {_UNITS_HINT}",
+                file=str(path)) from None
+    return solve
+
+
 def run(args) -> int:
     """Run ``flexpipe modes``."""
     from flexpipe._io import check_output_folder
@@ -163,13 +191,21 @@ def run(args) -> int:
                   file=sys.stderr)
     n = args.n if args.n is not None else (sol.get("n_modes") or 20)
     f_lo, f_hi = (None, None) if args.n is not None else (sol.get("f_min"), sol.get("f_max"))
+    span = float(np.ptp(mesh.points, axis=0).max()) if mesh.n_nodes else 0.0
+    if not SPAN_RANGE_M[0] <= span <= SPAN_RANGE_M[1]:
+        import warnings
+
+        warnings.warn(f"{path}: the mesh spans {span:.4g} m, outside the {SPAN_RANGE_M[0]:g}-"
+                      f"{SPAN_RANGE_M[1]:g} m of a vehicle part or body: {_UNITS_HINT}",
+                      UserWarning, stacklevel=2)
     with _step(f"solving for {n} modes ({fe.Kr.shape[0]} DOF)", args.quiet):
         dirs = None if args.fixed else mesh.solution.get("spc_directions")
-        freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed, directions=dirs)
+        solve = _eigen_or_hint(eigenmodes, path, mesh, fe, span)
+        freqs, shapes = solve(fe, n, fixed_dofs=fixed, directions=dirs)
         while f_hi is not None and freqs[-1] < f_hi and sol.get("n_modes") is None \
                 and len(freqs) < fe.Kr.shape[0] - (0 if fixed is None else len(fixed)) - 1:
             n = min(2 * n, fe.Kr.shape[0] - 1 - (0 if fixed is None else len(fixed)))
-            freqs, shapes = eigenmodes(fe, n, fixed_dofs=fixed, directions=dirs)
+            freqs, shapes = solve(fe, n, fixed_dofs=fixed, directions=dirs)
         keep = np.ones(len(freqs), dtype=bool)
         if f_lo is not None:
             keep &= freqs >= f_lo

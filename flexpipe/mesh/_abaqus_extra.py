@@ -423,3 +423,21 @@ def _section_props(kw, p, rows, f, ln) -> dict:
         if nsm:
             props["nsm"] = nsm
     return props
+
+
+def material_records(deck) -> dict:
+    """``{"*MATERIAL <name>": (E, RHO, file, line)}`` of the materials the sections use
+    (a lamina: E1), file units, for the E / RHO plausibility check
+    (:func:`flexpipe.mesh.units.check_wave_speeds`, as the Nastran reader's MAT1 cards)."""
+    used = []
+    for _, props, mat, *_ in deck.sections:
+        used += [mat] if mat else []
+        used += [ply[1] for ply in props.get("composite", ())]
+    out = {}
+    for name in dict.fromkeys(n.upper() for n in used):
+        m = deck.materials.get(name, {})
+        E = m["lamina"][0] if "lamina" in m else m.get("E")
+        f, ln, label = m.get("at", (None, None, name))
+        if E and m.get("rho"):
+            out[f"*MATERIAL {label}"] = (float(E), float(m["rho"]), f, ln)
+    return out

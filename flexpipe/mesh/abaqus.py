@@ -95,6 +95,7 @@ from flexpipe.mesh._abaqus_extra import (
     _masses,
     _section_props,
     _springs,
+    material_records,
 )
 from flexpipe.mesh._abaqus_extra import values as _values
 from flexpipe.mesh._abaqus_steps import (
@@ -197,7 +198,7 @@ def _parse(path: Path) -> _Deck:
             deck.sections.append((deck.elset(p.get("ELSET"), ctx), props, mat, n1, f, ln))
         elif kw == "MATERIAL":
             material = p.get("NAME", "")
-            deck.materials[material.upper()] = {}
+            deck.materials[material.upper()] = {"at": (f, ln, material)}
         elif kw in ("ELASTIC", "DENSITY"):
             material_block(deck, kw, p, lines, material, f, ln)
         elif kw == "MASS":
@@ -491,7 +492,7 @@ def read_abaqus(path) -> Mesh:
                 rigid_links=links + more_links, sections=sections, source=str(path),
                 interpolations=interp, dof_sets=dof_sets, solution=solution,
                 info={"read": {t: len(e) for t, _, e in blocks}, "converted": converted,
-                      "dropped": dict(deck.dropped)})
+                      "dropped": dict(deck.dropped), "materials": material_records(deck)})
     told = {k: n for k, n in deck.dropped.items() if k not in SILENT_KEYWORDS}
     if told:
         where = {k: f" (first at {f} line {ln})" for k, (f, ln) in deck.dropped_at.items()}

@@ -27,6 +27,59 @@ from flexpipe.errors import InputError
 from flexpipe.fem.model import FEModel
 from flexpipe.flexbody.invariants import skew
 
+#: a tie given by nodes (node set, node ids) must reach its point: its nearest tied node,
+#: or the centroid of its nodes (a ring of bolt-hole nodes around the point), within this
+#: distance of the point, m.  The same 0.05 m as the car file's off-body rule for mount
+#: points (flexpipe.vehicle.mounts.OFF_BODY_TOL): a few element sizes of a 10-30 mm body
+#: mesh, far below the spacing of distinct mounts (0.25 m and more between a strut top and
+#: its neighbours), so a set or id typed for another mount, or points typed in mm, fail.
+TIE_TOL = 0.05
+#: a radius tie catching more than this fraction of the mesh's nodes is warned about
+RADIUS_WARN_FRACTION = 0.05
+
+
+def find_node_set(sets: dict, name: str, *, key=None, file=None, line=None) -> str:
+    """The key of ``sets`` that names node set ``name``: the exact name, else the one
+    name equal to it ignoring case (Abaqus set names are case-insensitive: ``*NSET,
+    NSET=MOUNT_FL`` is ``mount_fl``).
+
+    Raises
+    ------
+    InputError
+        No such set (the valid names listed, those matching ignoring case first), or
+        several sets equal to ``name`` ignoring case and none exactly.
+    """
+    if name in sets:
+        return name
+    hits = sorted(k for k in sets if isinstance(k, str) and k.casefold() == name.casefold())
+    if len(hits) == 1:
+        return hits[0]
+    where = {"key": key, "file": file, "line": line}
+    if hits:
+        raise InputError(f"node set {name!r} is ambiguous: the mesh has {hits}, which differ "
+                         "only in case; give the exact name", **where)
+    names = sorted(sets, key=lambda k: (not str(k)[:1].isalpha(), str(k).casefold()))
+    raise InputError(f"the mesh has no node set {name!r}; valid: {names[:40]}"
+                     + (f" and {len(names) - 40} more" if len(names) > 40 else ""), **where)
+
+
+def tie_distance(X, nodes, point) -> tuple[float, int, float]:
+    """``(nearest, k, centroid)`` for tied ``nodes`` (0-based positions in ``X``) of a
+    point: the distance of the nearest tied node (``k``, a position in ``X``) and of
+    the tied nodes' centroid from ``point``, m."""
+    X = np.asarray(X, dtype=float)
+    nodes = np.asarray(nodes, dtype=np.int64).reshape(-1)
+    d = np.linalg.norm(X[nodes] - np.asarray(point, dtype=float), axis=1)
+    j = int(d.argmin())
+    centroid = float(np.linalg.norm(X[nodes].mean(axis=0) - np.asarray(point, dtype=float)))
+    return float(d[j]), int(nodes[j]), centroid
+
+
+def tie_reaches(X, nodes, point, tol: float = TIE_TOL) -> bool:
+    """True when the tied ``nodes`` reach ``point`` (:data:`TIE_TOL`)."""
+    near, _, centroid = tie_distance(X, nodes, point)
+    return min(near, centroid) <= tol
+
 
 @dataclass(frozen=True)
 class Interface:
@@ -193,10 +246,11 @@ def _resolve(fe: FEModel, interfaces: list) -> list[ResolvedInterface]:
                     f"{dist[nearest]:.4g} m away", key=name)
         elif itf.node_set is not None:
             sets = fe.mesh.node_sets if fe.mesh is not None else {}
-            if itf.node_set not in sets:
-                raise InputError(f"interface '{name}': the mesh has no node set "
-                                 f"'{itf.node_set}'; valid: {sorted(sets)}", key=name)
-            nodes = np.unique(np.asarray(sets[itf.node_set], dtype=np.int64))
+            try:
+                found = find_node_set(sets, itf.node_set, key=name)
+            except InputError as exc:
+                raise InputError(f"interface '{name}': {exc.message}", key=name) from None
+            nodes = np.unique(np.asarray(sets[found], dtype=np.int64))
             if nodes.size == 0:
                 raise InputError(f"interface '{name}': node set '{itf.node_set}' is empty",
                                  key=name)
@@ -220,6 +274,28 @@ def _resolve(fe: FEModel, interfaces: list) -> list[ResolvedInterface]:
                     "(solid node), so it cannot be a 6-DOF interface on its own; give "
                     "radius=, node_set= or nodes= to build a rigid spider", key=name)
             kind = "node"
+        if itf.radius is None and kind == "rbe2":
+            near, kn, cen = tie_distance(fe.nodes, nodes, p)
+            if min(near, cen) > TIE_TOL:
+                how = (f"node set '{itf.node_set}'" if itf.node_set is not None
+                       else "nodes")
+                raise InputError(
+                    f"interface '{name}': its {how} ({nodes.size} node(s)) lies "
+                    f"{near:.4g} m from its point {_pt(p)} (nearest tied node: "
+                    f"{_describe(fe, kn)}; centroid {cen:.4g} m away); tied nodes must "
+                    f"include a node within {TIE_TOL} m of the point or be centred on it "
+                    f"within {TIE_TOL} m. The nearest mesh node to the point is "
+                    f"{_describe(fe, nearest)}, {dist[nearest]:.4g} m away; check the "
+                    "set/ids and the point's units (m)", key=name)
+        elif itf.radius is not None and fe.n_nodes >= 200 \
+                and nodes.size > RADIUS_WARN_FRACTION * fe.n_nodes:
+            import warnings
+
+            warnings.warn(
+                f"interface '{name}': radius {itf.radius:g} m ties {nodes.size} of the "
+                f"mesh's {fe.n_nodes} nodes ({100 * nodes.size / fe.n_nodes:.0f} %) rigidly "
+                "to one point, which stiffens that part of the body; a mount's radius is "
+                "usually a few cm (a radius typed in mm?)", stacklevel=3)
         if kind == "rbe2":
             on_node = nodes.size == 1 and dist[nodes[0]] <= max(tol, 1e-9)
             if on_node and (itf.dofs == 3 or _has_rotations(fe, nodes)[0]):

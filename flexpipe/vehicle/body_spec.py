@@ -112,6 +112,34 @@ def _material(t: Table, key: str) -> Material | None:
     return mat
 
 
+#: ``[body]`` keys that a ready body (``body_file``) makes void: its mass properties,
+#: damping and interfaces were fixed when ``flexpipe reduce`` wrote it
+IGNORED_BY_BODY_FILE = {
+    "rigid": "[body.rigid] (the body file's own mass properties are used)",
+    "damping_ratio": "damping_ratio (the body file carries its modal damping)",
+    "interface_radius_m": "interface_radius_m (the interfaces were tied at reduction)",
+    "mounts": "[body.mounts] (the body file's interfaces are used as they are)",
+    "interface_band_hz": "interface_band_hz (the body file's interface modes are used)",
+    "mesh_scale": "mesh_scale", "mesh_units": "mesh_units", "material": "material",
+    "shell_thickness_m": "shell_thickness_m",
+}
+
+
+def _warn_ignored_by_body_file(t: Table) -> None:
+    """One warning naming the ``[body]`` keys a ``body_file`` car ignores."""
+    given = [k for k in IGNORED_BY_BODY_FILE if k in t.data]
+    if not given:
+        return
+    import warnings
+
+    line = t._line(given[0])
+    warnings.warn(
+        f"{t.file}" + (f", line {line}" if line else "") + ": with [body] body_file these "
+        f"keys are ignored: {'; '.join(IGNORED_BY_BODY_FILE[k] for k in given)}; set them "
+        "when reducing the body (flexpipe reduce) or give [body] mesh instead of body_file",
+        UserWarning, stacklevel=2)
+
+
 def read_body(doc: Table, base: Path) -> BodySpec:
     """The ``[body]`` table of ``doc``; paths relative to ``base`` (the car file's folder)."""
     t = doc.sub("body")
@@ -231,6 +259,8 @@ def read_body(doc: Table, base: Path) -> BodySpec:
         from flexpipe.durability.fatigue import read_fatigue_table
 
         fatigue = read_fatigue_table(t.sub("fatigue"))
+    if body_file is not None:
+        _warn_ignored_by_body_file(t)
     t.finish()
     return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
                     fatigue, body_file, mounts, band)

@@ -265,7 +265,30 @@ def ready_body(car: Car, required=()):
                          f"{', '.join(required)}; reduce the body with these interfaces "
                          f"(it has {', '.join(sorted(have))})", file=car.file,
                          key="body.body_file")
+    if car.suspension is None:  # prismatic corners: the corner joint carries moments
+        three = [i.name for i in fb.interfaces if i.name in CORNERS and i.dofs != 6]
+        if three:
+            raise InputError(
+                f"the body file {car.body.body_file.name} has 3-DOF (forces only) corner "
+                f"interface(s) {', '.join(three)}; a car with prismatic corners ties each "
+                f"corner ({', '.join(CORNERS)}) to the body with a 6-DOF interface (forces "
+                "and moments): reduce the body again with dofs = 6 (the default) for these "
+                "interfaces in the interface spec", file=car.file, key="body.body_file")
     return fb
+
+
+def check_body_file(car: Car) -> None:
+    """Check a ``body_file`` car's ready body before a run writes anything: it must
+    carry the car's interfaces (the mounts of a linkage car, else the four corners, with
+    6 DOF); see :func:`ready_body`.  No-op without ``body_file``."""
+    if car.body.body_file is None:
+        return
+    if car.suspension is not None:
+        from flexpipe.vehicle.linkage_setup import body_mounts
+
+        ready_body(car, [m.name for m in body_mounts(car)])
+    else:
+        ready_body(car, CORNERS)
 
 
 # --------------------------------------------------------------------------- reduction

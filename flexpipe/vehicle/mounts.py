@@ -163,10 +163,14 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
         seen.add(m.name)
         point = m.point
         if m.node_set is not None:
-            if m.node_set not in sets:
-                raise InputError(f"the body mesh has no node set {m.node_set!r}; valid: "
-                                 f"{sorted(sets)[:40]}", **m.where("node_set", file=file))
-            idx = np.asarray(sets[m.node_set], dtype=np.int64)
+            from flexpipe.reduction.interface import find_node_set
+
+            try:
+                found = find_node_set(sets, m.node_set)
+            except InputError as exc:
+                raise InputError(exc.message.replace("the mesh", "the body mesh"),
+                                 **m.where("node_set", file=file)) from None
+            idx = np.asarray(sets[found], dtype=np.int64)
         elif m.node_ids is not None:
             if not hasattr(mesh, "node_index"):
                 raise InputError("node ids need the body as a flexpipe.mesh.Mesh (its "
@@ -185,6 +189,8 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
             idx = None
         if point is None:
             point = tuple(X[idx].mean(axis=0))
+        elif idx is not None:
+            _check_tie_reach(m, X, idx, point, mesh, file)
         d = np.linalg.norm(X - np.asarray(point), axis=1)
         k = int(d.argmin())
         if d[k] > OFF_BODY_TOL:
@@ -206,34 +212,77 @@ def mount_interfaces(mounts, mesh, *, file=None) -> list:
     return out
 
 
+def _check_tie_reach(m: Mount, X, idx, point, mesh, file) -> None:
+    """The nodes a mount ties by ``node_set``/``node_ids``/``nodes`` must reach its point
+    (:data:`flexpipe.reduction.interface.TIE_TOL`: the nearest tied node or their
+    centroid within 0.05 m), else an error naming the mount, the distance and the nodes
+    that would be valid."""
+    from flexpipe.reduction.interface import TIE_TOL, tie_distance
+
+    near, kn, cen = tie_distance(X, idx, point)
+    if min(near, cen) <= TIE_TOL:
+        return
+    field = next(k for k in ("node_set", "node_ids", "nodes") if getattr(m, k) is not None)
+
+    def node(i):
+        if hasattr(mesh, "describe_node"):
+            return mesh.describe_node(int(i))
+        return f"node position {int(i)} at {tuple(np.round(X[i], 4))} m"
+
+    d = np.linalg.norm(X - np.asarray(point), axis=1)
+    close = np.flatnonzero(d <= TIE_TOL)
+    close = close[np.argsort(d[close])][:8] if close.size else np.array([int(d.argmin())])
+    ids = getattr(mesh, "node_ids", None)
+    valid = [int(ids[i]) if ids is not None else int(i) for i in close]
+    what = {"node_set": f"node set {m.node_set!r}", "node_ids": "node_ids",
+            "nodes": "nodes"}[field]
+    raise InputError(
+        f"mount {m.name!r}: its {what} ({len(idx)} node(s)) does not reach the mount point "
+        f"{tuple(np.round(point, 4))} m: the nearest tied node is {near:.3f} m away "
+        f"({node(kn)}) and their centroid {cen:.3f} m; the tied nodes must include a node "
+        f"within {TIE_TOL} m of the mount point or be centred on it within {TIE_TOL} m. "
+        f"Nodes near the point ({'ids' if ids is not None else 'positions'}): {valid}; "
+        "give the node set or node ids of the nodes at this mount",
+        **m.where(field, file=file))
+
+
 @functools.lru_cache(maxsize=4)
-def _mesh_node_ids(path: str, stamp: tuple, scale: float, units, thickness) -> np.ndarray:
-    """The node ids of a mesh file, read once per file version (``stamp``: mtime, size)
-    so that a sweep's checks of many runs on one body read its mesh once."""
+def _body_mesh(path: str, stamp: tuple, scale: float, units, thickness):
+    """The body mesh (node ids, positions, node sets), read once per file version
+    (``stamp``: mtime, size) so that a sweep's checks of many runs on one body read its
+    mesh once."""
     from flexpipe.mesh import read_mesh
 
-    return read_mesh(path, scale, units=units, thickness=thickness,
-                     check_coincident=False).node_ids
+    return read_mesh(path, scale, units=units, thickness=thickness, check_coincident=False)
 
 
 def check_mount_node_ids(car) -> None:
-    """Check the car file's ``[body.mounts.<mount>] node_ids`` against the body mesh's node
-    ids before any output is written (the reduction checks them again, with the same
-    message).  Reads the mesh only when a mount gives node ids.
+    """Check the car file's ``[body.mounts.<mount>]`` ties by ``node_ids`` or
+    ``node_set`` against the body mesh before any output is written (the reduction checks
+    them again, with the same message): the ids must be nodes of the mesh, the set must
+    exist, and the tied nodes must reach the mount point (:func:`mount_interfaces`).
+    Reads the mesh only when a mount gives node ids or a node set.
 
     Raises
     ------
     InputError
         Ids that are no node of the mesh, named by the car file, the line of the
         ``[body.mounts.<mount>]`` table and the key ``body.mounts.<mount>.node_ids``,
-        with the valid id range, the node count and the nearest existing ids.
+        with the valid id range, the node count and the nearest existing ids; an unknown
+        node set; tied nodes farther than 0.05 m from the mount point.
     MeshError
         The body mesh cannot be read.
     """
     from flexpipe.mesh.mesh import index_of_ids
 
     body = car.body
-    given = {n: g for n, g in (body.mounts or {}).items() if g.get("node_ids") is not None}
+    if body.body_file is not None:  # a ready body: its interfaces, not the mesh's ids
+        from flexpipe.vehicle.bodymodel import check_body_file
+
+        check_body_file(car)
+        return
+    given = {n: g for n, g in (body.mounts or {}).items()
+             if g.get("node_ids") is not None or g.get("node_set") is not None}
     if not given or body.mesh is None:
         return
     path = Path(body.mesh)
@@ -242,11 +291,17 @@ def check_mount_node_ids(car) -> None:
         stamp = (st.st_mtime_ns, st.st_size)
     except OSError:
         stamp = None  # read_mesh names the missing file
-    ids = _mesh_node_ids(str(path), stamp, body.mesh_scale, body.mesh_units,
-                         body.shell_thickness)
+    mesh = _body_mesh(str(path), stamp, body.mesh_scale, body.mesh_units,
+                      body.shell_thickness)
     for name, g in given.items():
-        index_of_ids(ids, g["node_ids"], file=car.file, line=g.get("line"),
-                     key=f"body.mounts.{name}.node_ids")
+        if g.get("node_ids") is not None:
+            index_of_ids(mesh.node_ids, g["node_ids"], file=car.file, line=g.get("line"),
+                         key=f"body.mounts.{name}.node_ids")
+    if getattr(car, "suspension", None) is not None:  # the ties against the mount points
+        from flexpipe.vehicle.linkage_setup import body_mounts
+
+        mount_interfaces([m for m in body_mounts(car) if m.name in given], mesh,
+                         file=car.file)
 
 
 def read_hardpoints(path) -> dict:
