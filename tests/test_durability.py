@@ -260,7 +260,7 @@ def test_stress_png_states_element_kinds_clipping_max_and_hot_spots(straight, tm
 
     run = load_run(straight[0])
     body = run.body()
-    sr = recover_stress(run.motion, body)
+    sr = recover_stress(run.motion, body, fatigue=run.car().body.fatigue)
     figs = []
     close = plt.close
     monkeypatch.setattr(plt, "close", lambda fig=None: (figs.append(fig), close(fig)))
@@ -275,11 +275,29 @@ def test_stress_png_states_element_kinds_clipping_max_and_hot_spots(straight, tm
     assert f"max {vmax:.1f} MPa at element {eid} (beam" in title
     assert f"99.5th percentile, {clip:.1f} MPa" in title
     assert "shells as faces" in title and "beams as lines" in title
-    label = fig.axes[-1].get_ylabel()  # the colour bar
+    label = fig.axes[-1].get_xlabel()  # the colour bar (horizontal)
     assert "shell" in label and "beam" in label
     assert f"{clip:.1f} MPa" in label and f"max {vmax:.1f} MPa" in label
-    marked = {t.get_text().strip() for ax in fig.axes[:2] for t in ax.texts}
-    assert {str(int(e)) for e in sr.element_id[sr.top(5)]} <= marked
+    # the views carry short numbers (near-coincident hot spots share one label "1,3")...
+    numbers = {n for ax in fig.axes[:2] for t in ax.texts for n in t.get_text().split(",")}
+    assert {"1", "2", "3", "4", "5"} <= numbers
+    # ...and the table beside them lists number, element id and max von Mises in MPa
+    table = fig.axes[2].tables[0]
+    cells = {(r, c): cell.get_text().get_text() for (r, c), cell in table.get_celld().items()}
+    for k, j in enumerate(sr.top(5)):
+        assert cells[(k + 1, 0)] == str(k + 1)
+        assert cells[(k + 1, 1)] == str(int(sr.element_id[j]))
+        assert cells[(k + 1, 3)] == f"{sr.max_von_mises[j] / 1e6:.1f}"
+    assert "[MPa]" in cells[(0, 3)]
+    view_names = {t.get_text() for t in fig.texts}
+    assert any(n.startswith("isometric view") for n in view_names)
+    assert any(n.startswith("top view") for n in view_names)
+    assert sr.damage is not None
+    if np.nanmax(sr.damage) > 0:  # the fatigue hot spot is marked D and listed
+        d = int(np.nanargmax(sr.damage))
+        assert "D" in {t.get_text() for ax in fig.axes[:2] for t in ax.texts}
+        assert cells[(6, 0)] == "D" and cells[(6, 1)] == str(int(sr.element_id[d]))
+        assert "fatigue hot spot D" in title
     assert Image.open(tmp_path / "s.png").text["Title"] == title
     desc = straight[1]["file_descriptions"]["stress/stress_max.png"]
     assert "element" in desc and "99.5th percentile" in desc and "beams as lines" in desc

@@ -195,3 +195,18 @@ def test_integration_check_at_a_chosen_frequency_matches_harmonic_balance(tmp_pa
                   f * p.road_wavelength_m, t_end, t_eval=te)
     y = eval_series(sol.Z[:2], omega, te)
     assert np.abs(tr.travel - y).max() < 1e-3 * np.abs(y).max()
+
+
+def test_figure3_line_styles_match_the_title_and_the_legend_is_off_the_curves(
+        small_nonlinear):
+    """The title says solid = stable, dashed = unstable: every stable curve is solid (no
+    dash-dot), and the legend sits above the top panel, not over the curves."""
+    _, _, figures = small_nonlinear
+    (fig,) = figures
+    assert "solid: stable, dashed: unstable" in fig._suptitle.get_text()
+    legend = fig.axes[0].get_legend()
+    for handle in legend.legend_handles:
+        assert handle.get_linestyle() == "-", handle.get_label()
+    fig.canvas.draw()
+    box = legend.get_window_extent()
+    assert box.y0 >= fig.axes[0].get_window_extent().y1 - 1  # above the top panel

@@ -191,3 +191,31 @@ def test_rig_preload_allows_for_the_wheel_weight():
         # m g dz_wheel/ds / MR, about 22 * 9.81 / 0.52 = 415 N at the front
         bare = spring_preload(car.suspension.axles[axle].left, loads[axle[0] + "l"])
         assert bare - rig[axle]["spring preload [N]"] > 200.0
+
+
+def test_kc_plots_have_panel_titles_name_the_car_and_skip_steering_axis_of_rear(
+        tmp_path, monkeypatch):
+    """kc_steer_compliance.png: a title per panel and a suptitle naming the car;
+    kc_wheel_travel.png names the car and leaves caster / KPI / scrub of the
+    non-steered (multi-link) rear out, saying so."""
+    import matplotlib.pyplot as plt
+
+    from flexpipe.vehicle.suspension.kc_output import write
+
+    res = fp.kc(SAMPLE, n=3, travel=0.02)
+    figs = []
+    close = plt.close
+    monkeypatch.setattr(plt, "close", lambda fig=None: (figs.append(fig), close(fig)))
+    write(res, tmp_path, car="my sedan")
+    travel, steer = figs[-2], figs[-1]
+    assert travel._suptitle.get_text().startswith("my sedan: ")
+    assert steer._suptitle.get_text().startswith("my sedan: ")
+    titles = [ax.get_title() for ax in steer.axes]
+    assert all(titles) and "static steer" in titles[0] and "(front)" in titles[0]
+    assert "longitudinal" in titles[1] and "lateral" in titles[2]
+    by_label = {ax.get_xlabel().split("\n")[0]: ax for ax in travel.axes}
+    for q in ("caster [deg]", "kpi [deg]", "scrub radius [mm]"):
+        ax = by_label[q]
+        assert ax.get_legend_handles_labels()[1] == ["front"]
+        assert "rear: not steered" in ax.get_xlabel()
+    assert by_label["camber [deg]"].get_legend_handles_labels()[1] == ["front", "rear"]

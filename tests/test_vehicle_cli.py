@@ -454,3 +454,38 @@ def test_f_max_reaches_every_flexible_run_and_the_step_study(tmp_path, monkeypat
             main(["run", str(SEDAN), "--speed", "70", "--body", "flexible", "--f-max", "40",
                   "--t-end", "1", "--out", str(tmp_path / f"o{len(extra)}"), "-q", *extra])
     assert seen == [40.0, 40.0]
+
+
+def test_trajectory_plot_keeps_both_traces_visible_and_names_the_run(tmp_path, monkeypatch):
+    """Rigid wide grey solid underneath, flexible dashed red on top; the default title
+    names car, car file, speed, road and path."""
+    import matplotlib.pyplot as plt
+
+    from flexpipe.driver import slalom
+    from flexpipe.vehicle import plots as P
+
+    class R:
+        def __init__(self, dy):
+            x = np.linspace(0.0, 60.0, 200)
+            self.ch = {"x_rear": x, "y_rear": 0.5 * np.sin(x / 9.0) + dy}
+            self.info = {"car": "sedan", "car_file": "/x/cars/sedan_linkage.toml",
+                         "speed": 60.0 / 3.6, "road": "roads/iso_b.toml"}
+
+        def __getitem__(self, name):
+            return self.ch[name]
+
+    figs = []
+    close = plt.close
+    monkeypatch.setattr(plt, "close", lambda fig=None: (figs.append(fig), close(fig)))
+    path = slalom(cone_spacing=18.0, n_cones=3, offset=0.5, lead_in=40.0, lead_out=40.0)
+    P.trajectory({"rigid": R(0.0), "flexible": R(0.001)}, path, tmp_path / "t.png")
+    ax = figs[-1].axes[0]
+    lines = {ln.get_label(): ln for ln in ax.get_lines()}
+    rigid, flex = lines["followed (rigid body)"], lines["followed (flexible body)"]
+    assert rigid.get_linestyle() == "-" and flex.get_linestyle() == "--"
+    assert rigid.get_linewidth() > 2 * flex.get_linewidth()
+    assert rigid.get_color() != flex.get_color() and flex.get_zorder() > rigid.get_zorder()
+    title = ax.get_title()
+    assert "sedan (sedan_linkage.toml)" in title and "60 km/h" in title
+    assert "iso_b.toml" in title
+    assert (tmp_path / "t.png").read_bytes()[:4] == b"\x89PNG"

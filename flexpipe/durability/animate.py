@@ -293,36 +293,57 @@ def _write_frames(out, run, body, *, scale, every, stress, progress) -> dict:
 
 def write_preview(path, body, run, car, k, centers, rotations, radius, *, scale=1.0,
                   with_stress=True):
-    """One frame of the scene as a PNG (headless matplotlib)."""
+    """One frame of the scene as a PNG (headless matplotlib).
+
+    Shells are drawn as faces and beams as lines, both coloured by von Mises stress on
+    one scale (0 to the 99th percentile of all their elements, stated on the colour bar
+    with the frame's max); axes in global coordinates [m]; the title names the car, the
+    run (road, speed) and the time.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
-    from flexpipe.durability.report import polygons
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
     x, _ = body_frame(body, run.motion, k, scale=scale)
-    fig = plt.figure(figsize=(10, 6))
+    fig = plt.figure(figsize=(10, 6.5))
     ax = fig.add_subplot(projection="3d")
+    segs, seg_rows = [], []
     if body.stress is not None:
-        _, idx = polygons(body)
-        verts = []
+        verts, rows, ofs = [], [], 0
         for b in body.stress.blocks:
             if b.cell_type in ("quad", "triangle"):
                 verts.extend(list(x[b.cells]))
+                rows.extend(range(ofs, ofs + len(b)))
+            elif b.kind == "beam":
+                segs.extend(list(x[b.cells[:, [0, -1]]]))
+                seg_rows.extend(range(ofs, ofs + len(b)))
+            ofs += len(b)
+        rows, seg_rows = np.asarray(rows, dtype=np.int64), np.asarray(seg_rows, dtype=np.int64)
         if with_stress:
-            vm = frame_von_mises(body, run.motion, k)[idx] / 1e6
-            norm = matplotlib.colors.Normalize(0, max(float(np.percentile(vm, 99)), 1e-9))
-            colors = matplotlib.colormaps["viridis"](norm(vm))
-            sm = matplotlib.cm.ScalarMappable(norm=norm, cmap="viridis")
-            fig.colorbar(sm, ax=ax, shrink=0.6, label="von Mises stress [MPa]")
+            vm = frame_von_mises(body, run.motion, k) / 1e6
+            drawn = np.concatenate([vm[rows], vm[seg_rows]])
+            vmax = max(float(np.percentile(drawn, 99)), 1e-9) if len(drawn) else 1e-9
+            norm = matplotlib.colors.Normalize(0, vmax)
+            cmap = matplotlib.colormaps["viridis"]
+            colors, seg_colors = cmap(norm(vm[rows])), cmap(norm(vm[seg_rows]))
+            kinds = " and ".join(n for n, c in (("shells", len(rows)), ("beams", len(seg_rows)))
+                                 if c)
+            peak = float(drawn.max()) if len(drawn) else 0.0
+            sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
+            fig.colorbar(sm, ax=ax, shrink=0.6, pad=0.08,
+                         extend="max" if peak > vmax else "neither",
+                         label=(f"von Mises stress [MPa] of {kinds}\nscale to the 99th "
+                                f"percentile, {vmax:.1f} MPa; max {peak:.1f} MPa"))
         else:
-            colors = "0.7"
+            colors, seg_colors = "0.7", "0.35"
     else:
         verts = list(x[body.triangles])
         colors = "0.7"
     ax.add_collection3d(Poly3DCollection(verts, facecolors=colors, edgecolors="none"))
+    if segs:
+        ax.add_collection3d(Line3DCollection(segs, colors=seg_colors, linewidths=1.2))
     wp, wq, wt = wheel_mesh(centers, rotations, radius)
     ax.add_collection3d(Poly3DCollection(list(wp[wq]), facecolors="0.15", edgecolors="none"))
     c = x.mean(axis=0)
@@ -337,7 +358,14 @@ def write_preview(path, body, run, car, k, centers, rotations, radius, *, scale=
     ax.set_zlim(c[2] - half / 2, c[2] + half / 2)
     ax.set_box_aspect((2, 2, 1))
     ax.view_init(elev=20, azim=-60)
-    ax.set_title(f"{car.name}, t = {run.motion.t[k]:.3f} s (deformation x {scale:g})")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    summary = getattr(run, "summary", None) or {}
+    what = summary.get("title") or ""
+    ax.set_title(f"{car.name}" + (f", {what}" if what else "")
+                 + f"\nt = {run.motion.t[k]:.3f} s, deformation x {scale:g} "
+                 "(global coordinates)", fontsize=10)
     with atomic_path(path, suffix=".png") as tmp:
         fig.savefig(tmp, dpi=100)
     plt.close(fig)

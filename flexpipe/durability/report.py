@@ -162,19 +162,31 @@ def _kind_counts(body) -> dict:
     return counts
 
 
+def _damage_hotspot(sr):
+    """Position in ``sr`` of the element with the largest fatigue damage, or None."""
+    if sr.damage is None:
+        return None
+    d = np.nan_to_num(np.asarray(sr.damage, dtype=float), nan=-1.0)
+    if d.size == 0 or d.max() <= 0.0:
+        return None
+    return int(np.argmax(d))
+
+
 def png_text(body, sr, *, title: str = "", hotspots: int = PNG_HOTSPOTS) -> dict:
     """What ``stress_max.png`` shows, in words: its title, colour-bar label, description.
 
     The figure draws every element with stresses (:data:`DRAWN_AS`) on one colour scale
     ending at the :data:`CLIP_PERCENTILE` th percentile of their max von Mises; the text
-    states that clipping, the largest value, its element id and kind, and the hot spots
-    marked.
+    states that clipping, the largest value, its element id and kind, the hot spots
+    numbered in the views (listed with their element ids in the table beside them) and
+    the fatigue (largest damage) hot spot.
 
     Returns
     -------
     dict
         ``title``, ``colorbar``, ``description`` (str), ``vmax_MPa`` (end of the colour
-        scale), ``hotspots`` (positions of the marked elements in ``sr``).
+        scale), ``hotspots`` (positions of the numbered elements in ``sr``),
+        ``damage_hotspot`` (position of the largest damage, or None without fatigue).
     """
     vals = sr.max_von_mises / 1e6
     clip = max(float(np.percentile(vals, CLIP_PERCENTILE)), 1e-9)
@@ -182,6 +194,7 @@ def png_text(body, sr, *, title: str = "", hotspots: int = PNG_HOTSPOTS) -> dict
     kind = KIND.get(sr.cell_type[i], str(sr.cell_type[i]))
     drawn = ", ".join(f"{n} {k}s as {DRAWN_AS[k]}" for k, n in _kind_counts(body).items())
     top = [int(j) for j in sr.top(hotspots)]
+    dmg = _damage_hotspot(sr)
     at_max = (f"max {vals[i]:.1f} MPa at element {int(sr.element_id[i])} ({kind}, "
               f"{sr.location[i]}) at t = {sr.time_of_max[i]:.3f} s")
     if vals[i] > clip:
@@ -189,26 +202,70 @@ def png_text(body, sr, *, title: str = "", hotspots: int = PNG_HOTSPOTS) -> dict
                  f"{clip:.1f} MPa (higher values in the top colour)")
     else:
         scale = f"colour scale 0 to {clip:.1f} MPa"
-    marked = (f"top {len(top)} hot spots marked with their element ids: "
-              + ", ".join(str(int(sr.element_id[j])) for j in top))
+    marked = (f"top {len(top)} hot spots numbered 1-{len(top)} (red circles; element ids "
+              + ", ".join(str(int(sr.element_id[j])) for j in top) + " in the table)")
+    if dmg is not None:
+        fatigue = (f"fatigue hot spot D (magenta diamond): element {int(sr.element_id[dmg])}, "
+                   f"damage {float(sr.damage[dmg]):.3g}")
+    else:
+        fatigue = "no fatigue damage computed" if sr.damage is None else "no fatigue damage"
     head = title or "Max von Mises stress over the run"
     return {
-        "title": f"{head}\n{drawn}; {at_max}\n{scale}\n{marked} (red)",
+        "title": f"{head}\n{drawn}; {at_max}\n{scale}\n{marked}; {fatigue}",
         "colorbar": (f"max von Mises [MPa] of {', '.join(_kind_counts(body))} elements\n"
                      f"scale clipped at {clip:.1f} MPa; max {vals[i]:.1f} MPa"),
-        "description": (f"body coloured by max von Mises over the run (MPa), two views: "
-                        f"{drawn}; {scale}; {at_max}; {marked}"),
-        "vmax_MPa": clip, "hotspots": top,
+        "description": (f"body coloured by max von Mises over the run (MPa), two views "
+                        f"({', '.join(name for name, _, _ in VIEWS)}): {drawn}; {scale}; "
+                        f"{at_max}; {marked}; {fatigue}"),
+        "vmax_MPa": clip, "hotspots": top, "damage_hotspot": dmg,
     }
 
 
+#: the two views of ``stress_max.png``: name, elevation, azimuth (body axes: x forward,
+#: y to the left, z up)
+VIEWS = (("isometric view from front right", 25, -60),
+         ("top view (front to the right, left side up)", 90, -90))
+
+
+def _groups(points, tol):
+    """Indices of ``points`` grouped greedily: each joins the first group whose first
+    point lies within ``tol`` (so labels of near-coincident hot spots are merged)."""
+    groups = []
+    for k, p in enumerate(points):
+        for g in groups:
+            if np.linalg.norm(points[g[0]] - p) <= tol:
+                g.append(k)
+                break
+        else:
+            groups.append([k])
+    return groups
+
+
+def hotspot_table_rows(sr, text) -> list:
+    """Rows of the table beside the views: marker, element id, kind, max von Mises [MPa],
+    its time [s] and damage; the fatigue hot spot as marker ``D``."""
+    def row(mark, j):
+        d = "" if sr.damage is None else f"{float(np.nan_to_num(sr.damage[j])):.2g}"
+        return [mark, str(int(sr.element_id[j])), KIND.get(sr.cell_type[j], sr.cell_type[j]),
+                f"{sr.max_von_mises[j] / 1e6:.1f}", f"{sr.time_of_max[j]:.3f}", d]
+    rows = [row(str(k + 1), j) for k, j in enumerate(text["hotspots"])]
+    if text["damage_hotspot"] is not None:
+        rows.append(row("D", text["damage_hotspot"]))
+    return rows
+
+
+HOTSPOT_TABLE_HEADER = ["#", "element", "kind", "max vM\n[MPa]", "t of max\n[s]", "damage\n[-]"]
+
+
 def write_png(path, body, sr, *, title=""):
-    """Body coloured by max von Mises, two views (matplotlib, headless).
+    """Body coloured by max von Mises, two named views and a hot-spot table (headless).
 
     Shells are drawn as faces, beams as lines, solids as points at their centroids, all
-    on one colour scale; the top hot spots are marked with their element ids.  The
-    title, colour-bar label and description (:func:`png_text`) are also stored as the
-    PNG's ``Title`` and ``Description`` text.
+    on one colour scale.  The top hot spots are numbered (red circles; hot spots closer
+    than 2 % of the body's size share one label such as ``1,3``) and listed with their
+    element ids and values in a table beside the views, where ``D`` is the fatigue hot
+    spot (largest damage, magenta diamond).  The title, colour-bar label and description
+    (:func:`png_text`) are also stored as the PNG's ``Title`` and ``Description`` text.
     """
     import matplotlib
 
@@ -231,9 +288,18 @@ def write_png(path, body, sr, *, title=""):
             pts.append(b.centroids)
             pidx.extend(rows)
         ofs += len(b)
-    fig = plt.figure(figsize=(12, 6))
-    for k, (elev, azim) in enumerate(((25, -60), (90, -90))):
-        ax = fig.add_subplot(1, 2, k + 1, projection="3d")
+    lo, hi = body.nodes.min(axis=0), body.nodes.max(axis=0)
+    size = float(np.linalg.norm(hi - lo))
+    top = text["hotspots"]
+    groups = _groups(np.asarray([sr.centroid[j] for j in top]).reshape(-1, 3), 0.02 * size)
+    dmg = text["damage_hotspot"]
+    fig = plt.figure(figsize=(13, 8.2))
+    # a 3D axes leaves wide blank margins around its box: the views get rectangles larger
+    # than their share of the figure (left column, top and bottom half below the title)
+    frames = ([-0.2, 0.3, 1.1, 0.66], [-0.2, -0.17, 1.1, 0.66])
+    for k, (name, elev, azim) in enumerate(VIEWS):
+        ax = fig.add_axes(frames[k], projection="3d")
+        ax.set_facecolor((1, 1, 1, 0))  # transparent: the frames overlap
         ax.computed_zorder = False  # draw order: the hot-spot marks stay on top
         if polys:
             ax.add_collection3d(Poly3DCollection(polys, facecolors=cmap(norm(vals[idx])),
@@ -244,20 +310,54 @@ def write_png(path, body, sr, *, title=""):
         if pts:
             c = np.vstack(pts)
             ax.scatter(c[:, 0], c[:, 1], c[:, 2], c=cmap(norm(vals[pidx])), s=4)
-        for j in text["hotspots"]:
-            c = sr.centroid[j]
-            ax.scatter(*c, s=80, facecolors="none", edgecolors="red", linewidths=1.5,
-                       zorder=10)
-            ax.text(*c, f"  {int(sr.element_id[j])}", color="red", fontsize=7, zorder=11)
-        lo, hi = body.nodes.min(axis=0), body.nodes.max(axis=0)
+        for g in groups:
+            for m in g:
+                ax.scatter(*sr.centroid[top[m]], s=70, facecolors="none", edgecolors="red",
+                           linewidths=1.3, zorder=10)
+            c = sr.centroid[top[g[0]]]
+            ax.text(c[0], c[1], c[2] + 0.04 * size, ",".join(str(m + 1) for m in g),
+                    color="red", fontsize=9, fontweight="bold", ha="center", va="bottom",
+                    zorder=12, bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="red",
+                                         lw=0.6, alpha=0.85))
+        if dmg is not None:
+            c = sr.centroid[dmg]
+            ax.scatter(*c, s=90, marker="D", facecolors="none", edgecolors="magenta",
+                       linewidths=1.5, zorder=10)
+            ax.text(c[0], c[1], c[2] - 0.04 * size, "D", color="magenta", fontsize=9,
+                    fontweight="bold", ha="center", va="top", zorder=12,
+                    bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="magenta", lw=0.6,
+                              alpha=0.85))
+        ax.text(hi[0] + 0.03 * size, 0.5 * (lo[1] + hi[1]), lo[2], "front", color="0.35",
+                fontsize=8, ha="left", va="center")
         ax.set_xlim(lo[0], hi[0])
         ax.set_ylim(lo[1], hi[1])
         ax.set_zlim(lo[2], hi[2])
-        ax.set_box_aspect(hi - lo)
+        ax.set_box_aspect(hi - lo, zoom=1.0)
         ax.view_init(elev=elev, azim=azim)
         ax.set_axis_off()
+        fig.text(0.35, (0.85, 0.40)[k], name, fontsize=10, ha="center", va="top",
+                 fontweight="bold")
+    tab_ax = fig.add_axes([0.73, 0.42, 0.25, 0.44])
+    tab_ax.set_axis_off()
+    rows = hotspot_table_rows(sr, text)
+    table = tab_ax.table(cellText=rows, colLabels=HOTSPOT_TABLE_HEADER, loc="upper center",
+                         cellLoc="center", colWidths=[0.08, 0.17, 0.15, 0.17, 0.17, 0.17])
+    table.auto_set_font_size(False)
+    table.set_fontsize(8)
+    table.scale(1.0, 1.5)
+    for (r, _), cell in table.get_celld().items():
+        if r == 0:
+            cell.set_height(cell.get_height() * 1.6)
+            cell.set_facecolor("0.92")
+        elif rows[r - 1][0] == "D":
+            cell.get_text().set_color("magenta")
+        else:
+            cell.get_text().set_color("red")
+    tab_ax.set_title("hot spots (# as in the views; D = largest fatigue damage)",
+                     fontsize=8.5)
     sm = matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap)
-    fig.colorbar(sm, ax=fig.axes, shrink=0.6, label=text["colorbar"],
+    cax = fig.add_axes([0.75, 0.30, 0.22, 0.025])
+    fig.colorbar(sm, cax=cax, orientation="horizontal", label=text["colorbar"],
                  extend="max" if vals.max() > text["vmax_MPa"] else "neither")
     fig.suptitle(text["title"], fontsize=9)
     with atomic_path(path, suffix=".png") as tmp:

@@ -87,7 +87,7 @@ def figure3(curves: list[tuple[str, Spectrum, dict]], path, *, title: str,
         Its legend entry, e.g. ``"complete, linear zeta = 0.3"`` (the caller knows the
         damping ratio it was computed with).
     """
-    fig, axes = plt.subplots(3, 1, figsize=(8, 9), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(8, 9.8), sharex=True)
     if reference is not None:
         for ax, y in zip(axes, _quantities(reference), strict=True):
             ax.semilogy(reference.freq_Hz, y, color="0.7", lw=1.0, label=reference_label)
@@ -102,9 +102,11 @@ def figure3(curves: list[tuple[str, Spectrum, dict]], path, *, title: str,
     mu = max(float(np.nanmax(s.floquet_max)) for _, s, _ in curves)
     note = (f"all periodic solutions stable (max |Floquet multiplier| = {mu:.3f})"
             if unstable == 0 else f"{unstable} unstable points (dashed); o = stability change")
-    axes[0].legend(loc="upper right", fontsize=8, title=note, title_fontsize=8)
+    # the legend sits above the top panel, off the curves (title as the figure's title)
+    axes[0].legend(loc="lower center", bbox_to_anchor=(0.5, 1.02), ncol=2, fontsize=8,
+                   title=note, title_fontsize=8)
     axes[2].set_xlabel("forcing frequency v / lambda [Hz]")
-    axes[0].set_title(title, fontsize=10)
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     _save(fig, path)
 

@@ -166,6 +166,10 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
                               progress=progress, cache=cache)
     store.mark()  # (also when no run was left to do)
     table = store.table([r.key for r in runs])
+    if not table.empty:  # swept parameters, key, status... first (docs/sweeps.md)
+        from flexpipe.sweeps.metrics import table_columns
+
+        table = table[table_columns(table.columns, swept_parameters(spec))]
     store.write_table(table)
     n_failed = int((table["status"] < 0).sum()) if "status" in table else 0
     result = SweepResult(table=table, out=Path(out), n_runs=len(runs),
@@ -177,6 +181,17 @@ def sweep(spec, *, out=None, scheduler=None, n_workers=None, progress: bool = Tr
         plot_metrics(table, spec, Path(out) / "plots")
     _summary(result, spec)
     return result
+
+
+def swept_parameters(spec) -> list[str]:
+    """Names of the swept parameters: the ``[parameters]`` keys, else those of the
+    ``[[runs]]`` tables in first-seen order."""
+    if spec.parameters:
+        return list(spec.parameters)
+    out: list[str] = []
+    for r in spec.runs_list:
+        out += [k for k in r if k not in out]
+    return out
 
 
 def _summary(result: SweepResult, spec) -> None:

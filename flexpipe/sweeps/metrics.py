@@ -4,8 +4,14 @@ path error, computed from a :class:`~flexpipe.vehicle.result.Result`.
 Every column name carries its unit.  For a corner ``c`` (fl, fr, rl, rr), an axis ``k``
 (x, y, z, body axes) and a named body point ``p`` (channels ``acc_<p>_x|y|z``):
 
+``hub_<c>_<k>_std_N``
+    Fluctuation of the hub force on the body: its standard deviation about the mean over
+    the window (``numpy.std``, population), i.e. the RMS of the dynamic part with the
+    static load removed.  The measure to compare between runs (speeds, roads...).
 ``hub_<c>_<k>_rms_N``, ``hub_<c>_<k>_peak_N``
-    RMS and largest magnitude of the hub force on the body (static load included).
+    RMS and largest magnitude of the *total* hub force on the body, static load
+    included (``rms**2 = mean**2 + std**2``: for a vertical force it is dominated by the
+    static wheel load and can fall with speed while the fluctuation rises).
 ``aw_<p>_<k>_m_per_s2``
     ISO 2631-1 frequency-weighted RMS acceleration (Wd for x and y, Wk for z).
 ``crest_<p>_<k>``
@@ -77,6 +83,7 @@ def run_metrics(t, channels, *, settle: float = 0.0) -> dict:
             name = f"hub_{c}_{k}"
             if name in channels:
                 x = sig(name)
+                out[f"{name}_std_N"] = float(np.std(x)) if ok else nan
                 out[f"{name}_rms_N"] = float(np.sqrt(np.mean(x**2))) if ok else nan
                 out[f"{name}_peak_N"] = float(np.abs(x).max()) if ok else nan
     for p in points_of(channels):
@@ -110,7 +117,7 @@ def metric_names(points) -> list[str]:
     """Every metric column :func:`run_metrics` writes for a car with the named body
     ``points`` (its ``[body.points]``), in the order it writes them, then
     :data:`RECORD_NUMBERS`."""
-    out = [f"hub_{c}_{k}_{s}" for c in CORNERS for k in "xyz" for s in ("rms_N", "peak_N")]
+    out = [f"hub_{c}_{k}_{s}" for c in CORNERS for k in "xyz" for s in ("std_N", "rms_N", "peak_N")]
     for p in points:
         for k in "xyz":
             out += [f"aw_{p}_{k}_m_per_s2", f"crest_{p}_{k}", f"vdv_{p}_{k}_m_per_s1.75"]
@@ -120,4 +127,22 @@ def metric_names(points) -> list[str]:
     return out
 
 
-__all__ = ["MIN_SAMPLES", "RECORD_NUMBERS", "metric_names", "points_of", "run_metrics"]
+#: first columns of the metrics table after the swept parameters (docs/sweeps.md)
+LEADING_COLUMNS = ("key", "status", "message", "cpu_s", "wall_s")
+
+
+def table_columns(columns, params) -> list[str]:
+    """``columns`` of the metrics table in the documented order: the swept ``params``,
+    :data:`LEADING_COLUMNS`, the metrics in :func:`metric_names` order, then the other
+    record fields (``index``, ``task_s``...) and any column not known here."""
+    columns = list(columns)
+    points = [c[3:-len("_m_per_s2")] for c in columns
+              if c.startswith("av_") and c.endswith("_m_per_s2")]
+    first = [c for c in (*params, *LEADING_COLUMNS) if c in columns]
+    known = [c for c in metric_names(points) if c in columns and c not in first]
+    seen = set(first) | set(known)
+    return first + known + [c for c in columns if c not in seen]
+
+
+__all__ = ["LEADING_COLUMNS", "MIN_SAMPLES", "RECORD_NUMBERS", "metric_names", "points_of",
+           "run_metrics", "table_columns"]

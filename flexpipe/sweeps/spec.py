@@ -27,7 +27,7 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     speed_kmh = 50
 
     [plots]
-    metrics = ["aw_driver_floor_z_m_per_s2", "hub_fl_z_rms_N"]
+    metrics = ["aw_driver_floor_z_m_per_s2", "hub_fl_z_std_N"]
 
 Parameter names: ``speed_kmh``, ``t_end_s``, ``h_s``, ``body``, ``path`` (file or
 "straight"), ``road`` (a road file replacing the base road), ``road.<key>`` (a key of the

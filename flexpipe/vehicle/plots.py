@@ -71,22 +71,54 @@ def hub_force(results: dict, path, *, corner: str = "fl", component: str = "z",
     return _save(plt, fig, path)
 
 
+#: trajectory styles: the rigid trace wide and grey underneath, the others narrow and
+#: dashed / dotted on top, so that each stays visible where they coincide
+TRAJECTORY_STYLE = {"rigid": dict(color="0.55", lw=2.6, ls="-", zorder=2),
+                    "flexible": dict(color="tab:red", lw=1.2, ls="--", zorder=4),
+                    "full": dict(color="tab:blue", lw=1.2, ls=":", zorder=5)}
+
+
+def run_title(results: dict, path_obj=None) -> str:
+    """Car (and its file), speed, road and path of the runs, from their ``info``."""
+    info = getattr(next(iter(results.values())), "info", None) or {}
+    parts = []
+    car = info.get("car")
+    if car:
+        file = info.get("car_file")
+        parts.append(f"{car} ({Path(file).name})" if file else str(car))
+    if info.get("speed") is not None:
+        parts.append(f"{float(info['speed']) * 3.6:.0f} km/h")
+    road = info.get("road")
+    parts.append(f"road {Path(str(road)).name}" if road else "flat road")
+    if path_obj is not None:
+        name = getattr(path_obj, "name", "") or Path(getattr(path_obj, "source", "") or "").name
+        if name:
+            parts.append(f"path {name}")
+    return ", ".join(parts)
+
+
 def trajectory(results: dict, path_obj, path, *, title: str = "") -> Path:
-    """Desired path and the followed rear-axle trajectories (paper Fig. 8)."""
-    plt, fig = _figure((10, 4))
+    """Desired path and the followed rear-axle trajectories (paper Fig. 8).
+
+    The rigid trace is wide and grey, the flexible one dashed red on top (full: dotted
+    blue), so that both stay visible where they coincide; the default title names the
+    car, speed, road and path (:func:`run_title`).
+    """
+    plt, fig = _figure((10, 4.3))
     ax = fig.add_subplot(111)
     r0 = next(iter(results.values()))
     x_lo, x_hi = float(np.nanmin(r0["x_rear"])), float(np.nanmax(r0["x_rear"]))
     sel = (path_obj.x >= x_lo - 5) & (path_obj.x <= x_hi + 5)
-    ax.plot(path_obj.x[sel], path_obj.y[sel], color="k", lw=1.5, label="desired path")
+    ax.plot(path_obj.x[sel], path_obj.y[sel], color="k", lw=0.9, zorder=3,
+            label="desired path")
     for label, r in results.items():
-        st = STYLE.get(label, {})
-        ax.plot(r["x_rear"], r["y_rear"], color=st.get("color"), ls="--", lw=1.0,
-                label=f"followed ({label} body)")
+        st = TRAJECTORY_STYLE.get(label, dict(lw=1.2, ls="-.", zorder=6))
+        ax.plot(r["x_rear"], r["y_rear"], label=f"followed ({label} body)", **st)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    ax.set_title(title or "Desired / followed vehicle trajectory (rear-axle centre)")
+    head = "Desired / followed vehicle trajectory (rear-axle centre)"
+    ax.set_title(title or f"{head}\n{run_title(results, path_obj)}", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
     fig.tight_layout()
     return _save(plt, fig, path)

@@ -368,7 +368,9 @@ def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float =
     if out is not None:
         from flexpipe.vehicle.suspension.kc_output import write
 
-        write(res, Path(out))
+        label = Path(car).name if isinstance(car, (str, Path)) else str(
+            getattr(car, "name", "") or "")
+        write(res, Path(out), car=label)
     return res
 
 
