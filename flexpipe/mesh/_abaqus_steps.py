@@ -203,3 +203,15 @@ def _solution(deck: _Deck, index):
                                             ("f_max", f_max)) if v is not None})
     return dof_sets, solution
 
+
+def warn_dropped(path, deck: _Deck, notes: dict, silent) -> None:
+    """One warning naming the keywords not used for M and K (with what they would do, for
+    those in ``notes``, and where the first is), leaving out the ``silent`` ones."""
+    told = {k: n for k, n in deck.dropped.items() if k not in silent}
+    if told:
+        where = {k: f" (first at {f} line {ln})" for k, (f, ln) in deck.dropped_at.items()}
+        warnings.warn(MeshWarning(
+            f"{path}: keywords not used for M and K: "
+            + ", ".join(f"*{k} x{n}" + (f" - {notes[k]}{where.get(k, '')}" if k in notes
+                                        else "")
+                        for k, n in told.items())), stacklevel=4)

@@ -71,7 +71,6 @@ would change the structure.
 
 from __future__ import annotations
 
-import warnings
 from collections import defaultdict
 from pathlib import Path
 
@@ -105,11 +104,11 @@ from flexpipe.mesh._abaqus_steps import (
     _solution,
     _step_keyword,
     near_miss,
+    warn_dropped,
 )
 from flexpipe.mesh._bulk import parse_real
 from flexpipe.mesh.mesh import CellBlock, Mesh
 from flexpipe.mesh.nastran import drop_orientation_nodes
-from flexpipe.mesh.validate import MeshWarning
 
 UNSUPPORTED_KEYWORDS = ("MPC", "TIE", "EQUATION", "DISTRIBUTING COUPLING", "RIGID BODY",
                         "MEMBRANE SECTION", "TRANSFORM", "SYSTEM", "CONNECTOR PLASTICITY",
@@ -493,12 +492,5 @@ def read_abaqus(path) -> Mesh:
                 interpolations=interp, dof_sets=dof_sets, solution=solution,
                 info={"read": {t: len(e) for t, _, e in blocks}, "converted": converted,
                       "dropped": dict(deck.dropped), "materials": material_records(deck)})
-    told = {k: n for k, n in deck.dropped.items() if k not in SILENT_KEYWORDS}
-    if told:
-        where = {k: f" (first at {f} line {ln})" for k, (f, ln) in deck.dropped_at.items()}
-        warnings.warn(MeshWarning(
-            f"{path}: keywords not used for M and K: "
-            + ", ".join(f"*{k} x{n}" + (f" - {IGNORED_NOTES[k]}{where.get(k, '')}"
-                                        if k in IGNORED_NOTES else "")
-                        for k, n in told.items())), stacklevel=3)
+    warn_dropped(path, deck, IGNORED_NOTES, SILENT_KEYWORDS)
     return drop_orientation_nodes(mesh, n1_nodes)
