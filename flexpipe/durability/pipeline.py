@@ -24,7 +24,8 @@ DESCRIPTIONS = {
        for b in ("rigid", "flexible", "full")},
     **{f"{b}.mat": f"channels of the {b}-body run (MATLAB: t, channels, units, motion, info)"
        for b in ("rigid", "flexible", "full")},
-    "hub_force_fl.png": "vertical force on the front-left hub, rigid vs flexible",
+    "hub_force_fl.png": "vertical force on the front-left hub of each run; with a rigid "
+                        "and another run, rigid minus the other below",
     "trajectory.png": "driven path of each run",
     "summary.json": "this file: settings, run status, CPU times, hub-force differences",
     "motion_flexible.npz": "flexible body pose (origin position m, body-to-global rotation) "

@@ -11,6 +11,7 @@ import numpy as np
 
 from flexpipe._io import absolute, write_text_atomic
 from flexpipe.errors import FlexpipeError, InputError
+from flexpipe.vehicle.spec import CORNERS
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_CAR = ROOT / "cars" / "sedan_linkage.toml"
@@ -188,7 +189,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     d = summary.get("hub_force_difference_rigid_vs_flexible", {}).get("fl_z")
     if d is not None:
         log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
-            f"{d['rms_diff_N']:.1f} N ({100 * d['rel_rms_diff']:.2f} %), peak "
+            f"{d['rms_diff_N']:.1f} N ({100 * d['rel_rms_diff_dynamic']:.1f} % of the rigid "
+            f"force's fluctuation, {100 * d['rel_rms_diff']:.2f} % of its RMS), peak "
             f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
             f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
     return summary
@@ -252,8 +254,8 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         summary["flexible_body"] = {k: info.get(k) for k in (
             "n_elastic_modes", "band_hz", "highest_mode_hz", "reduction_s", "reduction_cached",
             "modal_prewarp", "inertia_coupling")}
-    summary["static_wheel_load_N"] = [round(v, 3) for v in
-                                      next(iter(results.values())).info["static_wheel_load_N"]]
+    summary["static_wheel_load_N"] = {c: round(v, 3) for c, v in zip(
+        CORNERS, next(iter(results.values())).info["static_wheel_load_N"], strict=True)}
     if path is not None:
         summary["lateral_error_max_m"] = {
             b: round(float(np.nanmax(np.abs(r["lateral_error"][r.t >= 1.0]))), 4)
@@ -335,7 +337,8 @@ def _durability(out, results, summary, *, car, road, log, progress=False, final=
     t0 = time.perf_counter()
     desc = scenario_outputs(out, results, car=car, road=road, title=summary["title"], log=log,
                             progress=progress, final=final)
-    summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
+    if "flexible" in results:  # the durability outputs are the flexible body's
+        summary["durability_wall_time_s"] = round(time.perf_counter() - t0, 2)
     flexible = results.get("flexible")
     if flexible is not None and flexible.status != 0:
         summary["durability"] = ("skipped: the flexible run did not complete "

@@ -58,8 +58,9 @@ def hub_force(results: dict, path, *, corner: str = "fl", component: str = "z",
         rigid = results["rigid"]
         for label in others:
             r = results[label]
-            diff = r[name] - np.interp(r.t, rigid.t, rigid[name])
-            ax_d.plot(r.t, diff / 1e3, label=f"{label} - rigid",
+            # rigid minus the other, as summary.json's hub_force_difference states it
+            diff = np.interp(r.t, rigid.t, rigid[name]) - r[name]
+            ax_d.plot(r.t, diff / 1e3, label=f"rigid - {label}",
                       **{**STYLE.get(label, {}), "ls": "-"})
         ax_d.axhline(0.0, color="k", lw=0.6)
         ax_d.set_ylabel("difference [kN]")
