@@ -362,3 +362,27 @@ def test_mount_dofs_follow_what_passes_a_moment_in_each_mode(tmp_path):
         assert kin.mount_dofs()[name] == comp.mount_dofs()[name] == 6, name
     assert {n for n, d in kin.mount_dofs().items() if d == 3} > \
         {n for n, d in comp.mount_dofs().items() if d == 3}
+
+
+@pytest.mark.parametrize("offset_mm, ok", [(0.0, True), (0.5, True), (50.0, False)])
+def test_point_m_away_from_the_hardpoint_is_refused(tmp_path, offset_mm, ok):
+    """A ``point_m`` moves the joint in flexible runs only (the rigid run keeps the
+    hardpoint), so the rigid-vs-flexible difference would move with a point that has no
+    physical meaning: more than 1 mm from the mount's hardpoint (typed above from the
+    task, :data:`MOUNTS`) is an error naming the file, line, key and distance."""
+    from flexpipe.vehicle import load_car
+
+    x, y, z = MOUNTS["front_lower_arm_front"]
+    text = SAMPLE.read_text().replace('"../', f'"{SAMPLE.parents[1].as_posix()}/')
+    table = (f"[body.mounts.front_lower_arm_front_l]\npoint_m = [{x + offset_mm * 1e-3!r}, "
+             f"{y!r}, {z!r}]\nradius_m = 0.02\n\n[body.fatigue]")
+    p = _write(tmp_path, text.replace("[body.fatigue]", table, 1))
+    if ok:
+        load_car(p)
+        return
+    with pytest.raises(InputError) as e:
+        load_car(p)
+    msg = str(e.value)
+    assert str(p) in msg and "key 'body.mounts.front_lower_arm_front_l.point_m'" in msg
+    assert f"line {_line_of(p, '[body.mounts.front_lower_arm_front_l]')}" in msg
+    assert f"is {offset_mm:.1f} mm from the suspension's point" in msg

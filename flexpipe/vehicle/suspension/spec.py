@@ -424,6 +424,10 @@ def _wheels(top: Table) -> dict:
     return out
 
 
+#: largest distance (m) of a ``[body.mounts.<m>] point_m`` from the mount's hardpoint
+POINT_M_TOL = 1e-3
+
+
 def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
     """Every ``[body.mounts.<name>]`` must name a mount of ``susp``: checked here, when
     any tool reads the car (``info``, ``kc``, every run), not only by the flexible run."""
@@ -431,11 +435,25 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
     mounts = body.get("mounts") if isinstance(body, dict) else None
     valid = susp.mounts()
     for name in mounts if isinstance(mounts, dict) else ():  # else read_body names it
+        where = dict(file=susp.file, line=Table({}, f"body.mounts.{name}", susp.file,
+                                                lines)._line(None))
         if name not in valid:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
-                             f"suspension; valid: {', '.join(valid)}", file=susp.file,
-                             line=Table({}, f"body.mounts.{name}", susp.file, lines)._line(None),
-                             key=f"body.mounts.{name}")
+                             f"suspension; valid: {', '.join(valid)}", key=f"body.mounts.{name}",
+                             **where)
+        p = mounts[name].get("point_m") if isinstance(mounts[name], dict) else None
+        try:
+            off = float(np.linalg.norm(np.asarray(p, dtype=float) - valid[name]))
+        except (TypeError, ValueError):
+            continue  # not three numbers: read_body names it
+        if p is not None and off > POINT_M_TOL:
+            raise InputError(
+                f"point_m {tuple(p)} is {off * 1e3:.1f} mm from the suspension's point of mount "
+                f"'{name}' {tuple(np.round(valid[name], 4))} m: a flexible run would put the "
+                "joint at point_m and the rigid run at the hardpoint, so their difference "
+                "would depend on a point with no physical meaning; leave point_m out (the tie "
+                f"is centred on the hardpoint) or move the hardpoint (valid: within "
+                f"{POINT_M_TOL * 1e3:g} mm of it)", key=f"body.mounts.{name}.point_m", **where)
 
 
 __all__ = ["Suspension", "load_suspension", "read_suspension", "ModelError"]
