@@ -207,3 +207,31 @@ def test_interface_band_is_read_and_checked(tmp_path):
     with pytest.raises(InputError, match="prismatic corners") as exc:
         fp.load_car(p)
     assert "body.interface_band_hz" in str(exc.value)
+
+
+def test_body_file_with_swapped_interface_names_is_refused(tmp_path, mesh_car_runs):
+    """Two interfaces' names swapped in the interface spec: each mount's interface sits at
+    the other mount's point (0.4 m away), so a flexible run would put the joints elsewhere
+    than the rigid one.  Refused up front, naming both the distance and the swap."""
+    from dataclasses import replace
+
+    from flexpipe.vehicle.bodymodel import check_body_file
+
+    car, prep = mesh_car_runs
+    fb = prep["flexbody"]
+    a, b = "front_lower_arm_front_l", "front_lower_arm_rear_l"
+    names = {a: b, b: a}
+    swapped = replace(fb, interfaces=tuple(replace(i, name=names.get(i.name, i.name))
+                                           for i in fb.interfaces))
+    npz = tmp_path / "swapped.npz"
+    swapped.save(npz)
+    text = _variant(tmp_path, f'body_file = "{npz}"').read_text()
+    text = text.split("\n[[body.mass]]")[0] + "\n[corners" + text.split("\n[corners", 1)[1]
+    (tmp_path / "car4.toml").write_text(text)
+    car4 = fp.load_car(tmp_path / "car4.toml")
+    d = float(np.linalg.norm(np.subtract(*(i.point for i in fb.interfaces if i.name in names))))
+    with pytest.raises(InputError) as e:
+        check_body_file(car4)
+    msg = str(e.value)
+    assert f"interface '{a}' sits at" in msg and f"{d * 1e3:.1f} mm from the car's point" in msg
+    assert f"the body's interface at that point is '{b}': are the names swapped" in msg

@@ -262,9 +262,8 @@ def ready_body(car: Car, required=()):
     if missing:
         raise InputError(f"the body file {car.body.body_file.name} has no interface "
                          f"{missing[0]!r} ({len(missing)} missing); this car needs "
-                         f"{', '.join(required)}; reduce the body with these interfaces "
-                         f"(it has {', '.join(sorted(have))})", file=car.file,
-                         key="body.body_file")
+                         f"{', '.join(required)}; reduce the body with these interfaces (it "
+                         f"has {', '.join(sorted(have))})", file=car.file, key="body.body_file")
     if car.suspension is None:  # prismatic corners: the corner joint carries moments
         three = [i.name for i in fb.interfaces if i.name in CORNERS and i.dofs != 6]
         if three:
@@ -278,17 +277,19 @@ def ready_body(car: Car, required=()):
 
 
 def check_body_file(car: Car) -> None:
-    """Check a ``body_file`` car's ready body before a run writes anything: it must
-    carry the car's interfaces (the mounts of a linkage car, else the four corners, with
-    6 DOF); see :func:`ready_body`.  No-op without ``body_file``."""
+    """Check a ``body_file`` car's ready body before a run writes anything: the car's
+    interfaces (:func:`ready_body`) at the car's points (:func:`~flexpipe.vehicle.mounts.
+    check_interface_points`).  No-op without ``body_file``."""
     if car.body.body_file is None:
         return
-    if car.suspension is not None:
-        from flexpipe.vehicle.linkage_setup import body_mounts
+    from flexpipe.vehicle.linkage_setup import body_mounts
+    from flexpipe.vehicle.mounts import check_interface_points
 
-        ready_body(car, [m.name for m in body_mounts(car)])
+    if car.suspension is not None:
+        points = {m.name: m.point for m in body_mounts(car)}
     else:
-        ready_body(car, CORNERS)
+        points = {c: car.corner(c).hardpoint for c in CORNERS}
+    check_interface_points(ready_body(car, list(points)), points, car=car)
 
 
 # --------------------------------------------------------------------------- reduction

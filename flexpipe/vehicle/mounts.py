@@ -325,3 +325,29 @@ def read_hardpoints(path) -> dict:
 
 __all__ = ["Mount", "NODE_TOL", "OFF_BODY_TOL", "as_mount", "check_mount_node_ids",
            "mount_interfaces", "read_hardpoints"]
+
+
+#: largest distance (m) of a ready body's interface from the car's point of that mount
+INTERFACE_POINT_TOL = 5e-3
+
+
+def check_interface_points(fb, points: dict, *, car) -> None:
+    """Every interface of the ready body ``fb`` named in ``points`` ({name: point, m}) must
+    sit within :data:`INTERFACE_POINT_TOL` of that point: else an error naming the car
+    file, the body file, the interface, both points, and the interface of the body nearest
+    the car's point (a swapped name shows as another mount's interface there)."""
+    have = {i.name: np.asarray(i.point, dtype=float) for i in fb.interfaces}
+    for name, p in points.items():
+        p = np.asarray(p, dtype=float)
+        off = float(np.linalg.norm(have[name] - p))
+        if off > INTERFACE_POINT_TOL:
+            near = min(have, key=lambda n: float(np.linalg.norm(have[n] - p)))
+            hint = (f"; the body's interface at that point is {near!r}: are the names "
+                    "swapped in the interface spec?" if near != name and np.linalg.norm(
+                        have[near] - p) <= INTERFACE_POINT_TOL else "")
+            raise InputError(
+                f"the body file {car.body.body_file.name}: interface {name!r} sits at "
+                f"{tuple(np.round(have[name], 4))} m, {off * 1e3:.1f} mm from the car's point "
+                f"of that mount {tuple(np.round(p, 4))} m (valid: within "
+                f"{INTERFACE_POINT_TOL * 1e3:g} mm){hint}; reduce the body with the car's "
+                "mount points", file=car.file, key="body.body_file")
