@@ -56,6 +56,17 @@ def test_ready_body_file_gives_the_same_car(tmp_path, mesh_car_runs):
         assert np.allclose(a[ch], b[ch], rtol=1e-6, atol=1e-6)
 
 
+def _body_file_car(tmp_path, body, name):
+    """The sample car with ``body`` saved as its ready body file (its [[body.mass]] tables
+    dropped: a ready body carries its own masses)."""
+    npz = tmp_path / f"{name}.npz"
+    body.save(npz)
+    text = _variant(tmp_path, f'body_file = "{npz}"').read_text()
+    text = text.split("\n[[body.mass]]")[0] + "\n[corners" + text.split("\n[corners", 1)[1]
+    (tmp_path / f"{name}.toml").write_text(text)
+    return fp.load_car(tmp_path / f"{name}.toml")
+
+
 def test_body_file_lacking_a_mount_is_named(tmp_path, mesh_car_runs):
     from flexpipe.reduction import Interface
 
@@ -63,12 +74,7 @@ def test_body_file_lacking_a_mount_is_named(tmp_path, mesh_car_runs):
     fe = bodymodel.body_fe(car)
     small = fp.reduce(fe, [Interface((0.2, 0.42, 0.148), radius=0.02, name="only_one")],
                       method="craig-bampton", n_modes=2)
-    npz = tmp_path / "small.npz"
-    small.save(npz)
-    text = _variant(tmp_path, f'body_file = "{npz}"').read_text()
-    text = text.split("\n[[body.mass]]")[0] + "\n[corners" + text.split("\n[corners", 1)[1]
-    (tmp_path / "car3.toml").write_text(text)
-    car3 = fp.load_car(tmp_path / "car3.toml")
+    car3 = _body_file_car(tmp_path, small, "car3")
     with pytest.raises(InputError, match="body_file.*no interface 'front_lower_arm_front_l'"):
         fp.simulate(car3, speed=0.0, t_end=0.1, body="flexible")
 
@@ -223,12 +229,7 @@ def test_body_file_with_swapped_interface_names_is_refused(tmp_path, mesh_car_ru
     names = {a: b, b: a}
     swapped = replace(fb, interfaces=tuple(replace(i, name=names.get(i.name, i.name))
                                            for i in fb.interfaces))
-    npz = tmp_path / "swapped.npz"
-    swapped.save(npz)
-    text = _variant(tmp_path, f'body_file = "{npz}"').read_text()
-    text = text.split("\n[[body.mass]]")[0] + "\n[corners" + text.split("\n[corners", 1)[1]
-    (tmp_path / "car4.toml").write_text(text)
-    car4 = fp.load_car(tmp_path / "car4.toml")
+    car4 = _body_file_car(tmp_path, swapped, "car4")
     d = float(np.linalg.norm(np.subtract(*(i.point for i in fb.interfaces if i.name in names))))
     with pytest.raises(InputError) as e:
         check_body_file(car4)
