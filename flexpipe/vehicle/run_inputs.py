@@ -27,7 +27,7 @@ SPEED_MAX = 80.0
 #: most likely milliseconds given as seconds
 T_END_MAX = 3600.0
 #: time step range, s, that :func:`~flexpipe.vehicle.simulation.simulate` documents: at
-#: 2 ms the flexible body's hub forces are already 8 % off (README, step convergence), so
+#: 2 ms the hub forces are already 6-7 % off in x (README, step convergence), so
 #: beyond 5 ms the run means little; below 10 us a few seconds take days.  A value outside
 #: is most likely milliseconds given as seconds
 H_MIN, H_MAX = 1e-5, 5e-3

@@ -60,9 +60,9 @@ from flexpipe.vehicle.spec import Car
 #: 0.3 at 0.5, 2.32 / 0.94 / 0.22 at 0.7 (2026-12-01)
 SPECTRAL_RADIUS = 0.7
 #: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
-#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 4.5 %,
-#: ``bench/bench_convergence.py``); 2 ms leaves the flexible body's x at 8 %, its
-#: attachment modes beyond what a 2 ms step can follow (README)
+#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 2.3 %,
+#: ``bench/bench_convergence.py``, 2026-12-02); 2 ms leaves x at 6.0 % (flexible) and
+#: 6.6 % (rigid) at 100 km/h (README)
 DEFAULT_STEP = 1e-3
 
 
@@ -185,9 +185,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         against h/8 on ISO class C at 70/100 km/h and on the slalom, 4 s, output every
         step (``bench/bench_convergence.py``, README, worst corner and axis, percent of
         the fluctuating part): the linkage car rigid 0.1-0.2 % (z), 0.1-2.3 % (x, y),
-        flexible 0.1-0.2 % (z), 0.2-4.5 % (x, y); the prismatic car rigid within 1.6 %,
-        flexible 0.0-0.2 % (z) and 1.2-4.6 % (x, y) (2026-12-02, the 40 Hz body).  At
-        2 ms the linkage car is within 6.5 % (rigid) and 8.6 % (flexible).  Check any run with
+        flexible 0.1-0.2 % (z), 0.1-2.3 % (x, y); the prismatic car rigid within 1.6 %,
+        flexible 0.0-0.2 % (z) and 1.1-3.7 % (x, y) (2026-12-02, the 40 Hz body, the
+        driver's commands through a first-order hold).  At 2 ms the linkage car is within
+        6.6 % (rigid) and 6.0 % (flexible).  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
