@@ -107,10 +107,16 @@ def test_find_node_set_case_rules():
 
 
 def _corner_body(tmp_path, dofs_rr: int) -> Path:
-    """A small reduced box with the four corner interfaces (``rr`` with ``dofs_rr``)."""
-    fe = assemble(box(1.0, 0.4, 0.1, 10, 4, 1, cell="hexahedron"), STEEL)
-    pts = {"fl": (1.0, 0.4, 0.0), "fr": (1.0, 0.0, 0.0), "rl": (0.0, 0.4, 0.0),
-           "rr": (0.0, 0.0, 0.0)}
+    """A small reduced plate whose corners are the sample car's four corner hardpoints,
+    with the four corner interfaces there (``rr`` with ``dofs_rr``)."""
+    from dataclasses import replace
+
+    car = fp.load_car(ROOT / "cars" / "sedan.toml")
+    pts = {c: tuple(car.corner(c).hardpoint) for c in ("fl", "fr", "rl", "rr")}
+    lo = np.min(list(pts.values()), axis=0)
+    size = np.max(list(pts.values()), axis=0) - lo
+    mesh = box(size[0], size[1], 0.1, 28, 13, 1, cell="hexahedron")  # 0.1 m elements
+    fe = assemble(replace(mesh, points=mesh.points + lo), STEEL)
     itf = [fp.Interface(p, radius=0.12, name=n, dofs=dofs_rr if n == "rr" else 6)
            for n, p in pts.items()]
     npz = tmp_path / f"corners{dofs_rr}.npz"
