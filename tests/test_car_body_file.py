@@ -236,3 +236,15 @@ def test_body_file_with_swapped_interface_names_is_refused(tmp_path, mesh_car_ru
     msg = str(e.value)
     assert f"interface '{a}' sits at" in msg and f"{d * 1e3:.1f} mm from the car's point" in msg
     assert f"the body's interface at that point is '{b}': are the names swapped" in msg
+
+
+def test_info_names_the_ready_body_file_as_the_body(tmp_path, mesh_car_runs):
+    """``flexpipe info`` said "[body.rigid] mass properties" for a body_file car, whose
+    masses come from the body file; its mass there is the reduced body's own."""
+    from flexpipe.vehicle.describe import car_text
+
+    car, prep = mesh_car_runs
+    car2 = _body_file_car(tmp_path, prep["flexbody"], "car5")
+    line = car_text(car2).splitlines()[1]
+    assert f"body: ready body file {car2.body.body_file} (its own masses)" in line
+    assert f"{bodymodel.rigid_properties(car).mass:.2f} kg" in line

@@ -44,7 +44,9 @@ def car_text(car: Car) -> str:
 
     rb = bodymodel.rigid_properties(car)
     lines = [f"{car.file}: car '{car.name}'"]
-    src = car.body.mesh if car.body.mesh is not None else "[body.rigid] mass properties"
+    src = (car.body.mesh if car.body.mesh is not None else
+           f"ready body file {car.body.body_file} (its own masses)"
+           if car.body.body_file is not None else "[body.rigid] mass properties")
     lines.append(f"  body: {src}; {rb.mass:.2f} kg, centre of mass "
                  f"{_p(rb.center_of_mass)} m, "
                  f"{len(car.body.added_masses)} non-structural masses")
