@@ -177,12 +177,7 @@ def abaqus_text(mesh: Mesh) -> str:
                                               I[1, 2]))]
     for lk in mesh.rigid_links:
         out.append(f"*KINEMATIC COUPLING, REF NODE={int(nid[lk.master])}")
-        digits = sorted(int(c) for c in lk.dofs)
-        runs, s0 = [], digits[0]
-        for a, b in zip(digits, digits[1:] + [None], strict=True):
-            if b != a + 1:
-                runs.append((s0, a))
-                s0 = b
+        runs = _dof_runs(int(c) for c in lk.dofs)
         for s in np.asarray(lk.slaves):
             out += [f"{int(nid[s])}, {a}, {b}" for a, b in runs]
     for k, it in enumerate(mesh.interpolations):       # RBE3: distributing coupling
