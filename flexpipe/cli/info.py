@@ -40,7 +40,8 @@ def add_arguments(p) -> None:
 #: what ``flexpipe info`` describes (for --help and errors)
 TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [car] "
          "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg, .csv) or "
-         "path (.toml with a [path] table, .csv) file, a tyre (.tir), or a mesh (.bdf, "
+         "path (.toml with a [path] table, .csv) file, a speed profile (.toml with a "
+         "[speed_profile] table, .csv), a tyre (.tir), or a mesh (.bdf, "
          ".inp, .msh, .vtu, ...)")
 
 #: TOML files info does not describe: (tables that tell them, what they are, their use),
@@ -68,6 +69,8 @@ def toml_kind(doc: dict) -> str:
         return "road"
     if "path" in doc:
         return "path"
+    if "speed_profile" in doc:
+        return "speed profile"
     return ""
 
 
@@ -111,6 +114,8 @@ def toml_text(path) -> str:
         from flexpipe.driver import read_path
 
         return path_text(read_path(path), file=path, table=doc["path"])
+    if kind == "speed profile":
+        return _speed_text(path)
     use = next((u for _, k, u in _OTHER_TOML if k == kind), None)
     what = (f"is a {kind} file, not a car, mesh or body file ({use})" if kind else
             f"is not a car, road or path file: it has no [car], [road] or [path] table "
@@ -265,7 +270,9 @@ def tire_text(path) -> str:
 
 
 def csv_kind(path) -> str:
-    """Whether a ``.csv`` file is a road (``"road"``) or a driver path (``"path"``).
+    """Whether a ``.csv`` file is a road (``"road"``), a driver path (``"path"``) or a
+    speed profile (``"speed profile"``: a header ``time_s`` or ``distance_m``, then
+    ``speed_kmh`` or ``speed_mps``).
 
     Told by the header when the file has one (``#`` comment lines before it are skipped):
     one naming ``x`` and ``y`` (``x_m,y_m``, any unit) is a path, any other a road (whose
@@ -281,6 +288,11 @@ def csv_kind(path) -> str:
     table = read_numeric_table(path, kind="road or path",
                                columns="'distance, left, right' (road) or 'x, y' (path)")
     if table.header is not None:
+        from flexpipe.driver.speed import BASES, SPEED_KEYS
+
+        names = [h.strip().lower() for h in table.header]
+        if len(names) == 2 and names[0] in BASES.values() and names[1] in SPEED_KEYS:
+            return "speed profile"
         try:
             cols = header_columns(table.header, names=PATH_COLUMNS, file=path,
                                   line=table.header_line, kind="path")
@@ -310,13 +322,22 @@ def csv_kind(path) -> str:
 def csv_text(path) -> str:
     """Summary of a ``.csv`` road profile (``distance_m, left_m, right_m`` or
     ``distance_m, height_m``) or driver path (``x_m, y_m``), told by :func:`csv_kind`."""
-    if csv_kind(path) == "path":
+    kind = csv_kind(path)
+    if kind == "speed profile":
+        return _speed_text(path)
+    if kind == "path":
         from flexpipe.driver import read_path
 
         return path_text(read_path(path), file=path)
     from flexpipe.roads import load_road
 
     return road_text(load_road(path), file=path)
+
+
+def _speed_text(path) -> str:
+    from flexpipe.driver.speed import profile_text, read_speed_profile
+
+    return profile_text(read_speed_profile(path), file=path)
 
 
 def path_text(path, *, file=None, table: dict | None = None) -> str:

@@ -14,6 +14,7 @@ Examples::
 
     flexpipe run cars/sedan.toml --road roads/iso_c_200m.toml --speed 60 --t-end 8
     flexpipe run cars/sedan.toml --path paths/slalom_18m.toml --speed 60 --body rigid
+    flexpipe run cars/sedan.toml --speed paths/speed_brake_100_40.toml --t-end 6
 """
 
 from __future__ import annotations
@@ -52,8 +53,10 @@ def add_arguments(parser) -> None:
                              "straight from the road's first sample along its start heading; "
                              "along x from 0 for a road starting at 0 or no road) or 'road' "
                              "(follow the road's reference line)")
-    parser.add_argument("--speed", type=float, required=True,
-                        help="constant target speed in km/h")
+    parser.add_argument("--speed", required=True,
+                        help="constant target speed in km/h, or a speed profile file: "
+                             "speed against time or distance travelled (.toml "
+                             "[speed_profile] or .csv, e.g. paths/speed_brake_100_40.toml)")
     parser.add_argument("--t-end", type=float, default=10.0, help="simulated time, s (10)")
     parser.add_argument("--body", default="rigid,flexible",
                         help="comma-separated body models: rigid, flexible, full "
@@ -116,13 +119,13 @@ def run(args) -> int:
     if out is None:
         tag = Path(args.road).stem if args.road else (Path(args.path).stem if args.path
                                                       else "flat")
-        out = Path("out") / (f"{Path(args.car).stem}-{tag}-{args.speed:g}kmh"
+        out = Path("out") / (f"{Path(args.car).stem}-{tag}-{args.speed_tag}"
                              + ("-check-step" if args.check_step else ""))
     if args.check_step:
         return _check_step(args, bodies[0], Path(out))
     title = (f"{Path(args.road).name if args.road else 'flat road'}, "
-             f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
-    summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed / 3.6,
+             f"{Path(args.path).name if args.path else 'straight'}, {args.speed_label}")
+    summary = run_pair(args.car, road=args.road, path=args.path, speed=args.speed_value,
                        t_end=args.t_end, out=out, title=title,
                        plots=("hub_force_fl", "trajectory"), bodies=bodies,
                        cache=not args.no_cache, h=args.h, name="run", format=args.format,
@@ -155,7 +158,7 @@ def check_arguments(args) -> tuple[str, ...]:
         Naming the option, its unit and the valid range.
     """
     from flexpipe.errors import InputError
-    from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX, checked_number
+    from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, T_END_MAX, checked_number
     from flexpipe.vehicle.simulation import DEFAULT_STEP
 
     bodies = tuple(b.strip() for b in args.body.split(",") if b.strip())
@@ -163,8 +166,7 @@ def check_arguments(args) -> tuple[str, ...]:
     if bad or not bodies:
         raise InputError(f"--body {args.body!r}: valid body models are rigid, flexible, full "
                          "(comma-separated)", key="body")
-    checked_number(args.speed, "--speed", lo=0.0, hi=round(SPEED_MAX * 3.6, 6),
-                   lo_closed=True, unit="km/h", key="speed")
+    _check_speed(args)
     t_end = checked_number(args.t_end, "--t-end", lo=0.0, hi=T_END_MAX, unit="s",
                            key="t_end")
     h = DEFAULT_STEP
@@ -182,6 +184,35 @@ def check_arguments(args) -> tuple[str, ...]:
                              f"{','.join(bodies)} has none (the full body keeps every mode "
                              "to 250 Hz)", key="f_max")
     return bodies
+
+
+def _check_speed(args) -> None:
+    """``--speed``: a number in km/h or a speed profile file; sets ``args.speed_value``
+    (m/s or the profile), ``args.speed_label`` and ``args.speed_tag`` (for titles and the
+    default output folder)."""
+    from flexpipe.driver.speed import read_speed_profile
+    from flexpipe.vehicle.run_inputs import SPEED_MAX, checked_number
+
+    text = str(args.speed).strip()
+    try:
+        number = float(text)
+    except ValueError:
+        number = None
+    if number is None and not Path(text).suffix:
+        from flexpipe.errors import InputError
+
+        raise InputError(f"--speed {text!r} is neither a number (km/h) nor a speed profile "
+                         "file (.toml with a [speed_profile] table, or .csv)", key="speed")
+    if number is not None:
+        kmh = checked_number(number, "--speed", lo=0.0, hi=round(SPEED_MAX * 3.6, 6),
+                             lo_closed=True, unit="km/h", key="speed")
+        args.speed_value, args.speed_label, args.speed_tag = kmh / 3.6, f"{kmh:g} km/h", \
+            f"{kmh:g}kmh"
+        return
+    prof = read_speed_profile(text, speed_max=SPEED_MAX)
+    args.speed_value = prof
+    args.speed_label = f"speed profile {Path(text).name}"
+    args.speed_tag = Path(text).stem
 
 
 def _check_step_arguments(args, *, h: float, t_end: float) -> None:
@@ -242,9 +273,9 @@ def _check_step(args, body: str, out: Path) -> int:
 
     path = None if args.path in (None, "straight") else args.path
     title = (f"{Path(args.road).name if args.road else 'flat road'}, "
-             f"{Path(args.path).name if args.path else 'straight'}, {args.speed:g} km/h")
+             f"{Path(args.path).name if args.path else 'straight'}, {args.speed_label}")
     summary, _ = run_step_check(
-        args.car, out=out, road=args.road, path=path, speed=args.speed / 3.6,
+        args.car, out=out, road=args.road, path=path, speed=args.speed_value,
         t_end=args.t_end, body=body, h=args.h, refinements=(2, 4), t_from=args.t_from,
         cache=not args.no_cache, prewarp=not args.no_prewarp,
         inertia_coupling=args.inertia_coupling, title=title, f_max=args.f_max,

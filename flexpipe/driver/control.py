@@ -15,6 +15,7 @@ Both read their gains from a TOML table (``from_dict``), e.g. ``paths/driver.tom
     drive_torque_max_Nm = 3000.0
     brake_torque_max_Nm = 8000.0
     integral_band_mps = 1.0     # optional; integrate only within this speed error
+    feedforward_Nm_s2_per_m = 0.0  # optional; torque per m/s^2 of the target's acceleration
 """
 
 from __future__ import annotations
@@ -131,7 +132,9 @@ class PurePursuit:
 class SpeedPI:
     """PI speed controller producing a total wheel torque (drive > 0, brake < 0).
 
-    ``T = kp e + ki I``, ``e = v_target - v``, clamped to
+    ``T = kp e + ki I + kff a_target``, ``e = v_target - v``, ``a_target`` the
+    acceleration of a speed profile (:class:`flexpipe.driver.speed.SpeedProfile`; 0 at
+    constant speed), clamped to
     ``[-brake_torque_max, drive_torque_max]``.  Anti-windup by conditional integration:
     the integral ``I`` of ``e`` only changes while the output is not saturated in the
     direction of ``e`` and ``|e| <= integral_band`` (integral separation: during a large
@@ -149,6 +152,10 @@ class SpeedPI:
         Torque limits (N m), both > 0.
     integral_band : float
         Speed error (m/s) above which the integral is frozen; ``inf`` disables this.
+    feedforward : float
+        Torque per target acceleration (N m s^2/m): the car's mass times its wheel radius
+        (plus the wheels' spin inertia over the radius) makes a profile's ramp need no
+        speed error; 0 leaves it to the PI part.
     """
 
     kp: float
@@ -156,10 +163,12 @@ class SpeedPI:
     drive_torque_max: float
     brake_torque_max: float
     integral_band: float = math.inf
+    feedforward: float = 0.0
     integral: float = dataclasses.field(default=0.0, compare=False)
 
     def __post_init__(self):
-        for name in ("kp", "ki", "drive_torque_max", "brake_torque_max", "integral_band"):
+        for name in ("kp", "ki", "drive_torque_max", "brake_torque_max", "integral_band",
+                     "feedforward"):
             value = getattr(self, name)
             if math.isnan(value) or value < 0.0 or (math.isinf(value) and name != "integral_band") \
                     or (name.endswith(("max", "band")) and value == 0.0):
@@ -173,7 +182,8 @@ class SpeedPI:
                   ki=t.float("ki_Nm_per_m", nonnegative=True),
                   drive_torque_max=t.float("drive_torque_max_Nm", positive=True),
                   brake_torque_max=t.float("brake_torque_max_Nm", positive=True),
-                  integral_band=t.float("integral_band_mps", math.inf, positive=True))
+                  integral_band=t.float("integral_band_mps", math.inf, positive=True),
+                  feedforward=t.float("feedforward_Nm_s2_per_m", 0.0, nonnegative=True))
         t.finish()
         return obj
 
@@ -181,12 +191,13 @@ class SpeedPI:
         """Clear the integral state."""
         self.integral = 0.0
 
-    def torque(self, v_target: float, v: float, dt: float) -> float:
-        """Total wheel torque for this step (N m); ``dt`` is the step since the last call."""
+    def torque(self, v_target: float, v: float, dt: float, a_target: float = 0.0) -> float:
+        """Total wheel torque for this step (N m); ``dt`` is the step since the last call,
+        ``a_target`` the target's acceleration (m/s^2)."""
         e = v_target - v
         trial = self.integral + e * dt if (dt > 0.0 and abs(e) <= self.integral_band) \
             else self.integral
-        raw = self.kp * e + self.ki * trial
+        raw = self.kp * e + self.ki * trial + self.feedforward * a_target
         if raw > self.drive_torque_max:
             out = self.drive_torque_max
             if e < 0.0:

@@ -127,6 +127,56 @@ def slalom(*, cone_spacing: float, n_cones: int, offset: float, lead_in: float,
                                f"offset={offset:g})")
 
 
+def circle(*, radius: float, turns: float = 1.0, lead_in: float = 20.0,
+           transition: float | None = None, direction: str = "left",
+           ds: float = 0.2) -> Path:
+    """A constant-radius circle (ISO 4138 steady-state cornering) entered from a straight.
+
+    From the origin along x for ``lead_in`` metres, then a clothoid whose curvature rises
+    linearly from 0 to ``1 / radius`` over ``transition`` metres (a step in curvature would
+    need a step in steering), then ``turns`` full turns at the radius.  Driven round more
+    than once, the path overlaps itself; the driver follows it in order (its projection
+    walks on from the previous point).
+
+    Parameters
+    ----------
+    radius : float
+        Radius of the circle (m), e.g. 40 m (ISO 4138 allows >= 30 m).
+    turns : float
+        Number of turns on the circle after the transition (> 0).
+    lead_in : float
+        Straight before the transition (m), >= 0.
+    transition : float, optional
+        Clothoid length (m); default ``min(radius, 30)``.
+    direction : {'left', 'right'}
+    ds : float
+        Point spacing (m).
+    """
+    what = "circle path"
+    _positive(radius, what, "radius")
+    _positive(turns, what, "turns")
+    transition = min(radius, 30.0) if transition is None else transition
+    _positive(transition, what, "transition")
+    if not (math.isfinite(lead_in) and lead_in >= 0.0):
+        raise InputError(f"{what}: lead_in must be >= 0 m, got {lead_in!r}")
+    if direction not in ("left", "right"):
+        raise InputError(f"{what}: direction must be 'left' or 'right', got {direction!r}")
+    total = lead_in + transition + turns * 2.0 * math.pi * radius
+    s = _samples(total, ds, what)
+    sign = 1.0 if direction == "left" else -1.0
+    k = sign / radius * np.clip((s - lead_in) / transition, 0.0, 1.0)
+    # heading = integral of the (piecewise-linear) curvature, exact by the trapezoid rule;
+    # positions by integrating the tangent over each step at its mid heading
+    dsv = np.diff(s)
+    heading = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * dsv)])
+    mid = heading[:-1] + dsv * (k[:-1] / 2.0 + (k[1:] - k[:-1]) / 6.0)
+    x = np.concatenate([[0.0], np.cumsum(dsv * np.cos(mid))])
+    y = np.concatenate([[0.0], np.cumsum(dsv * np.sin(mid))])
+    return Path.from_xy(x, y, name="circle",
+                        source=f"circle(radius={radius:g}, turns={turns:g}, "
+                               f"direction={direction})")
+
+
 def iso3888_1_lanes(*, vehicle_width: float = 1.8, lead_in: float = 50.0,
                     direction: str = "left") -> list[dict]:
     """The gated lanes of ISO 3888-1 (module notes) in path coordinates.
@@ -233,7 +283,7 @@ def read_path_csv(path) -> Path:
     return Path.from_xy(xs, ys, name=path.stem, source=str(path), lines=lines)
 
 
-PATH_TYPES = ("straight", "slalom", "iso3888_1", "points", "csv")
+PATH_TYPES = ("straight", "slalom", "iso3888_1", "circle", "points", "csv")
 
 
 def path_from_spec(table: dict, *, file=None, name: str = "path") -> Path:
@@ -241,7 +291,8 @@ def path_from_spec(table: dict, *, file=None, name: str = "path") -> Path:
 
     Keys: ``straight`` (length_m, ds_m); ``slalom`` (cone_spacing_m, n_cones, offset_m,
     lead_in_m, lead_out_m, ds_m, first); ``iso3888_1`` (vehicle_width_m, lead_in_m,
-    lead_out_m, ds_m, direction); ``points`` (x_m, y_m lists); ``csv`` (file, relative to
+    lead_out_m, ds_m, direction); ``circle`` (radius_m, turns, lead_in_m, transition_m,
+    direction, ds_m); ``points`` (x_m, y_m lists); ``csv`` (file, relative to
     the TOML file).
     """
     t = TableReader(table, file=file, name=name)
@@ -262,6 +313,13 @@ def path_from_spec(table: dict, *, file=None, name: str = "path") -> Path:
                           lead_out=t.float("lead_out_m", 50.0, nonnegative=True),
                           ds=t.float("ds_m", 0.2, positive=True),
                           direction=t.str("direction", "left", choices=("left", "right")))
+        elif kind == "circle":
+            tr = t.float("transition_m", positive=True) if t.has("transition_m") else None
+            p = circle(radius=t.float("radius_m", positive=True),
+                       turns=t.float("turns", 1.0, positive=True),
+                       lead_in=t.float("lead_in_m", 20.0, nonnegative=True), transition=tr,
+                       direction=t.str("direction", "left", choices=("left", "right")),
+                       ds=t.float("ds_m", 0.2, positive=True))
         elif kind == "points":
             xs, ys = t.float_list("x_m"), t.float_list("y_m")
             if len(xs) != len(ys):

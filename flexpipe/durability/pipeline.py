@@ -27,6 +27,8 @@ DESCRIPTIONS = {
     "hub_force_fl.png": "vertical force on the front-left hub of each run; with a rigid "
                         "and another run, rigid minus the other below",
     "trajectory.png": "driven path of each run",
+    "handling.png": "circle paths: understeer angle and steer against lateral acceleration "
+                    "with the understeer gradient of each run (summary.json 'handling')",
     "summary.json": "this file: settings, run status, CPU times, hub-force differences",
     "motion_flexible.npz": "flexible body pose (origin position m, body-to-global rotation) "
                            "and elastic modal coordinates per output step, with the body "

@@ -114,7 +114,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     """
     from flexpipe._io import check_run_folder, commit_directory, failed_folder, stage_directory
     from flexpipe.vehicle.export import check_format
-    from flexpipe.vehicle.run_inputs import check_run
+    from flexpipe.vehicle.run_inputs import check_run, speed_summary
     from flexpipe.vehicle.simulation import simulate
     from flexpipe.vehicle.spec import Car, load_car
 
@@ -148,7 +148,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     stage = stage_directory(out)
     results, files, output_errors = {}, [], []
     base = {"scenario": name, "title": title, "car": car.name, "car_file": absolute(car.file),
-            "speed_kmh": round(speed * 3.6, 3), **({"notes": notes} if notes else {})}
+            **speed_summary(speed), **({"notes": notes} if notes else {})}
     t0 = time.perf_counter()
     try:
         for i, body in enumerate(bodies, 1):
@@ -163,6 +163,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
                 f"simulated (real-time factor {r.realtime_factor:.2f})")
         summary = _summary(base, results, path=path, speed=speed)
         files += _plots(results, stage, plots=plots, path=path, title=title)
+        files += _handling(results, stage, summary, car=car, title=title)
         summary["files"] = sorted(files + ["summary.json"])
         _durability(stage, results, summary, car=car, road=road, log=log, progress=progress,
                     final=out)
@@ -298,6 +299,36 @@ def _plots(results, stage, *, plots, path, title) -> list:
     if "trajectory" in plots and path is not None:
         files.append(P.trajectory(results, path, stage / "trajectory.png").name)
     return files
+
+
+def _handling(results, stage, summary, *, car, title) -> list:
+    """On a circle path (ISO 4138): ``handling.png`` and ``summary["handling"]``, the
+    understeer gradient of each completed body run (:mod:`flexpipe.vehicle.handling`); a
+    run that covers too little lateral acceleration gets a note instead."""
+    from flexpipe.vehicle import handling
+
+    done = {b: r for b, r in results.items()
+            if r.status == 0 and str(r.info.get("path", "")).startswith("circle(")}
+    if not done:
+        return []
+    diagrams, out = {}, {}
+    for body, r in done.items():
+        try:
+            d = handling.handling_diagram(r, wheelbase=car.wheelbase,
+                                          t_from=min(5.0, 0.5 * r.simulated_time))
+        except InputError as exc:
+            out[body] = {"note": exc.message}
+            continue
+        diagrams[body] = d
+        out[body] = {"understeer_gradient_deg_per_g": round(d.gradient_deg_per_g, 4),
+                     "understeer_angle_at_0_deg": round(d.intercept_deg, 4),
+                     "ay_fit_mps2": list(d.ay_fit), "samples_fitted": d.n_fit,
+                     "ay_max_mps2": round(float(abs(d.ay).max()), 4)}
+    summary["handling"] = out
+    if not diagrams:
+        return []
+    handling.plot(diagrams, stage / "handling.png", title=f"Handling diagram\n{title}")
+    return ["handling.png"]
 
 
 def _write_failure(stage, base, results, files, exc, *, bodies, t0, output_errors=()) -> None:

@@ -83,7 +83,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
         check_step,
         check_step_inputs,
     )
-    from flexpipe.vehicle.run_inputs import as_car
+    from flexpipe.vehicle.run_inputs import as_car, speed_summary
 
     t_from = DEFAULT_T_FROM if t_from is None else t_from
     car = as_car(car)
@@ -97,7 +97,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
     base = {"scenario": "check_step", "title": title, "car": car.name,
             "car_file": absolute(car.file), "body": body,
             "road": _source(road), "path": _source(path),
-            "speed_kmh": round(speed * 3.6, 3), "time_step_s": steps[0]}
+            **speed_summary(speed), "time_step_s": steps[0]}
     t0 = time.perf_counter()
     try:
         log(f"step convergence of {car.name}, {body} body, {title}: h = "

@@ -9,6 +9,7 @@ hardpoint (N) and the wheel carrier down with.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -162,3 +163,18 @@ def static_loaded_radius(tire, load: float) -> float:
     while residual(hi) < 0 and hi < R0:
         hi *= 2
     return R0 - brentq(residual, 0.0, min(hi, R0))
+
+
+def ackermann_angles(delta: float, *, wheelbase: float, track: float, steered) -> np.ndarray:
+    """Road-wheel angles (4,) of an Ackermann steering for the bicycle angle ``delta`` (rad):
+    the steered wheels' axes meet the rear axle's line at the bicycle's turn centre."""
+    out = np.zeros(4)
+    if abs(delta) < 1e-9:
+        return out
+    L, half = wheelbase, 0.5 * track
+    tan_d = math.tan(delta)
+    left = math.atan(L * tan_d / (L - half * tan_d))
+    right = math.atan(L * tan_d / (L + half * tan_d))
+    for i in np.flatnonzero(steered):
+        out[i] = left if CORNERS[i][1] == "l" else right
+    return out

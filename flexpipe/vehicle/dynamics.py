@@ -12,7 +12,7 @@ Output channels (SI units; "body axes" = the chassis frame, ISO 8855 orientation
 driver steers along the path), ``roll, pitch, yaw`` (rad), ``speed`` (forward, m/s),
 ``steer`` road-wheel angle (rad), ``steering_wheel`` (rad), ``drive_torque`` (N m, total),
 ``lateral_error`` (m, rear-axle centre from the path), ``ay`` lateral acceleration of the
-body origin (m/s^2, body axes, from its velocity);
+body origin (m/s^2, body axes, from its velocity), ``speed_target`` (m/s, the driver's);
 per corner ``c`` in ``fl, fr, rl, rr``: ``hub_c_x|y|z`` force the corner applies to the body
 at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-axes),
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
@@ -31,6 +31,7 @@ from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.tires.contact import _cross
 from flexpipe.vehicle import sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
+from flexpipe.vehicle.corners import ackermann_angles
 from flexpipe.vehicle.spec import CORNERS
 
 #: offsets (in units of the finite-difference step) of the road-normal stencil
@@ -86,7 +87,8 @@ class CarController:
     steering : PurePursuit
         Bound to the path.
     speed_pi : SpeedPI
-    target_speed : float
+    target_speed : float or SpeedProfile
+        Constant target speed (m/s; 0 parks the car, wheels braked) or a profile.
     car : Car
         For steering ratio/limits and the drive layout.
     h : float
@@ -128,7 +130,10 @@ class CarController:
         self.road = road
         self.steering = steering
         self.speed_pi = speed_pi
-        self.v_target = float(target_speed)
+        self.profile = target_speed if hasattr(target_speed, "target") else None
+        self.v_target = self.profile.initial if self.profile else float(target_speed)
+        self.parked = self.profile is None and self.v_target == 0.0
+        self._odometer = 0.0  # distance travelled (m), for a profile against distance
         self.car = car
         self.h = float(h)
         self.output_every = int(output_every)
@@ -186,7 +191,7 @@ class CarController:
         self.status = 0
         self.message = ""
         names = ["x", "y", "z", "x_rear", "y_rear", "roll", "pitch", "yaw", "speed", "ay",
-                 "steer", "steering_wheel", "drive_torque", "lateral_error"]
+                 "steer", "steering_wheel", "drive_torque", "lateral_error", "speed_target"]
         self._c0 = len(names)  # first corner column (_record fills the row by position)
         for cn in CORNERS:
             names += [f"hub_{cn}_x", f"hub_{cn}_y", f"hub_{cn}_z", f"tire_{cn}_Fx",
@@ -224,17 +229,8 @@ class CarController:
 
     def wheel_angles(self, delta: float) -> np.ndarray:
         """Road-wheel angles (4,) of an Ackermann steering for the bicycle angle ``delta``."""
-        out = np.zeros(4)
-        if abs(delta) < 1e-9:
-            return out
-        L, half = self.wheelbase, 0.5 * self.track
-        tan_d = math.tan(delta)
-        left = math.atan(L * tan_d / (L - half * tan_d))
-        right = math.atan(L * tan_d / (L + half * tan_d))
-        idx = np.flatnonzero(self.steered)
-        for i in idx:
-            out[i] = left if CORNERS[i][1] == "l" else right
-        return out
+        return ackermann_angles(delta, wheelbase=self.wheelbase, track=self.track,
+                                steered=self.steered)
 
     def driver(self, st, v: float, yaw: float) -> None:
         """Update steering command and drive torque (every ``driver_dt`` seconds).
@@ -249,7 +245,11 @@ class CarController:
         yaw_p = yaw + tau * float(st.body_w[2])
         cmd = self.steering.steer(float(p[0]), float(p[1]), yaw_p, v)
         cmd = max(-self.max_angle, min(self.max_angle, cmd))
-        torque = self.speed_pi.torque(self.v_target, v, dt)
+        a_target = 0.0
+        if self.profile is not None:
+            self.v_target, a_target = self.profile.target(float(st.t), self._odometer)
+            self._odometer += abs(v) * dt
+        torque = self.speed_pi.torque(self.v_target, v, dt, a_target)
         t = float(st.t)
         # first-order hold: from the held values now to the new commands at the next
         # sampling instant (the first one: the steering from the actuator's angle, the
@@ -276,7 +276,7 @@ class CarController:
         if why is not None:
             return self._fail(st.t, why)
         v = float(R[:, 0] @ st.body_v)
-        if self.v_target == 0.0:
+        if self.parked:
             self.torque = 0.0  # parked: no driver, wheels braked below
         elif st.t >= self._next_driver_t - 1e-9:
             self.driver(st, v, yaw)
@@ -284,7 +284,7 @@ class CarController:
         # steering actuator: rate limit towards the held command at the end of the step
         # (the angle the step reaches); the torque acts through the step, held at its middle
         delta_ref = self.delta_cmd
-        if self.v_target != 0.0 and self._hold is not None:
+        if not self.parked and self._hold is not None:
             delta_ref = self._held(st.t + self.h)[0]
             self.torque = self._held(st.t + 0.5 * self.h)[1]
         dmax = self.max_rate * self.h
@@ -318,7 +318,7 @@ class CarController:
         # brakes oppose the rolling direction
         if self.torque < 0:
             T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
-        if self.v_target == 0.0:  # parking brake: viscous, at half the explicit limit
+        if self.parked:  # parking brake: viscous, at half the explicit limit
             T = -0.5 * self.spin_inertia / self.h * st.spin_rate
         # the tyre's own moments are in the implicit element: only drive and brake here
         spin_torque = np.broadcast_to(np.asarray(T, dtype=float), (4,)).copy()
@@ -468,7 +468,7 @@ class CarController:
         c0 = self._c0
         row[0:3] = st.body_p
         row[3:c0] = (rx, ry, roll, pitch, yaw, v, ay, self.delta, self.delta * self.ratio,
-                     self.torque, lat)
+                     self.torque, lat, self.v_target)
         corner = row[c0:c0 + 32].reshape(4, 8)
         corner[:, 0:3] = hub
         corner[:, 3:6] = Fw

@@ -48,7 +48,7 @@ _MATLAB_FIELD = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,62}")
 _UNITS = (
     (r"^(x|y|z|x_rear|y_rear|lateral_error)$", "m"),
     (r"^(roll|pitch|yaw|steer|steering_wheel)$", "rad"),
-    (r"^speed$", "m/s"),
+    (r"^speed(_target)?$", "m/s"),
     (r"^ay$", "m/s^2"),
     (r"^drive_torque$", "N m"),
     (r"^hub_\w+_[xyz]$", "N"),

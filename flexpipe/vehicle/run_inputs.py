@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe._args import checked_number
+from flexpipe._io import absolute
 from flexpipe.errors import InputError
 from flexpipe.vehicle.spec import Car, load_car
 
@@ -109,6 +110,7 @@ class RunArguments:
     path: object
     steering: object
     speed_pi: object
+    profile: object = None  # SpeedProfile of a run whose speed varies (speed: its first)
 
 
 def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
@@ -134,7 +136,7 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         raise InputError(f"body must be one of {BODIES}, got {body!r}", key="body")
     if not isinstance(prewarp, (bool, np.bool_)):
         raise InputError(f"prewarp must be True or False, got {prewarp!r}", key="prewarp")
-    speed = checked_number(speed, "speed", lo=0.0, hi=SPEED_MAX, lo_closed=True)
+    speed, profile = _speed(speed)
     t_end = checked_number(t_end, "t_end", lo=0.0, hi=T_END_MAX)
     h = checked_number(h, "h", lo=0.0, hi=H_MAX)
     if h < H_MIN:
@@ -182,12 +184,13 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         raise InputError(f"initial_rates must be 3 finite numbers, got {initial_rates!r}",
                          key="initial_rates")
     start = abs(min(c.wheel_center[0] for c in car.corners)) + START_MARGIN_M
-    travel = speed * t_end
+    travel = speed * t_end if profile is None else profile.distance(t_end)
     needed = start + travel + 10.0
     road_obj = as_road(road, needed)
     path_obj = road_obj.reference_path() if isinstance(path, str) and path == "road" \
         else as_path(path, needed, road_obj)  # path="road": follow the road's reference line
-    what = f"{t_end:g} s at {speed * 3.6:.0f} km/h"
+    what = f"{t_end:g} s at {speed * 3.6:.0f} km/h" if profile is None else \
+        f"{t_end:g} s of the {profile.describe()}"
     if road is not None:  # (the default flat road is flat beyond its ends too)
         _check_road_covers(road_obj, path_obj, needed, what=what,
                            given=not (path is None or path in ("straight", "road")))
@@ -214,7 +217,37 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         _check_ride_height(car)  # (last: it may fill the body cache)
     return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,
                         max_mode_hz=max_mode_hz, f_max=f_max, rates=rates, start=start,
-                        road=road_obj, path=path_obj, steering=steering, speed_pi=speed_pi)
+                        road=road_obj, path=path_obj, steering=steering, speed_pi=speed_pi,
+                        profile=profile)
+
+
+def speed_summary(speed) -> dict:
+    """The ``summary.json`` fields of a run's ``speed`` argument: ``speed_kmh`` (the
+    initial speed) and, for a profile, ``speed_profile`` (its points) and its file."""
+    v0, prof = _speed(speed)
+    out = {"speed_kmh": round(v0 * 3.6, 3)}
+    if prof is not None:
+        out["speed_profile"] = prof.describe()
+        if prof.source:
+            out["speed_profile_file"] = absolute(prof.source)
+    return out
+
+
+def _speed(speed):
+    """``(initial speed, profile or None)`` of a run's ``speed`` argument: a number (m/s), a
+    :class:`~flexpipe.driver.speed.SpeedProfile` or a profile file (.toml, .csv)."""
+    from flexpipe.driver.speed import SpeedProfile, read_speed_profile
+
+    if isinstance(speed, (str, Path)):
+        speed = read_speed_profile(speed, speed_max=SPEED_MAX)
+    if isinstance(speed, SpeedProfile):
+        if speed.maximum > SPEED_MAX:
+            raise InputError(f"the speed profile reaches {speed.maximum * 3.6:g} km/h; the "
+                             f"highest allowed is {SPEED_MAX * 3.6:g} km/h", key="speed")
+        if speed.is_constant:
+            return speed.initial, None
+        return speed.initial, speed
+    return checked_number(speed, "speed", lo=0.0, hi=SPEED_MAX, lo_closed=True), None
 
 
 def _check_road_covers(road, path, needed: float, *, what: str, given: bool) -> None:

@@ -95,10 +95,13 @@ def default_driver(car: Car, mass: float):
     rear_x = float(np.mean([c.wheel_center[0] for c in car.corners[2:]]))
     radius = float(np.mean([c.wheel_radius for c in car.corners]))
     kp = mass * radius / 0.5  # 0.5 s speed time constant
+    # a speed profile's acceleration: the car's mass and the wheels' spin inertia
+    ff = mass * radius + sum(c.spin_inertia for c in car.corners) / radius
     steering = PurePursuit(wheelbase=car.wheelbase, lookahead_base=2.0, lookahead_time=0.1,
                            max_steer=car.steering.max_wheel_angle, rear_axle_offset=-rear_x)
     speed = SpeedPI(kp=kp, ki=kp / 2.0, drive_torque_max=car.drive.max_drive_torque,
-                    brake_torque_max=car.drive.max_brake_torque, integral_band=2.0)
+                    brake_torque_max=car.drive.max_brake_torque, integral_band=2.0,
+                    feedforward=ff)
     return steering, speed
 
 
@@ -158,7 +161,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
              cache: bool = True, log=None, prepared=None, settle: bool = True,
              prewarp: bool = True, inertia_coupling: str = "auto",
              profile: bool = False) -> Result:
-    """Simulate the car on a road following a path at constant target speed.
+    """Simulate the car on a road following a path at a target speed or speed profile.
 
     Parameters
     ----------
@@ -174,8 +177,12 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         a straight path from the road's first sample along its start heading (the x axis
         from 0 for a road starting at 0, or no road); ``"road"`` for the road's reference
         line (:meth:`Road.reference_path`).
-    speed : float
-        Target (and initial) speed, m/s (0 for a car at rest).
+    speed : float, SpeedProfile, str or Path
+        Target (and initial) speed, m/s (0 for a car at rest, its wheels braked), or a
+        :class:`~flexpipe.driver.speed.SpeedProfile` or its file (``.toml``
+        ``[speed_profile]`` or ``.csv``): speed against time or distance travelled, which
+        the driver follows with a feed-forward torque for its acceleration; the run
+        starts at its first speed.
     t_end : float
         Simulated time, s.
     body : {"flexible", "rigid", "full"}
@@ -266,7 +273,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     road_obj, path_obj, steering, speed_pi = a.road, a.path, a.steering, a.speed_pi
     if log is not None and warmup.pending():  # the first run after installing: say why
         log(warmup.MESSAGE)                     # it takes half a minute longer
-    prep = prepared or prepare(car, body=body, speed=speed, road=road_obj, f_max=f_max,
+    vprof = a.profile  # SpeedProfile or None (constant speed)
+    prep = prepared or prepare(car, body=body, speed=vprof.maximum if vprof else speed,
+                               road=road_obj, f_max=f_max,
                                cache=cache, log=log)
     rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]
     total_mass = rb.mass + corners.m_unsprung.sum()
@@ -375,7 +384,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
 
     start = settled_start(build, make_system, make_controller) if settle else None
     system = make_system(build)
-    ctrl = make_controller(system, target_speed=speed, h=h, t_end=t_end)
+    ctrl = make_controller(system, target_speed=vprof or speed, h=h, t_end=t_end)
     if start is not None:
         system.set_initial_coordinates(start[0])
         if speed == 0.0:  # parked: the tyres keep the deflection they settled in
@@ -421,6 +430,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     info = {
         "car": car.name, "car_file": absolute(car.file), "body": body, "h": h,
         "output_step": every * h, "speed": speed, "t_end": t_end,
+        "speed_profile": vprof.describe() if vprof is not None else None,
         "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
