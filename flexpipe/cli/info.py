@@ -52,7 +52,7 @@ _OTHER_TOML = (
     (("table1",), "half-car parameter", "read by flexpipe.halfcar.params.load_params for "
                                         "make paper"),
     (("sweep",), "sweep", "run it with flexpipe sweep FILE"),
-    (("steering", "speed"), "driver", "read by simulate(..., driver=FILE)"),
+    (("steering",), "driver", "read by simulate(..., driver=FILE) and flexpipe run --driver"),
 )
 
 

@@ -57,6 +57,12 @@ def add_arguments(parser) -> None:
                         help="constant target speed in km/h, or a speed profile file: "
                              "speed against time or distance travelled (.toml "
                              "[speed_profile] or .csv, e.g. paths/speed_brake_100_40.toml)")
+    parser.add_argument("--driver", default=None,
+                        help="driver file (.toml): [steering] a path follower's gains or an "
+                             "open-loop steering input (type = \"open_loop\": step, ramp, "
+                             "sine_with_dwell, sine, table; e.g. paths/driver_step_steer.toml),"
+                             " [speed] the speed controller's gains (optional); default: the "
+                             "car's pure pursuit and PI controller")
     parser.add_argument("--t-end", type=float, default=10.0, help="simulated time, s (10)")
     parser.add_argument("--body", default="rigid,flexible",
                         help="comma-separated body models: rigid, flexible, full "
@@ -132,7 +138,7 @@ def run(args) -> int:
                        log=(lambda *a: None) if args.quiet else print,
                        progress=not args.quiet, prewarp=not args.no_prewarp,
                        inertia_coupling=args.inertia_coupling, profile=args.profile,
-                       f_max=args.f_max)
+                       f_max=args.f_max, driver=args.driver)
     if args.profile and not args.quiet:
         _print_profile(summary)
     if summary["status"] != 0:
@@ -279,6 +285,7 @@ def _check_step(args, body: str, out: Path) -> int:
         t_end=args.t_end, body=body, h=args.h, refinements=(2, 4), t_from=args.t_from,
         cache=not args.no_cache, prewarp=not args.no_prewarp,
         inertia_coupling=args.inertia_coupling, title=title, f_max=args.f_max,
+        driver=args.driver,
         log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
         report=print)
     if summary["status"] != 0:  # as a run that stops early: exit 1, out unchanged

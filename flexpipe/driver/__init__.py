@@ -5,6 +5,8 @@
   ``[path]`` table), :func:`path_from_spec`.
 * :class:`PurePursuit` (frozen; gains from ``[steering]``) and :class:`SpeedPI`
   (gains from ``[speed]``, keeps its integral), :func:`read_driver`.
+* :class:`OpenLoopSteer` (frozen): a steering-wheel angle against time (step, ramp,
+  sine with dwell, sine, table) in place of the path follower.
 * :class:`SpeedProfile` (frozen): target speed against time or distance,
   :func:`read_speed_profile` (``.toml`` ``[speed_profile]`` or ``.csv``).
 * :class:`KinematicBicycle` and :func:`simulate`: a cheap test vehicle.
@@ -12,6 +14,7 @@
 
 from flexpipe.driver.bicycle import KinematicBicycle, simulate
 from flexpipe.driver.control import PurePursuit, SpeedPI, read_driver
+from flexpipe.driver.open_loop import OpenLoopSteer
 from flexpipe.driver.path import Path
 from flexpipe.driver.speed import SpeedProfile, read_speed_profile
 from flexpipe.driver.tracks import (
@@ -33,6 +36,7 @@ __all__ = [
     "ISO3888_1_OFFSET",
     "PATH_TYPES",
     "KinematicBicycle",
+    "OpenLoopSteer",
     "Path",
     "PurePursuit",
     "SpeedPI",

@@ -80,7 +80,7 @@ class PurePursuit:
     def from_dict(cls, table: dict, *, file=None, name: str = "steering") -> PurePursuit:
         """Build from a ``[steering]`` table (keys in the module notes)."""
         t = TableReader(table, file=file, name=name)
-        kind = t.str("type", "pure_pursuit", choices=("pure_pursuit",))
+        kind = t.str("type", "pure_pursuit", choices=("pure_pursuit", "open_loop"))
         del kind
         obj = cls(wheelbase=t.float("wheelbase_m", positive=True),
                   lookahead_base=t.float("lookahead_base_m", 2.0, positive=True),
@@ -212,17 +212,31 @@ class SpeedPI:
         return out
 
 
-def read_driver(path) -> tuple[PurePursuit, SpeedPI]:
-    """Read ``[steering]`` and ``[speed]`` tables from a TOML file.
+def read_driver(path):
+    """Read a driver file: a ``[steering]`` table (pure pursuit, or ``type = "open_loop"``:
+    :class:`flexpipe.driver.open_loop.OpenLoopSteer`) and a ``[speed]`` table.
+
+    ``[speed]`` may be left out: the run then uses the car's default speed controller
+    (:func:`flexpipe.vehicle.simulation.default_driver`).
 
     Returns
     -------
-    (PurePursuit, SpeedPI)
+    (PurePursuit or OpenLoopSteer, SpeedPI or None)
     """
     path = pathlib.Path(path)
     doc = read_toml(path)
-    for key in ("steering", "speed"):
-        if key not in doc:
-            raise InputError(f"no [{key}] table", file=path, key=key)
-    return (PurePursuit.from_dict(doc["steering"], file=path),
-            SpeedPI.from_dict(doc["speed"], file=path))
+    if "steering" not in doc:
+        raise InputError("no [steering] table", file=path, key="steering")
+    extra = sorted(set(doc) - {"steering", "speed"})
+    if extra:
+        raise InputError(f"unknown table(s) {extra}; a driver file has [steering] and "
+                         "[speed]", file=path, key=extra[0])
+    table = doc["steering"]
+    if isinstance(table, dict) and table.get("type") == "open_loop":
+        from flexpipe.driver.open_loop import OpenLoopSteer
+
+        steering = OpenLoopSteer.from_dict(table, file=path)
+    else:
+        steering = PurePursuit.from_dict(table, file=path)
+    speed = SpeedPI.from_dict(doc["speed"], file=path) if "speed" in doc else None
+    return steering, speed

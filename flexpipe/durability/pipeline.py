@@ -29,6 +29,10 @@ DESCRIPTIONS = {
     "trajectory.png": "driven path of each run",
     "handling.png": "circle paths: understeer angle and steer against lateral acceleration "
                     "with the understeer gradient of each run (summary.json 'handling')",
+    "steer_response.png": "open-loop steering inputs: steering-wheel angle, yaw rate and "
+                          "lateral acceleration at the centre of mass against time "
+                          "(a step steer's ISO 7401 figures: summary.json 'step_steer'; a "
+                          "sine with dwell's UN R140 criteria: 'sine_with_dwell')",
     "summary.json": "this file: settings, run status, CPU times, hub-force differences",
     "motion_flexible.npz": "flexible body pose (origin position m, body-to-global rotation) "
                            "and elastic modal coordinates per output step, with the body "

@@ -83,11 +83,12 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              h: float | None = None, notes=None, name: str = "run", log=print,
              format: str = "csv", progress: bool = True,  # noqa: A002
              prewarp: bool = True, inertia_coupling: str = "auto",
-             profile: bool = False, f_max: float | None = None) -> dict:
+             profile: bool = False, f_max: float | None = None, driver=None) -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
     ``f_max`` (Hz) is the flexible body's band (``simulate``'s; default from the road and
-    speed, :func:`flexpipe.vehicle.bodymodel.choose_band`).
+    speed, :func:`flexpipe.vehicle.bodymodel.choose_band`); ``driver`` is ``simulate``'s
+    (a driver file, or the controllers; default the car's).
 
     The run is a transaction.  Every argument (numbers, body kinds, car, road and path
     files, road and path lengths) and the output folder are checked first
@@ -141,6 +142,8 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
     kw = {} if h is None else {"h": h}
     if f_max is not None:
         kw["f_max"] = f_max
+    if driver is not None:
+        kw["driver"] = driver
     for body in bodies:  # every argument checked before the output folder is touched
         check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                   prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
@@ -304,13 +307,15 @@ def _plots(results, stage, *, plots, path, title) -> list:
 def _handling(results, stage, summary, *, car, title) -> list:
     """On a circle path (ISO 4138): ``handling.png`` and ``summary["handling"]``, the
     understeer gradient of each completed body run (:mod:`flexpipe.vehicle.handling`); a
-    run that covers too little lateral acceleration gets a note instead."""
+    run that covers too little lateral acceleration gets a note instead.  With an
+    open-loop steering input: :func:`_open_loop`."""
     from flexpipe.vehicle import handling
 
+    files = _open_loop(results, stage, summary, car=car, title=title)
     done = {b: r for b, r in results.items()
             if r.status == 0 and str(r.info.get("path", "")).startswith("circle(")}
     if not done:
-        return []
+        return files
     diagrams, out = {}, {}
     for body, r in done.items():
         try:
@@ -326,9 +331,38 @@ def _handling(results, stage, summary, *, car, title) -> list:
                      "ay_max_mps2": round(float(abs(d.ay).max()), 4)}
     summary["handling"] = out
     if not diagrams:
-        return []
+        return files
     handling.plot(diagrams, stage / "handling.png", title=f"Handling diagram\n{title}")
-    return ["handling.png"]
+    return files + ["handling.png"]
+
+
+def _open_loop(results, stage, summary, *, car, title) -> list:
+    """An open-loop steering input: ``steer_response.png``; for a step steer also
+    ``summary["step_steer"]`` (ISO 7401 figures), for a sine with dwell
+    ``summary["sine_with_dwell"]`` (UN R140 criteria) of each completed run."""
+    from flexpipe.vehicle import handling
+
+    done = {b: r for b, r in results.items() if r.status == 0 and
+            str(r.info.get("steering", "")).startswith("open-loop steering")}
+    if not done:
+        return []
+    cg = handling.centre_of_mass(next(iter(done.values())), car)
+    kinds = (("step", "step_steer", handling.step_response),
+             ("sine with dwell", "sine_with_dwell", handling.sine_with_dwell_response))
+    for prefix, key, figures in kinds:
+        if not any(str(r.info["steering"]).startswith(f"open-loop steering: {prefix}")
+                   for r in done.values()):
+            continue
+        out = {}
+        for body, r in done.items():
+            try:
+                out[body] = figures(r, cg=cg)
+            except InputError as exc:
+                out[body] = {"note": exc.message}
+        summary[key] = out
+    handling.plot_response(done, stage / "steer_response.png", cg=cg,
+                           title=f"{next(iter(done.values())).info['steering']}\n{title}")
+    return ["steer_response.png"]
 
 
 def _write_failure(stage, base, results, files, exc, *, bodies, t0, output_errors=()) -> None:

@@ -40,7 +40,8 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
                    body: str = "rigid", h: float | None = None, refinements=(2, 4),
                    t_from: float | None = None, cache: bool = True, prewarp: bool = True,
                    inertia_coupling: str = "auto", title: str = "", log=print,
-                   progress: bool = True, report=None, f_max: float | None = None):
+                   progress: bool = True, report=None, f_max: float | None = None,
+                   driver=None):
     """Step-convergence study of one run into the run folder ``out`` (see module notes).
 
     Parameters
@@ -48,7 +49,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
     car : Car or path
     out : str or Path
         Output folder: absent, empty or a previous flexpipe run (or study).
-    road, path, speed, t_end, body, h, cache, prewarp, inertia_coupling, f_max
+    road, path, speed, t_end, body, h, cache, prewarp, inertia_coupling, f_max, driver
         As for :func:`~flexpipe.vehicle.simulation.simulate` (speed in m/s).
     refinements, t_from
         As for :func:`~flexpipe.vehicle.convergence.check_step` (``t_from`` default
@@ -91,6 +92,8 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
           "prewarp": prewarp, "inertia_coupling": inertia_coupling}
     if f_max is not None:
         kw["f_max"] = f_max
+    if driver is not None:
+        kw["driver"] = driver
     steps = check_step_inputs(car, h=h, refinements=refinements, t_from=t_from, **kw)
     out = check_run_folder(out)  # after the arguments: their errors come first
     stage = stage_directory(out)

@@ -178,3 +178,12 @@ def ackermann_angles(delta: float, *, wheelbase: float, track: float, steered) -
     for i in np.flatnonzero(steered):
         out[i] = left if CORNERS[i][1] == "l" else right
     return out
+
+
+def road_wheel_angles(R_body: np.ndarray, wheel_R: np.ndarray) -> np.ndarray:
+    """Road-wheel angles (4,) (rad, positive left): the heading of each wheel's plane in
+    the body's x-y plane, from the wheels' rotation matrices ``wheel_R`` (4, 3, 3; column
+    1 the spin axis) and the body's ``R_body`` (3, 3).  Steer, toe and compliance steer
+    together."""
+    s = wheel_R[:, :, 1] @ R_body  # the spin axes in body axes
+    return np.arctan2(-s[:, 0], s[:, 1])

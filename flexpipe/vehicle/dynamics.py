@@ -12,7 +12,8 @@ Output channels (SI units; "body axes" = the chassis frame, ISO 8855 orientation
 driver steers along the path), ``roll, pitch, yaw`` (rad), ``speed`` (forward, m/s),
 ``steer`` road-wheel angle (rad), ``steering_wheel`` (rad), ``drive_torque`` (N m, total),
 ``lateral_error`` (m, rear-axle centre from the path), ``ay`` lateral acceleration of the
-body origin (m/s^2, body axes, from its velocity), ``speed_target`` (m/s, the driver's);
+body origin (m/s^2, body axes, from its velocity), ``speed_target`` (m/s, the driver's),
+``wheel_angle_c`` road-wheel angle of each wheel (rad, + left; steer, toe, compliance);
 per corner ``c`` in ``fl, fr, rl, rr``: ``hub_c_x|y|z`` force the corner applies to the body
 at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-axes),
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
@@ -31,7 +32,7 @@ from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.tires.contact import _cross
 from flexpipe.vehicle import sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
-from flexpipe.vehicle.corners import ackermann_angles
+from flexpipe.vehicle.corners import ackermann_angles, road_wheel_angles
 from flexpipe.vehicle.spec import CORNERS
 
 #: offsets (in units of the finite-difference step) of the road-normal stencil
@@ -84,8 +85,8 @@ class CarController:
         One per corner (the same object may be shared).
     road : Road
         Heights in global coordinates: ``s = x``, ``lateral = y``.
-    steering : PurePursuit
-        Bound to the path.
+    steering : PurePursuit or OpenLoopSteer
+        Bound to the path (the reference of ``lateral_error`` for an open-loop input).
     speed_pi : SpeedPI
     target_speed : float or SpeedProfile
         Constant target speed (m/s; 0 parks the car, wheels braked) or a profile.
@@ -129,6 +130,7 @@ class CarController:
         self.c = corners
         self.road = road
         self.steering = steering
+        self.open_loop = hasattr(steering, "steering_wheel")  # OpenLoopSteer
         self.speed_pi = speed_pi
         self.profile = target_speed if hasattr(target_speed, "target") else None
         self.v_target = self.profile.initial if self.profile else float(target_speed)
@@ -181,17 +183,15 @@ class CarController:
         self.spin_inertia = np.array([c.spin_inertia for c in car.corners])
         self.drive_share = car.drive.drive_shares()
         self.brake_share = car.drive.brake_shares()
-        self.delta = 0.0
-        self.delta_cmd = 0.0
-        self.torque = 0.0
+        self.delta = self.delta_cmd = self.torque = 0.0
         #: first-order hold of the driver's commands: (t0, t1, steer0, steer1, torque0,
         #: torque1), both commands ramping linearly from t0 to t1 (None: no command yet)
         self._hold = None
-        self.step_no = 0
-        self.status = 0
+        self.step_no = self.status = 0
         self.message = ""
         names = ["x", "y", "z", "x_rear", "y_rear", "roll", "pitch", "yaw", "speed", "ay",
-                 "steer", "steering_wheel", "drive_torque", "lateral_error", "speed_target"]
+                 "steer", "steering_wheel", "drive_torque", "lateral_error", "speed_target",
+                 *(f"wheel_angle_{c}" for c in CORNERS)]
         self._c0 = len(names)  # first corner column (_record fills the row by position)
         for cn in CORNERS:
             names += [f"hub_{cn}_x", f"hub_{cn}_y", f"hub_{cn}_z", f"tire_{cn}_Fx",
@@ -239,11 +239,13 @@ class CarController:
         (constant velocity and yaw rate): a driver anticipates the vehicle's own response
         lag (tyre relaxation, yaw inertia), which a kinematic pure pursuit does not know.
         """
-        dt = self.driver_dt
-        tau = self.preview_time
-        p = st.body_p + tau * st.body_v
-        yaw_p = yaw + tau * float(st.body_w[2])
-        cmd = self.steering.steer(float(p[0]), float(p[1]), yaw_p, v)
+        dt, tau = self.driver_dt, self.preview_time
+        t1 = self._next_driver_t + dt  # where the hold reaches the new commands
+        if self.open_loop:  # the input at t1: no lag
+            cmd = self.steering.steering_wheel(t1) / self.ratio
+        else:
+            p = st.body_p + tau * st.body_v
+            cmd = self.steering.steer(float(p[0]), float(p[1]), yaw + tau * st.body_w[2], v)
         cmd = max(-self.max_angle, min(self.max_angle, cmd))
         a_target = 0.0
         if self.profile is not None:
@@ -254,7 +256,6 @@ class CarController:
         # first-order hold: from the held values now to the new commands at the next
         # sampling instant (the first one: the steering from the actuator's angle, the
         # torque at once, as a car started at speed has it before the first sample)
-        t1 = self._next_driver_t + dt
         if self._hold is None:
             d0, q0 = self.delta, torque
         else:
@@ -468,7 +469,7 @@ class CarController:
         c0 = self._c0
         row[0:3] = st.body_p
         row[3:c0] = (rx, ry, roll, pitch, yaw, v, ay, self.delta, self.delta * self.ratio,
-                     self.torque, lat, self.v_target)
+                     self.torque, lat, self.v_target, *road_wheel_angles(R, st.wheel_R))
         corner = row[c0:c0 + 32].reshape(4, 8)
         corner[:, 0:3] = hub
         corner[:, 3:6] = Fw

@@ -47,7 +47,7 @@ _MATLAB_FIELD = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,62}")
 
 _UNITS = (
     (r"^(x|y|z|x_rear|y_rear|lateral_error)$", "m"),
-    (r"^(roll|pitch|yaw|steer|steering_wheel)$", "rad"),
+    (r"^(roll|pitch|yaw|steer|steering_wheel|wheel_angle_\w+)$", "rad"),
     (r"^speed(_target)?$", "m/s"),
     (r"^ay$", "m/s^2"),
     (r"^drive_torque$", "N m"),

@@ -202,17 +202,18 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
 
         steering, speed_pi = read_driver(driver)
     else:
-        from flexpipe.driver import PurePursuit, SpeedPI
+        from flexpipe.driver import OpenLoopSteer, PurePursuit, SpeedPI
 
         try:
             steering, speed_pi = driver
         except (TypeError, ValueError):
-            raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file",
-                             key="driver") from None
-        if not (isinstance(steering, PurePursuit) and isinstance(speed_pi, SpeedPI)):
-            raise InputError("driver must be (PurePursuit, SpeedPI) or a driver TOML file, got "
-                             f"({type(steering).__name__}, {type(speed_pi).__name__})",
-                             key="driver")
+            raise InputError("driver must be (steering, speed controller) or a driver TOML "
+                             "file", key="driver") from None
+        if not (isinstance(steering, (PurePursuit, OpenLoopSteer))
+                and (speed_pi is None or isinstance(speed_pi, SpeedPI))):
+            raise InputError("driver must be (PurePursuit or OpenLoopSteer, SpeedPI or None) "
+                             f"or a driver TOML file, got ({type(steering).__name__}, "
+                             f"{type(speed_pi).__name__})", key="driver")
     if car.suspension is None:  # tyres and ride height at rest, before a run writes anything
         _check_ride_height(car)  # (last: it may fill the body cache)
     return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,

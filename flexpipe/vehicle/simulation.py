@@ -204,9 +204,13 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         content up to its 670 Hz body modes; on the 30 Hz body of 2026-12-01, sampled at
         2 ms, its x step error read 3.5 or 5.2 % depending on which steps are kept, 4.4 %
         over all steps, at spectral radius 0.5).
-    driver : (PurePursuit, SpeedPI) or str or Path, optional
+    driver : (PurePursuit or OpenLoopSteer, SpeedPI or None) or str or Path, optional
         Controllers, or a driver TOML file (``[steering]``, ``[speed]``); default
-        :func:`default_driver`.
+        :func:`default_driver` (also for a missing speed controller).  An
+        :class:`~flexpipe.driver.open_loop.OpenLoopSteer` (``[steering] type =
+        "open_loop"``) steers by a steering-wheel angle against time (step, ramp, sine with
+        dwell, ...) instead of following ``path``, which then only is the reference of
+        the ``lateral_error`` channel.
     f_max : float, optional
         Band of the flexible body in Hz (default: chosen from speed and road).
     max_mode_hz : float, optional
@@ -279,8 +283,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                                cache=cache, log=log)
     rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]
     total_mass = rb.mass + corners.m_unsprung.sum()
-    if steering is None:
-        steering, speed_pi = default_driver(car, total_mass)
+    if steering is None or speed_pi is None:  # a driver file may leave [speed] out
+        default_steering, default_speed = default_driver(car, total_mass)
+        steering = steering or default_steering
+        speed_pi = speed_pi or default_speed
     steering = steering.with_path(path_obj)
     speed_pi.reset()
 
@@ -431,6 +437,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "car": car.name, "car_file": absolute(car.file), "body": body, "h": h,
         "output_step": every * h, "speed": speed, "t_end": t_end,
         "speed_profile": vprof.describe() if vprof is not None else None,
+        "steering": steering.describe() if hasattr(steering, "describe") else "path follower",
         "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,

@@ -3,7 +3,8 @@
 Generated from the repository's valid files (``roads/*.toml``, ``roads/bump.csv``,
 ``paths/*``).  ``cases()`` yields ``(case_id, filename, content, expect)``; the file name
 says which loader applies (:func:`load`): ``road_*`` -> ``flexpipe.roads.load_road``,
-``path_*`` -> ``flexpipe.driver.read_path``, ``driver_*`` -> ``flexpipe.driver.read_driver``.
+``path_*`` -> ``flexpipe.driver.read_path``, ``speed_*`` ->
+``flexpipe.driver.read_speed_profile``, ``driver_*`` -> ``flexpipe.driver.read_driver``.
 """
 
 from __future__ import annotations
@@ -26,6 +27,11 @@ def load(path):
         from flexpipe.driver import read_path
 
         return read_path(path)
+    if path.name.startswith("speed_"):
+        from flexpipe.driver import read_speed_profile
+        from flexpipe.vehicle.run_inputs import SPEED_MAX
+
+        return read_speed_profile(path, speed_max=SPEED_MAX)
     from flexpipe.driver import read_driver
 
     return read_driver(path)
@@ -198,8 +204,43 @@ def cases():
         ("brake_torque_max_Nm", '"8000"', "error"), ("integral_band_mps", "0.0", "error"),
         ("rear_axle_offset_m", "nan", "error")],
         [("wheelbase_m", "wheelbase"), ("kp_Nm_s_per_m", "kp"), ("max_steer_rad", "max_steer")])
+    # [speed] may be left out (the car's default controller); an unknown table may not
     yield "driver_no_speed_table", "driver_nospeed.toml", drv[:drv.index("[speed]")].encode(), \
+        "ok"
+    yield "driver_unknown_table", "driver_extra.toml", (drv + "[speeds]\nkp = 1.0\n").encode(), \
         "error"
+    step = (REPO / "paths" / "driver_step_steer.toml").read_text()
+    yield "driver_open_loop_ok", "driver_step.toml", step.encode(), "ok"
+    swd = (REPO / "paths" / "driver_sine_with_dwell.toml").read_text()
+    yield "driver_sine_with_dwell_ok", "driver_swd.toml", swd.encode(), "ok"
+    yield from _toml_cases("driver", "step", step, [
+        ("steering_wheel_deg", "nan", "error"), ("steering_wheel_deg", '"30"', "error"),
+        ("rise_time_s", "0.0", "error"), ("t_start_s", "-1.0", "error"),
+        ("input", '"impulse"', "error")], [("steering_wheel_deg", "steering_deg")])
+    yield from _toml_cases("driver", "swd", swd, [
+        ("amplitude_deg", "-120.0", "error"), ("frequency_hz", "0.0", "error"),
+        ("dwell_s", "-0.5", "error"), ("direction", '"up"', "error")], [])
+    # ---- speed profiles (TOML, CSV)
+    brake = (REPO / "paths" / "speed_brake_100_40.toml").read_text()
+    yield "speed_ok", "speed_brake.toml", brake.encode(), "ok"
+    yield from _toml_cases("speed", "brake", brake, [
+        ("time_s", "[0.0, 1.5, 1.5]", "error"), ("time_s", "[1.0, 1.5, 4.833]", "error"),
+        ("time_s", "[0.0, 1.5]", "error"), ("speed_kmh", "[100.0, 100.0, -40.0]", "error"),
+        ("speed_kmh", "[100.0, 100.0, 400.0]", "error"),
+        ("speed_kmh", "[100.0, nan, 40.0]", "error")], [("speed_kmh", "speed_mph")])
+    yield "speed_both_bases", "speed_both.toml", (brake + "distance_m = [0.0, 1.0, 2.0]\n")\
+        .encode(), "error"
+    yield "speed_no_table", "speed_notable.toml", brake.replace(
+        "[speed_profile]", "[speed]").encode(), "error"
+    csv = "distance_m,speed_kmh\n0,60\n200,60\n300,100\n"
+    yield "speed_csv_ok", "speed_drive.csv", csv.encode(), "ok"
+    yield "speed_csv_bad_header", "speed_hdr.csv", csv.replace("speed_kmh", "v").encode(), \
+        "error"
+    yield "speed_csv_back", "speed_back.csv", csv.replace("300,", "100,").encode(), "error"
+    yield "speed_csv_columns", "speed_cols.csv", csv.replace("200,60", "200,60,1").encode(), \
+        "error"
+    yield "speed_csv_from_rest", "speed_rest.csv", csv.replace("0,60", "0,0").encode(), "error"
+    yield from _common_file_cases("speed", "speed", brake, ".toml")
     yield "driver_no_steering_table", "driver_nosteer.toml", drv.replace(
         "[steering]", "[steer]").encode(), "error"
     yield from _common_file_cases("driver", "driver", drv, ".toml")

@@ -48,6 +48,7 @@ def kind_of(filename: str) -> str:
     if suffix == ".crg":
         return "road"
     for prefix, kind in (("road", "road"), ("path", "path"), ("driver", "driver"),
+                         ("speed", "speed"),
                          ("car", "car"), ("interface", "interfaces"), ("spec", "interfaces"),
                          ("halfcar", "halfcar")):
         if name.startswith(prefix):
@@ -87,6 +88,11 @@ def load(kind: str, path: Path):
         from flexpipe.driver import read_driver
 
         return read_driver(path)
+    if kind == "speed":
+        from flexpipe.driver import read_speed_profile
+        from flexpipe.vehicle.run_inputs import SPEED_MAX
+
+        return read_speed_profile(path, speed_max=SPEED_MAX)
     if kind == "car":
         from flexpipe.vehicle import load_car
 
