@@ -41,7 +41,7 @@ class _ConstantTorque(SpeedPI):
 
     value: float = 0.0
 
-    def torque(self, v_target, v, dt):  # noqa: D102 - SpeedPI's
+    def torque(self, v_target, v, dt, a_target=0.0):  # noqa: D102 - SpeedPI's
         return self.value
 
 

@@ -108,3 +108,20 @@ def test_a_circle_run_writes_the_handling_diagram(tmp_path):
     h = data["handling"]["rigid"]
     assert h["understeer_gradient_deg_per_g"] > 0.0 and h["samples_fitted"] > 100
     assert (out / "handling.png").is_file() and "handling.png" in data["file_descriptions"]
+
+
+def test_a_path_shared_by_two_runs_gives_the_same_run():
+    """The projection onto a path that overlaps itself (laps of a circle) continues from
+    its previous point; a second run on the same Path object must not start from where
+    the first ended (it once stuck on a later lap and drove off at the path's end)."""
+    p = circle(radius=15.0, turns=1.3, lead_in=10.0, transition=10.0)
+    walk = [p.project(float(x), float(y))[0] for x, y in zip(p.x[::5], p.y[::5], strict=True)]
+    assert np.all(np.diff(walk) > 0.0)  # along the laps in order
+    p.reset_projection()
+    assert p.project(float(p.x[10]), float(p.y[10]))[0] == pytest.approx(p.s[10], abs=1e-9)
+    car = fp.load_car(CAR)
+    runs = [fp.simulate(car, path=p, speed=8.0, t_end=15.0, body="rigid", output_step=0.01)
+            for _ in range(2)]
+    assert runs[0].status == runs[1].status == 0
+    np.testing.assert_array_equal(runs[0]["lateral_error"], runs[1]["lateral_error"])
+    assert np.abs(runs[0]["lateral_error"][runs[0].t > 3.0]).max() < 0.3

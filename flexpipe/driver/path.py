@@ -228,6 +228,25 @@ class Path:
         lateral = (dx[k] * ry[rows, k] - dy[k] * rx[rows, k]) / L
         return s, lateral, lo + k
 
+    def _global_segment(self, px: float, py: float, prev: int) -> int:
+        """The segment nearest to (px, py); among segments within 0.5 m of the nearest
+        distance (a path that overlaps itself: laps of a circle, a figure eight, its end
+        continuation) the one closest in index to ``prev`` (none: the first)."""
+        ax, ay = self.x[:-1], self.y[:-1]
+        dx, dy = np.diff(self.x), np.diff(self.y)
+        rx, ry = px - ax, py - ay
+        t = (rx * dx + ry * dy) / (dx * dx + dy * dy)
+        t_lo = np.zeros(t.size)
+        t_lo[0] = -np.inf
+        t_hi = np.ones(t.size)
+        t_hi[-1] = np.inf
+        t = np.clip(t, t_lo, t_hi)
+        d = np.hypot(rx - t * dx, ry - t * dy)
+        near = np.flatnonzero(d <= d.min() + 0.5)
+        if prev < 0 or near.size == 1:
+            return int(np.argmin(d))
+        return int(near[np.argmin(np.abs(near - prev))])
+
     def _segment(self, k: int, px: float, py: float):
         """Squared distance, parameter t and lateral offset of (px, py) to segment k."""
         xl, yl = self._xl, self._yl
@@ -243,11 +262,17 @@ class Path:
         ex, ey = rx - t * dx, ry - t * dy
         return ex * ex + ey * ey, t, (dx * ry - dy * rx) / math.sqrt(L2)
 
+    def reset_projection(self) -> None:
+        """Forget the previous scalar projection (:meth:`project`): the next query searches
+        the whole path.  A run calls it at its start, so two runs sharing a path (a
+        rigid and a flexible one) do not depend on each other."""
+        self._hint[:] = [-1]
+
     def _project_scalar(self, px, py):
         n_seg = self.x.size - 1
         k = self._hint[0]
         if k < 0:
-            k = int(self._project_many(np.array([px]), np.array([py]), 0, n_seg)[2][0])
+            k = self._global_segment(px, py, self._hint[1] if len(self._hint) > 1 else -1)
         best = self._segment(k, px, py)
         # walk from the previous answer towards decreasing distance (continuity of a
         # vehicle along its path); a long walk means a jump, so search everything
@@ -263,8 +288,10 @@ class Path:
                     k, best = k - 1, cand
                     continue
             break
-        else:
+        else:  # a jump: the nearest segment, the one closest along the path on a tie
+            prev = self._hint[0]
             self._hint[0] = -1
+            self._hint[1:] = [prev]
             return self._project_scalar(px, py)
         self._hint[0] = k
         sl = self._sl

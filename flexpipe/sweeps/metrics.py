@@ -28,6 +28,16 @@ Every column name carries its unit.  For a corner ``c`` (fl, fr, rl, rr), an axi
 
 Samples before ``settle`` seconds are left out (the car starts at static equilibrium, so
 the default is 0).
+
+Only runs of an open-loop steering input (a ``driver`` file with ``[steering] type =
+"open_loop"``; ``Result.info["steering"]``) have :func:`manoeuvre_metrics`: a ``step``
+its ISO 7401 figures (:data:`STEP_METRICS`, from
+:func:`flexpipe.vehicle.handling.step_response`), a ``sine_with_dwell`` its UN R140
+figures (:data:`SINE_WITH_DWELL_METRICS`, from
+:func:`~flexpipe.vehicle.handling.sine_with_dwell_response`, ``stable`` and
+``responsive`` as 1 or 0); the lateral acceleration and displacement at the car's centre
+of mass (:func:`centre_of_mass`).  They use the whole run (``settle`` does not apply:
+the steady values are the means over the last second).
 """
 
 from __future__ import annotations
@@ -43,6 +53,24 @@ CORNERS = ("fl", "fr", "rl", "rr")
 MIN_SAMPLES = 4
 #: numeric columns of a run's record besides the metrics (a plot may show them too)
 RECORD_NUMBERS = ("cpu_s", "wall_s", "simulated_time_s", "task_s", "n_elastic_modes")
+#: metric column -> key of :func:`flexpipe.vehicle.handling.step_response`
+STEP_METRICS = {
+    "steering_wheel_steady_deg": "steering_wheel_deg", "step_t50_s": "t50_s",
+    "speed_steady_kmh": "speed_kmh",
+    **{k: k for k in ("yaw_rate_steady_deg_per_s", "yaw_rate_response_time_s",
+                      "yaw_rate_peak_response_time_s", "yaw_rate_overshoot_pct",
+                      "ay_steady_mps2", "ay_response_time_s", "ay_peak_response_time_s",
+                      "ay_overshoot_pct", "yaw_rate_gain_per_s", "ay_gain_mps2_per_100deg",
+                      "ay_at_x_m", "ay_at_z_m")}}
+#: metric column -> key of :func:`flexpipe.vehicle.handling.sine_with_dwell_response`
+SINE_WITH_DWELL_METRICS = {k: k for k in (
+    "bos_s", "cos_s", "yaw_rate_peak_deg_per_s", "yaw_rate_peak_time_s",
+    "yaw_rate_ratio_cos_plus_1s", "yaw_rate_ratio_cos_plus_1_75s",
+    "lateral_displacement_bos_plus_1_07s_m", "stable", "responsive")}
+#: open-loop input (``OpenLoopSteer.kind``) -> its metrics
+MANOEUVRE_METRICS = {"step": STEP_METRICS, "sine_with_dwell": SINE_WITH_DWELL_METRICS}
+_DESCRIBED = {"step": "open-loop steering: step",
+              "sine_with_dwell": "open-loop steering: sine with dwell"}
 
 
 def points_of(channels) -> list[str]:
@@ -113,18 +141,66 @@ def run_metrics(t, channels, *, settle: float = 0.0) -> dict:
     return out
 
 
-def metric_names(points) -> list[str]:
+def manoeuvre_kind(result) -> str | None:
+    """``"step"`` or ``"sine_with_dwell"`` for a run of that open-loop steering input
+    (``result.info["steering"]``), else None."""
+    steering = str(getattr(result, "info", {}).get("steering", ""))
+    for kind, text in _DESCRIBED.items():
+        if steering.startswith(text):
+            return kind
+    return None
+
+
+def centre_of_mass(result, car, rigid) -> tuple[float, float]:
+    """Body-axis ``(x, z)`` (m) of the car's centre of mass, as
+    :func:`flexpipe.vehicle.handling.centre_of_mass` gives it, with the body's mass
+    properties ``rigid`` of the run (so nothing is assembled again)."""
+    loads = np.asarray(result.info["static_wheel_load_N"], dtype=float)
+    x = np.array([c.wheel_center[0] for c in car.corners])
+    return float(loads @ x / loads.sum()), float(rigid.center_of_mass[2])
+
+
+def manoeuvre_metrics(result, *, cg=(0.0, 0.0)) -> tuple[dict, str]:
+    """The open-loop manoeuvre's figures of a run (see the module docstring) and a note.
+
+    Returns ``({}, "")`` for any other run; for a step steer or a sine with dwell the
+    metrics of :data:`MANOEUVRE_METRICS` and ``""``, or, when the figures cannot be taken
+    (a step run that has not settled, a sine with dwell that ends too early), every one
+    of them NaN and the reason.
+    """
+    from flexpipe.errors import InputError
+    from flexpipe.vehicle import handling
+
+    kind = manoeuvre_kind(result)
+    if kind is None or getattr(result, "status", 0) != 0:
+        return {}, ""
+    names = MANOEUVRE_METRICS[kind]
+    figures = handling.step_response if kind == "step" else handling.sine_with_dwell_response
+    try:
+        got = figures(result, cg=cg)
+    except InputError as exc:
+        what = "step-steer" if kind == "step" else "sine-with-dwell"
+        return {c: float("nan") for c in names}, f"no {what} metrics: {exc.message}"
+    return {c: int(got[k]) if isinstance(got[k], bool) else float(got[k])
+            for c, k in names.items()}, ""
+
+
+def metric_names(points, manoeuvres=()) -> list[str]:
     """Every metric column :func:`run_metrics` writes for a car with the named body
-    ``points`` (its ``[body.points]``), in the order it writes them, then
-    :data:`RECORD_NUMBERS`."""
+    ``points`` (its ``[body.points]``), in the order it writes them, then the
+    :data:`MANOEUVRE_METRICS` of the open-loop inputs ``manoeuvres`` (``"step"``,
+    ``"sine_with_dwell"``), then :data:`RECORD_NUMBERS`."""
     out = [f"hub_{c}_{k}_{s}" for c in CORNERS for k in "xyz" for s in ("std_N", "rms_N", "peak_N")]
     for p in points:
         for k in "xyz":
             out += [f"aw_{p}_{k}_m_per_s2", f"crest_{p}_{k}", f"vdv_{p}_{k}_m_per_s1.75"]
         out.append(f"av_{p}_m_per_s2")
     out += [f"travel_{c}_{s}" for c in CORNERS for s in ("max_m", "min_m")]
-    out += ["travel_absmax_m", "lateral_error_absmax_m", *RECORD_NUMBERS]
-    return out
+    out += ["travel_absmax_m", "lateral_error_absmax_m"]
+    for kind in MANOEUVRE_METRICS:
+        if kind in manoeuvres:
+            out += [c for c in MANOEUVRE_METRICS[kind] if c not in out]
+    return out + list(RECORD_NUMBERS)
 
 
 #: first columns of the metrics table after the swept parameters (docs/sweeps.md)
@@ -139,10 +215,12 @@ def table_columns(columns, params) -> list[str]:
     points = [c[3:-len("_m_per_s2")] for c in columns
               if c.startswith("av_") and c.endswith("_m_per_s2")]
     first = [c for c in (*params, *LEADING_COLUMNS) if c in columns]
-    known = [c for c in metric_names(points) if c in columns and c not in first]
+    known = [c for c in metric_names(points, tuple(MANOEUVRE_METRICS))
+             if c in columns and c not in first]
     seen = set(first) | set(known)
     return first + known + [c for c in columns if c not in seen]
 
 
-__all__ = ["LEADING_COLUMNS", "MIN_SAMPLES", "RECORD_NUMBERS", "metric_names", "points_of",
-           "run_metrics", "table_columns"]
+__all__ = ["LEADING_COLUMNS", "MANOEUVRE_METRICS", "MIN_SAMPLES", "RECORD_NUMBERS",
+           "SINE_WITH_DWELL_METRICS", "STEP_METRICS", "centre_of_mass", "manoeuvre_kind",
+           "manoeuvre_metrics", "metric_names", "points_of", "run_metrics", "table_columns"]

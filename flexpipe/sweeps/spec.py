@@ -7,7 +7,8 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     road = "../roads/iso_c_200m.toml"  # or an inline [road] table (below), or omitted: flat
     path = "straight"               # or a path file
     body = "rigid"                  # rigid | flexible | full
-    speed_kmh = 60.0
+    speed_kmh = 60.0                # or speed_profile = "../paths/speed_brake_100_40.toml"
+    driver = "../paths/driver_step_steer.toml"   # default: the car's own driver
     t_end_s = 10.0
     h_s = 0.001                     # time step (default: simulate's, 1 ms)
     output_step_s = 0.002           # default: h_s (every step)
@@ -29,9 +30,10 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     [plots]
     metrics = ["aw_driver_floor_z_m_per_s2", "hub_fl_z_std_N"]
 
-Parameter names: ``speed_kmh``, ``t_end_s``, ``h_s``, ``body``, ``path`` (file or
-"straight"), ``road`` (a road file replacing the base road), ``road.<key>`` (a key of the
-base road's ``[road]`` table, e.g. ``road.road_class``, ``road.seed``) and
+Parameter names: ``speed_kmh``, ``speed_profile`` (a speed-profile file used instead of
+``speed_kmh``), ``driver`` (a driver file, or "default"), ``t_end_s``, ``h_s``, ``body``,
+``path`` (file or "straight"), ``road`` (a road file replacing the base road),
+``road.<key>`` (a key of the base road's ``[road]`` table, e.g. ``road.road_class``) and
 ``car.<dotted key>`` (any key of the car file, e.g. ``car.corners.fl.spring_rate_N_per_m``).
 """
 
@@ -45,15 +47,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from flexpipe.errors import InputError
+from flexpipe.sweeps import manoeuvres
 from flexpipe.sweeps.metrics import MIN_SAMPLES
 from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX
 from flexpipe.vehicle.simulation import DEFAULT_STEP
 
-SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road")
+SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road", "driver", "speed_profile")
 DESIGNS = ("grid", "list", "lhs")
 BODIES = ("rigid", "flexible", "full")
 _SWEEP_KEYS = ("car", "road", "path", "body", "speed_kmh", "t_end_s", "h_s", "output_step_s",
-               "settle_s", "design", "samples", "seed", "out")
+               "settle_s", "design", "samples", "seed", "out", "driver", "speed_profile")
 
 
 @dataclass(frozen=True)
@@ -63,7 +66,9 @@ class RunSpec:
     ``params`` holds the swept values (names as in the spec), ``car_overrides`` the
     dotted car keys, ``road`` a road file (Path), a ``[road]`` table (dict; ``road_base``
     is the file it came from, for relative ``file`` keys and messages) or None (flat),
-    ``key`` the parameter key.
+    ``key`` the parameter key.  ``speed`` is m/s: the constant speed, or for a run with a
+    ``speed_profile`` (its file, absolute) the profile's highest speed (what the flexible
+    body's band is chosen for, as simulate() does); ``driver`` a driver file or None.
     """
 
     key: str
@@ -80,6 +85,8 @@ class RunSpec:
     h: float
     output_step: float
     settle: float
+    driver: str | None = None
+    speed_profile: str | None = None
 
 
 @dataclass(frozen=True)
@@ -185,8 +192,21 @@ class SweepSpec:
         if path != "straight":
             path = str(_file(path, self.file, key("path")))
         # the ranges simulate() accepts (flexpipe.vehicle.run_inputs), in the spec's units
-        speed = _num(s["speed_kmh"], key("speed_kmh"), where, lo=0.0,
-                     hi=round(SPEED_MAX * 3.6, 6), unit="km/h") / 3.6
+        extra, profile, driver = {}, None, None
+        if manoeuvres.speed_setting(point, self.base, where=where, key=key) == "speed_kmh":
+            speed = _num(s["speed_kmh"], key("speed_kmh"), where, lo=0.0,
+                         hi=round(SPEED_MAX * 3.6, 6), unit="km/h") / 3.6
+        else:  # read now: a bad profile is named before any run
+            p = _file(s["speed_profile"], self.file, key("speed_profile"))
+            profile, sha = str(p), _sha(p)
+            speed = manoeuvres.speed_profile(p, sha, where=where,
+                                             key=key("speed_profile")).maximum
+            extra.update(speed_profile=profile, speed_profile_sha=sha)
+        if s.get("driver") not in (None, "default"):
+            p = _file(s["driver"], self.file, key("driver"))
+            driver, sha = str(p), _sha(p)
+            manoeuvres.driver(p, sha, where=where, key=key("driver"))
+            extra.update(driver=driver, driver_sha=sha)
         t_end = _num(s["t_end_s"], key("t_end_s"), where, lo=0.0, open_=True, hi=T_END_MAX,
                      unit="s")
         h = _num(s["h_s"], key("h_s"), where, lo=H_MIN, hi=H_MAX, unit="s")
@@ -203,13 +223,15 @@ class SweepSpec:
         ident = {"car": str(self.car), "car_sha": car_sha, "car_overrides": car_over,
                  "road": road_desc if road is self.road else _describe_road(road),
                  "path": path, "path_sha": _sha(Path(path)) if path != "straight" else "",
-                 "body": body, "speed_kmh": float(s["speed_kmh"]), "t_end_s": t_end, "h_s": h,
-                 "output_step_s": output_step}
+                 "body": body, "speed_kmh": None if profile else float(s["speed_kmh"]),
+                 "t_end_s": t_end, "h_s": h, "output_step_s": output_step}
+        ident.update(extra)  # (nothing for a run without driver or profile: same keys)
         key = hashlib.sha256(json.dumps(ident, sort_keys=True, default=str).encode())
         return RunSpec(key=key.hexdigest()[:16], index=index, params=dict(point),
                        car_file=self.car, car_overrides=car_over, road=road,
                        road_base=road_base, path=path, body=body, speed=speed, t_end=t_end,
-                       h=h, output_step=output_step, settle=settle)
+                       h=h, output_step=output_step, settle=settle, driver=driver,
+                       speed_profile=profile)
 
 
 # --------------------------------------------------------------------------- helpers
@@ -375,7 +397,13 @@ def load_sweep(spec, *, base_dir=None) -> SweepSpec:
     if design not in DESIGNS:
         raise InputError(f"design {design!r}; valid: {', '.join(DESIGNS)}", file=where,
                          key="sweep.design")
-    base = {"speed_kmh": sw.get("speed_kmh", 60.0), "t_end_s": sw.get("t_end_s", 10.0),
+    if "speed_kmh" in sw and "speed_profile" in sw:
+        raise InputError("speed_kmh and speed_profile both in [sweep]; give one (a speed "
+                         "profile replaces the constant speed)", file=where,
+                         key="sweep.speed_profile")
+    base = {"speed_kmh": sw.get("speed_kmh", None if "speed_profile" in sw else 60.0),
+            "speed_profile": sw.get("speed_profile"), "driver": sw.get("driver"),
+            "t_end_s": sw.get("t_end_s", 10.0),
             "h_s": sw.get("h_s", DEFAULT_STEP), "output_step_s": sw.get("output_step_s"),
             "settle_s": sw.get("settle_s", 0.0), "body": sw.get("body", "rigid"),
             "path": sw.get("path", "straight")}

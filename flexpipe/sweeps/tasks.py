@@ -80,11 +80,12 @@ def run_task(run, car, rigid=None, bodies=None):
     -------
     record : dict
         ``key``, the swept parameters, ``status``, ``message``, CPU and wall time and the
-        metrics of :func:`flexpipe.sweeps.metrics.run_metrics`.
+        metrics of :func:`flexpipe.sweeps.metrics.run_metrics` (and, for an open-loop step
+        or sine-with-dwell run, :func:`~flexpipe.sweeps.metrics.manoeuvre_metrics`).
     channels : dict of str to ndarray, or None
         ``t`` and every output channel (None when the run raised before integrating).
     """
-    from flexpipe.sweeps.metrics import run_metrics
+    from flexpipe.sweeps.metrics import centre_of_mass, manoeuvre_metrics, run_metrics
     from flexpipe.vehicle.simulation import prepare, simulate
 
     t0 = time.perf_counter()
@@ -96,13 +97,18 @@ def run_task(run, car, rigid=None, bodies=None):
         if rigid is not None:
             given["rigid"] = rigid
         prep = prepare(car, body=run.body, speed=run.speed, road=road, bodies=given)
-        res = simulate(car, road=road, path=run.path, speed=run.speed, t_end=run.t_end,
-                       body=run.body, h=run.h, output_step=run.output_step, prepared=prep)
+        res = simulate(car, road=road, path=run.path, speed=run.speed_profile or run.speed,
+                       t_end=run.t_end, body=run.body, h=run.h, output_step=run.output_step,
+                       driver=run.driver, prepared=prep)
         record.update(status=int(res.status), message=res.message, cpu_s=res.cpu_time,
                       wall_s=res.wall_time, simulated_time_s=res.simulated_time)
         if "n_elastic_modes" in res.info:
             record["n_elastic_modes"] = int(res.info["n_elastic_modes"])
         record.update(run_metrics(res.t, res.channels, settle=run.settle))
+        figures, note = manoeuvre_metrics(res, cg=centre_of_mass(res, car, prep["rigid"]))
+        record.update(figures)  # (none unless an open-loop step or sine-with-dwell run)
+        if note:
+            record["message"] = f"{res.message}; {note}" if res.message else note
         channels = {"t": np.asarray(res.t), **{k: np.asarray(v) for k, v in
                                               res.channels.items()}}
     except Exception as exc:  # a failed run is a result, never the end of the sweep

@@ -288,6 +288,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         steering = steering or default_steering
         speed_pi = speed_pi or default_speed
     steering = steering.with_path(path_obj)
+    path_obj.reset_projection()  # a path shared with an earlier run starts afresh
     speed_pi.reset()
 
     # initial pose: body origin on the path at arc length `start`, heading along the path
