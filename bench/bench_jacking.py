@@ -8,7 +8,10 @@ what the patch forces should give by virtual work: ``-(dFx dPx + dFy dPy) / dPz`
 sample brakes with 1,500 N m on one axle at a time (rigid body, flat road, from 25 m/s,
 means over 1.2-2.5 s): the braked axle shows the anti-dive / anti-lift of its patch path
 (``dFx`` term), and the front, whatever axle brakes, the jacking of the lateral tyre
-forces its bump steer builds as the body pitches (``dFy`` term).
+forces its bump steer builds as the body pitches (``dFy`` term).  Then front drive with
+the torque reacted on the knuckle (in-wheel motor: the patch path) and on the body
+(driveshafts: the longitudinal force reaches the knuckle at the wheel centre, so its
+path); the change between the two is what ``tests/test_drive_reaction.py`` checks.
 """
 
 from __future__ import annotations
@@ -45,8 +48,9 @@ class _ConstantTorque(SpeedPI):
         return self.value
 
 
-def _run(share: float, torque: float) -> dict:
-    car = load_car(CAR, overrides={"drive.brake_front_share": share})
+def _run(share: float, torque: float, reaction: str = "body") -> dict:
+    car = load_car(CAR, overrides={"drive.brake_front_share": share,
+                                   "drive.drive_reaction": reaction})
     steer, _ = default_driver(car, bodymodel.rigid_properties(car).mass)
     speed = _ConstantTorque(kp=0.0, ki=0.0, drive_torque_max=1e4, brake_torque_max=1e4,
                             value=torque)
@@ -65,13 +69,14 @@ def run() -> dict:
         a = susp.axles[axle]
         c = kinematic_corner(rig_corner(a, a.left))
         lk = Linkage(c)
-        geo[corner] = (rates(lk, solve_kinematics(lk, 0.0))["patch_velocity"],
-                       corner_figures(c)["wheel rate, joints rigid [N/m]"])
+        rt = rates(lk, solve_kinematics(lk, 0.0))
+        geo[corner] = (rt["patch_velocity"], corner_figures(c)["wheel rate, joints rigid [N/m]"],
+                       rt["wheel_center_velocity"])
     coast = _run(0.65, 0.0)
     out = {}
     for share, tag in ((1.0, "front_braked"), (0.0, "rear_braked")):
         o = _run(share, TORQUE)
-        for corner, (v, k_w) in geo.items():
+        for corner, (v, k_w, _) in geo.items():
             dfz, ds, dfx, dfy = (o[k.format(c=corner)] - coast[k.format(c=corner)]
                                  for k in ("tire_{c}_Fz", "travel_{c}", "tire_{c}_Fx",
                                            "tire_{c}_Fy"))
@@ -82,6 +87,23 @@ def run() -> dict:
                         f"{key}_patch_y_N": round(jy, 1), f"{key}_dFy_N": round(dfy, 1)})
             print(f"{tag:12s} {corner}: jacking {jack:7.1f} N; patch path: Fx {jx:7.1f} N, "
                   f"Fy {jy:7.1f} N (dFy {dfy:6.1f} N), sum {jx + jy:7.1f} N", flush=True)
+    # front drive (+1,500 N m), reacted on the knuckle (in-wheel motor: the patch path
+    # carries dFx) or on the body (driveshafts: the wheel-centre path)
+    v, k_w, vc = geo["fl"]
+    for reaction in ("knuckle", "body"):
+        o = _run(0.65, -TORQUE, reaction)
+        dfz, ds, dfx, dfy = (o[k] - coast[k] for k in ("tire_fl_Fz", "travel_fl",
+                                                        "tire_fl_Fx", "tire_fl_Fy"))
+        jack = dfz - k_w * ds
+        jx = -dfx * (v[0] if reaction == "knuckle" else vc[0]) / v[2]
+        jy = -dfy * v[1] / v[2]
+        key = f"front_driven_{reaction}_fl"
+        out.update({f"{key}_jacking_N": round(jack, 1), f"{key}_path_x_N": round(jx, 1),
+                    f"{key}_patch_y_N": round(jy, 1), f"{key}_travel_mm": round(ds * 1e3, 2)})
+        print(f"front drive, reacted on the {reaction:7s} fl: jacking {jack:7.1f} N; "
+              f"{'patch' if reaction == 'knuckle' else 'wheel-centre'} path Fx {jx:7.1f} N, "
+              f"patch Fy {jy:7.1f} N, sum {jx + jy:7.1f} N; travel {ds * 1e3:6.2f} mm",
+              flush=True)
     out["front_patch_dy_ds"] = round(float(geo["fl"][0][1] / geo["fl"][0][2]), 4)
     out["front_side_view_angle_deg"] = round(float(np.degrees(np.arctan2(*geo["fl"][0][::2]))), 3)
     return out

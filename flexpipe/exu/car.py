@@ -95,6 +95,9 @@ class CarLoads:
     suspension_k: np.ndarray = None  # (4,) tangent stiffness of the suspension connector
     suspension_f0: np.ndarray = None  # (4,) its force at zero travel and rate (linearized)
     rack_travel: float | None = None  # linkage cars: steering rack travel (m, toward +y)
+    #: (4,) the drive part of spin_torque whose reaction goes to the body, not the carrier
+    #: (driveshafts; None or zeros: every spin torque reacted on the carrier)
+    drive_torque: np.ndarray | None = None
 
 
 @dataclass
@@ -382,6 +385,17 @@ class CarSystem:
             forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
         self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin, load=0.0)))
         self.spin_node.append(n_s)
+        # a drive torque through a driveshaft: the spin coordinate's load puts its reaction
+        # on the carrier; these loads move it to the body (+T s on the carrier, -T s on
+        # the body frame), set each step along the spin axes
+        if i == 0:
+            self.load_drive = []
+            self.load_drive_body = mbs.AddLoad(eii.LoadTorqueVector(
+                markerNumber=self.frame_marker, loadVector=[0.0, 0.0, 0.0]))
+            self._drive_on = ()  # wheels whose drive reaction loads are set
+        m_c = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
+        self.load_drive.append(mbs.AddLoad(eii.LoadTorqueVector(markerNumber=m_c,
+                                                                loadVector=[0.0, 0.0, 0.0])))
 
     def _apply_wheels(self, loads: CarLoads, st: CarState) -> None:
         """The tyre elements and spin torques for the coming step."""
@@ -392,6 +406,15 @@ class CarSystem:
             so(elem, "dampingMatrix", D[i])
             so(elem, "stiffnessMatrix", K[i])
             so(elem, "forceVector", f[i])
+        T = loads.drive_torque
+        driven = () if T is None else tuple(np.flatnonzero(T))
+        if driven or self._drive_on:  # the driven wheels, and those that were
+            setp = self.mbs.SetLoadParameter
+            tq = (np.zeros(4) if T is None else np.asarray(T))[:, None] * st.wheel_R[:, :, 1]
+            for i in sorted(set(driven) | set(self._drive_on)):
+                setp(self.load_drive[i], "loadVector", tq[i].tolist())
+            setp(self.load_drive_body, "loadVector", (-tq.sum(axis=0)).tolist())
+            self._drive_on = driven
 
     def tire_matrices(self, ts, st: CarState):
         """Linear ODE2 elements (damping D, stiffness K, force f on each carrier's 7 node

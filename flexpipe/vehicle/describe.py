@@ -96,7 +96,9 @@ def car_text(car: Car) -> str:
         + f"; sum {N.sum():.1f} (car weight {W:.1f})")
     lines.append(f"  tyres: {', '.join(sorted({c.tire.name for c in car.corners}))}; "
                  f"steering ratio {car.steering.ratio:g} on the {car.steering.axle} axle; "
-                 f"{car.drive.layout}-wheel drive")
+                 f"{car.drive.layout}-wheel drive, its torque reacted on the "
+                 + ("body (driveshafts)" if car.drive.reaction == "body" else
+                    "knuckles (in-wheel motors)"))
     return "\n".join(lines)
 
 

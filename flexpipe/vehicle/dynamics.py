@@ -181,8 +181,8 @@ class CarController:
         self.track = float(np.mean(np.abs(corners.wheel_center[:2, 1])) * 2) \
             if track is None else track
         self.spin_inertia = np.array([c.spin_inertia for c in car.corners])
-        self.drive_share = car.drive.drive_shares()
-        self.brake_share = car.drive.brake_shares()
+        self.drive_share, self.brake_share = car.drive.drive_shares(), car.drive.brake_shares()
+        self.body_reaction = car.drive.reaction == "body"  # driveshafts, not in-wheel motors
         self.delta = self.delta_cmd = self.torque = 0.0
         #: first-order hold of the driver's commands: (t0, t1, steer0, steer1, torque0,
         #: torque1), both commands ramping linearly from t0 to t1 (None: no command yet)
@@ -323,6 +323,7 @@ class CarController:
             T = -0.5 * self.spin_inertia / self.h * st.spin_rate
         # the tyre's own moments are in the implicit element: only drive and brake here
         spin_torque = np.broadcast_to(np.asarray(T, dtype=float), (4,)).copy()
+        drive = spin_torque if self.torque > 0.0 and self.body_reaction else None
 
         from flexpipe.exu.car import CarLoads
 
@@ -332,7 +333,7 @@ class CarController:
             if rk is not None:
                 s_rack = -self.delta * self.ratio * rk.travel_per_rev / (2 * math.pi)
             loads = CarLoads(suspension=np.zeros(4), damper_c=np.zeros(4), tire=ts,
-                             spin_torque=spin_torque,
+                             spin_torque=spin_torque, drive_torque=drive,
                              steer=steer, rack_travel=s_rack)
             self._tire_lin = (ts, st, omega)
             if self.step_no % self.output_every == 0:
@@ -369,7 +370,7 @@ class CarController:
         f0 = Fs_own - k_t * st.jounce - c_step * st.jounce_rate
 
         loads = CarLoads(suspension=F_arb, damper_c=c_step, tire=ts,
-                         spin_torque=spin_torque, steer=steer,
+                         spin_torque=spin_torque, drive_torque=drive, steer=steer,
                          suspension_k=k_t, suspension_f0=f0)
         self._tire_lin = (ts, st, omega)
         if self.step_no % self.output_every == 0:

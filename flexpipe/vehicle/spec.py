@@ -66,6 +66,7 @@ from flexpipe.vehicle.suspension.checks import WHEEL_CENTER_BOX_M
 
 CORNERS = ("fl", "fr", "rl", "rr")
 AXLE_OF = {"fl": "front", "fr": "front", "rl": "rear", "rr": "rear"}
+DRIVE_REACTIONS = ("body", "knuckle")
 DRIVE_LAYOUTS = ("front", "rear", "all")
 
 
@@ -123,6 +124,10 @@ class DriveSpec:
     max_brake_torque: float
     brake_front_share: float
     front_share: float
+    #: where the drive torque is reacted: "body" (driveshafts from a body-mounted engine
+    #: or motor: the wheel gets the torque, the body its reaction) or "knuckle" (in-wheel
+    #: motors, as brakes always are: the reaction on the wheel carrier)
+    reaction: str = "body"
 
     def drive_shares(self) -> np.ndarray:
         """Share of the drive torque per corner in CORNERS order."""
@@ -429,7 +434,8 @@ def _read_car(doc: Table) -> Car:
         dt.number("max_drive_torque_N_m", 3000.0, lo=0, lo_open=True),
         dt.number("max_brake_torque_N_m", 6000.0, lo=0, lo_open=True),
         dt.number("brake_front_share", 0.65, lo=0, hi=1),
-        dt.number("front_share", 0.5, lo=0, hi=1))
+        dt.number("front_share", 0.5, lo=0, hi=1),
+        dt.string("drive_reaction", "body", choices=DRIVE_REACTIONS))
     dt.finish()
     doc.finish()
     return Car(name, path, body, corners, steering, arbs, drive, suspension)
