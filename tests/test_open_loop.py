@@ -215,3 +215,57 @@ def test_wheel_angle_channels_are_the_ackermann_geometry_at_crawling_speed():
     before = r.t < 0.45  # straight ahead before the step
     for c in ("fl", "fr", "rl", "rr"):
         assert np.abs(r[f"wheel_angle_{c}"][before]).max() < math.radians(0.05)
+
+
+def test_open_loop_torque_accelerates_and_brakes_the_car_by_newtons_law():
+    """A constant wheel torque T (after a ramp): the car's acceleration is
+    ``(sum(T_i / R_l) - F_rr) / (m + sum(J / (R_e R_l)))`` with the ``.tir`` file's rolling
+    resistance ``F_rr`` and loaded and effective radii (as in test_rollout.py)."""
+    from flexpipe.driver import OpenLoopTorque
+    from flexpipe.tires import tire_from_file
+    from flexpipe.vehicle import bodymodel
+    from flexpipe.vehicle.corners import static_loaded_radius, static_wheel_loads
+    from flexpipe.vehicle.simulation import default_driver
+
+    car = fp.load_car(CAR)
+    rb = bodymodel.rigid_properties(car)
+    mass = rb.mass + car.unsprung_mass
+    steer, _ = default_driver(car, mass)
+    tire = tire_from_file(car.corners[0].tire)
+    c = tire.mf.c
+    assert c.QSY2 == c.QSY3 == c.QSY4 == 0.0
+    N = static_wheel_loads(car, rb.mass, rb.center_of_mass)
+    R_l = np.array([static_loaded_radius(tire, n) for n in N])
+    R_e = np.array([float(tire.effective_rolling_radius(tire.unloaded_radius - x))
+                    for x in R_l])
+    F_rr = float(np.sum(tire.unloaded_radius * N * c.QSY1 * c.LMY / R_l))
+    J = np.array([cn.spin_inertia for cn in car.corners])
+    for T in (600.0, -1500.0):  # front drive; braking on all four by the brake split
+        drv = (steer, OpenLoopTorque.from_table([0.0, 0.5, 0.7], [0.0, 0.0, T]))
+        r = fp.simulate(car, speed=15.0, t_end=3.0, body="rigid", driver=drv,
+                        output_step=0.01)
+        assert r.status == 0, r.message
+        assert r["drive_torque"][-1] == pytest.approx(T)
+        sel = r.t > 1.5
+        a = np.polyfit(r.t[sel], r["speed"][sel], 1)[0]
+        share = car.drive.drive_shares() if T > 0 else car.drive.brake_shares()
+        want = (np.sum(T * share / R_l) - F_rr) / (mass + np.sum(J / (R_e * R_l)))
+        assert a == pytest.approx(want, rel=0.02)
+
+
+def test_open_loop_torque_from_a_driver_file(tmp_path):
+    from flexpipe.driver import OpenLoopTorque
+
+    f = tmp_path / "brake_in_turn.toml"
+    f.write_text('[steering]\ntype = "pure_pursuit"\nwheelbase_m = 2.7\n'
+                 '[speed]\ntype = "open_loop"\ntime_s = [0, 2, 2.3]\n'
+                 'torque_Nm = [0, 0, -2500]\n')
+    _, speed = read_driver(f)
+    assert isinstance(speed, OpenLoopTorque)
+    assert speed.torque_at(2.15) == pytest.approx(-1250.0)
+    f.write_text('[steering]\ntype = "pure_pursuit"\nwheelbase_m = 2.7\n'
+                 '[speed]\ntype = "open_loop"\ntime_s = [0, 2, 2]\ntorque_Nm = [0, 0, 1]\n')
+    with pytest.raises(InputError, match=r"speed\.time_s.*entry 2 \(2 s\) does not exceed") \
+            as exc:
+        read_driver(f)
+    assert str(f) in str(exc.value)

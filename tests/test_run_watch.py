@@ -194,7 +194,7 @@ def test_the_cached_half_car_cannot_be_changed_by_a_caller():
     ({"t_end": 0.02, "output_step": 1e-4}, "output_step", "whole multiple of the step"),
     ({"t_end": 0.02, "output_step": 0.5}, "output_step", "at most t_end"),
     ({"t_end": 0.02, "driver": (1, 2)}, "driver",
-     "(PurePursuit or OpenLoopSteer, SpeedPI or None)"),
+     "(PurePursuit or OpenLoopSteer, SpeedPI, OpenLoopTorque or None)"),
     ({"t_end": 0.02, "initial_rates": "abc"}, "initial_rates", "3 finite numbers"),
 ])
 def test_time_base_and_driver_arguments_are_checked(kwargs, key, words):

@@ -6,7 +6,8 @@
 * :class:`PurePursuit` (frozen; gains from ``[steering]``) and :class:`SpeedPI`
   (gains from ``[speed]``, keeps its integral), :func:`read_driver`.
 * :class:`OpenLoopSteer` (frozen): a steering-wheel angle against time (step, ramp,
-  sine with dwell, sine, table) in place of the path follower.
+  sine with dwell, sine, table) in place of the path follower; :class:`OpenLoopTorque`
+  (frozen): a wheel torque against time in place of the speed controller.
 * :class:`SpeedProfile` (frozen): target speed against time or distance,
   :func:`read_speed_profile` (``.toml`` ``[speed_profile]`` or ``.csv``).
 * :class:`KinematicBicycle` and :func:`simulate`: a cheap test vehicle.
@@ -14,7 +15,7 @@
 
 from flexpipe.driver.bicycle import KinematicBicycle, simulate
 from flexpipe.driver.control import PurePursuit, SpeedPI, read_driver
-from flexpipe.driver.open_loop import OpenLoopSteer
+from flexpipe.driver.open_loop import OpenLoopSteer, OpenLoopTorque
 from flexpipe.driver.path import Path
 from flexpipe.driver.speed import SpeedProfile, read_speed_profile
 from flexpipe.driver.tracks import (
@@ -37,6 +38,7 @@ __all__ = [
     "PATH_TYPES",
     "KinematicBicycle",
     "OpenLoopSteer",
+    "OpenLoopTorque",
     "Path",
     "PurePursuit",
     "SpeedPI",

@@ -217,11 +217,12 @@ def read_driver(path):
     :class:`flexpipe.driver.open_loop.OpenLoopSteer`) and a ``[speed]`` table.
 
     ``[speed]`` may be left out: the run then uses the car's default speed controller
-    (:func:`flexpipe.vehicle.simulation.default_driver`).
+    (:func:`flexpipe.vehicle.simulation.default_driver`); with ``type = "open_loop"`` it is
+    a wheel torque against time (:class:`flexpipe.driver.open_loop.OpenLoopTorque`).
 
     Returns
     -------
-    (PurePursuit or OpenLoopSteer, SpeedPI or None)
+    (PurePursuit or OpenLoopSteer, SpeedPI or OpenLoopTorque or None)
     """
     path = pathlib.Path(path)
     doc = read_toml(path)
@@ -238,5 +239,13 @@ def read_driver(path):
         steering = OpenLoopSteer.from_dict(table, file=path)
     else:
         steering = PurePursuit.from_dict(table, file=path)
-    speed = SpeedPI.from_dict(doc["speed"], file=path) if "speed" in doc else None
+    speed = None
+    if "speed" in doc:
+        table = doc["speed"]
+        if isinstance(table, dict) and table.get("type") == "open_loop":
+            from flexpipe.driver.open_loop import OpenLoopTorque
+
+            speed = OpenLoopTorque.from_dict(table, file=path)
+        else:
+            speed = SpeedPI.from_dict(table, file=path)
     return steering, speed

@@ -218,3 +218,77 @@ def _check(*, t_start: float, rise_time: float = 1.0, rate: float = 1.0,
                            ("frequency_hz", frequency, frequency > 0.0)):
         if not (math.isfinite(value) and ok):
             raise InputError(f"{key} = {value!r} is out of range", key=key)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class OpenLoopTorque:
+    """A total wheel torque against time in place of the speed controller (N m; drive > 0
+    on the driven wheels, brake < 0 on all four by the brake split), e.g. a brake
+    application in a turn or a launch.  From a driver file's ``[speed]`` table::
+
+        [speed]
+        type = "open_loop"
+        time_s = [0.0, 2.0, 2.2, 5.0]
+        torque_Nm = [0.0, 0.0, -3000.0, -3000.0]
+
+    Linear between the points, held after the last.  :meth:`torque` has the
+    :class:`~flexpipe.driver.SpeedPI` signature; the car's controller calls
+    :meth:`torque_at` with the time instead.
+    """
+
+    t: np.ndarray
+    value: np.ndarray
+    source: str = ""
+
+    @classmethod
+    def from_table(cls, t, torque, *, source: str = "") -> OpenLoopTorque:
+        """A validated table: times from >= 0, strictly increasing; finite torques."""
+        where = source or None
+        t = np.asarray(t, dtype=float).reshape(-1)
+        q = np.asarray(torque, dtype=float).reshape(-1)
+        if t.size < 1 or t.shape != q.shape:
+            raise InputError(f"an open-loop torque needs >= 1 point and as many torques as "
+                             f"times, got {t.size} and {q.size}", file=where, key="time_s")
+        for key, arr in (("time_s", t), ("torque_Nm", q)):
+            bad = np.flatnonzero(~np.isfinite(arr))
+            if bad.size:
+                raise InputError(f"entry {bad[0]} is {arr[bad[0]]!r}; every value must be a "
+                                 "finite number", file=where, key=key)
+        if t[0] < 0.0:
+            raise InputError(f"the first time is {t[0]:g} s; times start at >= 0",
+                             file=where, key="time_s")
+        step = np.flatnonzero(np.diff(t) <= 0.0)
+        if step.size:
+            i = int(step[0]) + 1
+            raise InputError(f"entry {i} ({t[i]:g} s) does not exceed entry {i - 1} "
+                             f"({t[i - 1]:g} s); time_s must increase strictly", file=where,
+                             key="time_s")
+        return cls(t=readonly(t), value=readonly(q), source=source)
+
+    @classmethod
+    def from_dict(cls, table: dict, *, file=None, name: str = "speed") -> OpenLoopTorque:
+        """From a driver file's ``[speed]`` table with ``type = "open_loop"``."""
+        from flexpipe.roads._tables import TableReader
+
+        t = TableReader(table, file=file, name=name)
+        t.str("type", choices=("open_loop",))
+        ts, q = t.float_list("time_s"), t.float_list("torque_Nm")
+        t.finish()
+        try:
+            return cls.from_table(ts, q, source=str(file or ""))
+        except InputError as exc:
+            raise InputError(exc.message, file=file, key=f"{name}.{exc.key}") from None
+
+    def torque_at(self, t: float) -> float:
+        """Total wheel torque at time ``t`` (N m)."""
+        return float(np.interp(t, self.t, self.value))
+
+    def torque(self, v_target, v, dt, a_target=0.0) -> float:  # noqa: ARG002 - SpeedPI's
+        """The torque at t = 0 (the car's controller uses :meth:`torque_at`)."""
+        return self.torque_at(0.0)
+
+    def reset(self) -> None:
+        """Nothing to clear (:class:`~flexpipe.driver.SpeedPI` has an integral)."""
+
+    def describe(self) -> str:
+        return f"open-loop torque ({self.source or 'table'})"

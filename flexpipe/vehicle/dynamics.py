@@ -33,6 +33,7 @@ from flexpipe.tires.contact import _cross
 from flexpipe.vehicle import sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.corners import ackermann_angles, road_wheel_angles
+from flexpipe.vehicle.sensor_rows import Recorder
 from flexpipe.vehicle.spec import CORNERS
 
 #: offsets (in units of the finite-difference step) of the road-normal stencil
@@ -50,29 +51,6 @@ def _rpy(R: np.ndarray):
     pitch = -math.asin(max(-1.0, min(1.0, R[2, 0])))
     roll = math.atan2(R[2, 1], R[2, 2])
     return roll, pitch, yaw
-
-
-class Recorder:
-    """Preallocated channel arrays, filled row by row."""
-
-    def __init__(self, names, n_rows: int):
-        self.names = list(names)
-        self.index = {n: i for i, n in enumerate(self.names)}
-        self.data = np.full((n_rows, len(self.names)), np.nan)
-        self.t = np.full(n_rows, np.nan)
-        self.rows = 0
-
-    def add(self, t: float, values: np.ndarray) -> None:
-        if self.rows == len(self.t):  # more rows than planned (steps the solver cut): grow
-            self.t = np.concatenate([self.t, np.full(max(len(self.t), 1), np.nan)])
-            self.data = np.vstack([self.data, np.full((len(self.t) - len(self.data),
-                                                       self.data.shape[1]), np.nan)])
-        self.t[self.rows] = t
-        self.data[self.rows] = values
-        self.rows += 1
-
-    def channels(self) -> dict:
-        return {n: self.data[: self.rows, i].copy() for i, n in enumerate(self.names)}
 
 
 class CarController:
@@ -114,6 +92,9 @@ class CarController:
     weight_N : float, optional
         The car's weight, N: a tyre normal force beyond ten times it stops the run
         (:func:`flexpipe.vehicle.watch.tire_problem`); ``None`` checks nothing.
+    parked : bool, optional
+        Wheels braked, no driver (default: a constant target speed of 0 without an
+        open-loop torque).
     """
 
     #: linkage cars: hub forces from Exudyn's sensor records (see ``_record``)
@@ -126,7 +107,7 @@ class CarController:
                  output_every=2, points=(), point_acc=None, joint_forces=None,
                  wheel_acc=None, gravity=9.81, driver_dt=0.01, body_com=None, track=None,
                  preview_time=0.3, linkage=None,
-                 body_motion=None, output_history=None, weight_N=None):
+                 body_motion=None, output_history=None, weight_N=None, parked=None):
         self.c = corners
         self.road = road
         self.steering = steering
@@ -134,7 +115,9 @@ class CarController:
         self.speed_pi = speed_pi
         self.profile = target_speed if hasattr(target_speed, "target") else None
         self.v_target = self.profile.initial if self.profile else float(target_speed)
-        self.parked = self.profile is None and self.v_target == 0.0
+        self.open_torque = hasattr(speed_pi, "torque_at")  # OpenLoopTorque
+        self.parked = (self.profile is None and self.v_target == 0.0 and not self.open_torque
+                       ) if parked is None else bool(parked)  # (the settle pre-run: True)
         self._odometer = 0.0  # distance travelled (m), for a profile against distance
         self.car = car
         self.h = float(h)
@@ -251,7 +234,8 @@ class CarController:
         if self.profile is not None:
             self.v_target, a_target = self.profile.target(float(st.t), self._odometer)
             self._odometer += abs(v) * dt
-        torque = self.speed_pi.torque(self.v_target, v, dt, a_target)
+        torque = self.speed_pi.torque_at(t1) if self.open_torque else \
+            self.speed_pi.torque(self.v_target, v, dt, a_target)
         t = float(st.t)
         # first-order hold: from the held values now to the new commands at the next
         # sampling instant (the first one: the steering from the actuator's angle, the

@@ -202,7 +202,7 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
 
         steering, speed_pi = read_driver(driver)
     else:
-        from flexpipe.driver import OpenLoopSteer, PurePursuit, SpeedPI
+        from flexpipe.driver import OpenLoopSteer, OpenLoopTorque, PurePursuit, SpeedPI
 
         try:
             steering, speed_pi = driver
@@ -210,8 +210,9 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
             raise InputError("driver must be (steering, speed controller) or a driver TOML "
                              "file", key="driver") from None
         if not (isinstance(steering, (PurePursuit, OpenLoopSteer))
-                and (speed_pi is None or isinstance(speed_pi, SpeedPI))):
-            raise InputError("driver must be (PurePursuit or OpenLoopSteer, SpeedPI or None) "
+                and (speed_pi is None or isinstance(speed_pi, (SpeedPI, OpenLoopTorque)))):
+            raise InputError("driver must be (PurePursuit or OpenLoopSteer, SpeedPI, "
+                             "OpenLoopTorque or None) "
                              f"or a driver TOML file, got ({type(steering).__name__}, "
                              f"{type(speed_pi).__name__})", key="driver")
     if car.suspension is None:  # tyres and ride height at rest, before a run writes anything

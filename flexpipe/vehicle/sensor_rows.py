@@ -5,7 +5,7 @@ During a run :class:`flexpipe.vehicle.dynamics.CarController` records the first 
 store the values at every output step: the named points' accelerations and the body motion
 (:mod:`flexpipe.exu.output_sensors`), and on a linkage car the per-mount and hub forces
 (:mod:`flexpipe.exu.mount_sensors`).  :func:`fill` turns those records into the channels,
-vectorized over the rows, once the run is over.
+vectorized over the rows, once the run is over.  :class:`Recorder` holds the rows.
 """
 
 from __future__ import annotations
@@ -13,6 +13,29 @@ from __future__ import annotations
 import numpy as np
 
 from flexpipe.vehicle.spec import CORNERS
+
+
+class Recorder:
+    """Preallocated channel arrays, filled row by row."""
+
+    def __init__(self, names, n_rows: int):
+        self.names = list(names)
+        self.index = {n: i for i, n in enumerate(self.names)}
+        self.data = np.full((n_rows, len(self.names)), np.nan)
+        self.t = np.full(n_rows, np.nan)
+        self.rows = 0
+
+    def add(self, t: float, values: np.ndarray) -> None:
+        if self.rows == len(self.t):  # more rows than planned (steps the solver cut): grow
+            self.t = np.concatenate([self.t, np.full(max(len(self.t), 1), np.nan)])
+            self.data = np.vstack([self.data, np.full((len(self.t) - len(self.data),
+                                                       self.data.shape[1]), np.nan)])
+        self.t[self.rows] = t
+        self.data[self.rows] = values
+        self.rows += 1
+
+    def channels(self) -> dict:
+        return {n: self.data[: self.rows, i].copy() for i, n in enumerate(self.names)}
 
 
 def fill(ctrl) -> None:

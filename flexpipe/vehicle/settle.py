@@ -34,7 +34,7 @@ def settled_start(build, make_system, make_controller):
     make_system : callable
         ``make_system(build) -> CarSystem``.
     make_controller : callable
-        ``make_controller(system, *, target_speed, h, t_end) -> CarController``.
+        ``make_controller(system, *, target_speed, h, t_end, parked) -> CarController``.
 
     Returns
     -------
@@ -46,7 +46,8 @@ def settled_start(build, make_system, make_controller):
     parked = dataclasses.replace(build, speed=0.0, spin_rate=np.zeros_like(build.spin_rate),
                                  body_rates=np.zeros(3))
     system = make_system(parked)
-    ctrl = make_controller(system, target_speed=0.0, h=SETTLE_H_S, t_end=SETTLE_T_S)
+    ctrl = make_controller(system, target_speed=0.0, h=SETTLE_H_S, t_end=SETTLE_T_S,
+                           parked=True)
     ok, _t, cpu, *_ = system.run(ctrl, t_end=SETTLE_T_S, h=SETTLE_H_S,
                                  spectral_radius=SETTLE_SPECTRAL_RADIUS)
     if not ok or ctrl.status < 0:

@@ -377,7 +377,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
             return LinkageCarSystem(b)
         return CarSystem(b)
 
-    def make_controller(system, *, target_speed, h, t_end):
+    def make_controller(system, *, target_speed, h, t_end, parked=None):
         return CarController(corners=corners, tires=tires, road=road_obj, steering=steering,
                              speed_pi=speed_pi, target_speed=target_speed, car=car, h=h,
                              t_end=t_end, output_every=every, points=names,
@@ -387,7 +387,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                              linkage=getattr(system, "linkage", None),
                              body_motion=system.body_motion_sample,
                              output_history=system.output_history,
-                             weight_N=total_mass * GRAVITY)
+                             weight_N=total_mass * GRAVITY, parked=parked)
 
     start = settled_start(build, make_system, make_controller) if settle else None
     system = make_system(build)

@@ -211,6 +211,12 @@ def cases():
         "error"
     step = (REPO / "paths" / "driver_step_steer.toml").read_text()
     yield "driver_open_loop_ok", "driver_step.toml", step.encode(), "ok"
+    olt = drv[:drv.index("[speed]")] + ('[speed]\ntype = "open_loop"\ntime_s = [0.0, 2.0, 2.3]\n'
+                                        'torque_Nm = [0.0, 0.0, -2500.0]\n')
+    yield "driver_open_loop_torque_ok", "driver_olt.toml", olt.encode(), "ok"
+    yield from _toml_cases("driver", "olt", olt, [
+        ("time_s", "[0.0, 2.0, 1.0]", "error"), ("torque_Nm", "[0.0, nan, 1.0]", "error"),
+        ("torque_Nm", "[0.0, 1.0]", "error")], [("torque_Nm", "torque_N_m")])
     swd = (REPO / "paths" / "driver_sine_with_dwell.toml").read_text()
     yield "driver_sine_with_dwell_ok", "driver_swd.toml", swd.encode(), "ok"
     yield from _toml_cases("driver", "step", step, [
