@@ -57,26 +57,8 @@ class OpenLoopSteer:
     def from_table(cls, t, angle, *, kind: str = "table", source: str = "") -> OpenLoopSteer:
         """A validated input: ``t`` from 0, strictly increasing; finite angles (rad)."""
         where = source or None
-        t = np.asarray(t, dtype=float).reshape(-1)
-        a = np.asarray(angle, dtype=float).reshape(-1)
-        if t.size < 1 or t.shape != a.shape:
-            raise InputError(f"an open-loop steering input needs >= 1 point and as many "
-                             f"angles as times, got {t.size} and {a.size}", file=where,
-                             key="time_s")
-        for key, arr in (("time_s", t), ("steering_wheel_deg", a)):
-            bad = np.flatnonzero(~np.isfinite(arr))
-            if bad.size:
-                raise InputError(f"entry {bad[0]} is {arr[bad[0]]!r}; every value must be a "
-                                 "finite number", file=where, key=key)
-        if t[0] < 0.0:
-            raise InputError(f"the first time is {t[0]:g} s; times start at >= 0",
-                             file=where, key="time_s")
-        step = np.flatnonzero(np.diff(t) <= 0.0)
-        if step.size:
-            i = int(step[0]) + 1
-            raise InputError(f"entry {i} ({t[i]:g} s) does not exceed entry {i - 1} "
-                             f"({t[i - 1]:g} s); time_s must increase strictly", file=where,
-                             key="time_s")
+        t, a = _time_table(t, angle, what="steering input", values="angles",
+                           key="steering_wheel_deg", where=where)
         if np.abs(a).max() > math.radians(1080.0):
             i = int(np.argmax(np.abs(a)))
             raise InputError(f"entry {i} is {math.degrees(a[i]):g} deg; a steering wheel "
@@ -203,6 +185,32 @@ class OpenLoopSteer:
         return f"open-loop steering: {self.source or self.kind}"
 
 
+def _time_table(t, v, *, what: str, values: str, key: str, where):
+    """``(t, v)`` as float arrays after the checks every open-loop table gets: as many
+    values as times (>= 1), all finite, times from >= 0 and strictly increasing; errors
+    name ``where`` and the key (``time_s`` or ``key``)."""
+    t = np.asarray(t, dtype=float).reshape(-1)
+    v = np.asarray(v, dtype=float).reshape(-1)
+    if t.size < 1 or t.shape != v.shape:
+        raise InputError(f"an open-loop {what} needs >= 1 point and as many {values} as "
+                         f"times, got {t.size} and {v.size}", file=where, key="time_s")
+    for name, arr in (("time_s", t), (key, v)):
+        bad = np.flatnonzero(~np.isfinite(arr))
+        if bad.size:
+            raise InputError(f"entry {bad[0]} is {arr[bad[0]]!r}; every value must be a "
+                             "finite number", file=where, key=name)
+    if t[0] < 0.0:
+        raise InputError(f"the first time is {t[0]:g} s; times start at >= 0", file=where,
+                         key="time_s")
+    step = np.flatnonzero(np.diff(t) <= 0.0)
+    if step.size:
+        i = int(step[0]) + 1
+        raise InputError(f"entry {i} ({t[i]:g} s) does not exceed entry {i - 1} "
+                         f"({t[i - 1]:g} s); time_s must increase strictly", file=where,
+                         key="time_s")
+    return t, v
+
+
 def _sign(direction: str) -> float:
     if direction not in ("left", "right"):
         raise InputError(f"direction must be 'left' or 'right', got {direction!r}",
@@ -243,26 +251,8 @@ class OpenLoopTorque:
     @classmethod
     def from_table(cls, t, torque, *, source: str = "") -> OpenLoopTorque:
         """A validated table: times from >= 0, strictly increasing; finite torques."""
-        where = source or None
-        t = np.asarray(t, dtype=float).reshape(-1)
-        q = np.asarray(torque, dtype=float).reshape(-1)
-        if t.size < 1 or t.shape != q.shape:
-            raise InputError(f"an open-loop torque needs >= 1 point and as many torques as "
-                             f"times, got {t.size} and {q.size}", file=where, key="time_s")
-        for key, arr in (("time_s", t), ("torque_Nm", q)):
-            bad = np.flatnonzero(~np.isfinite(arr))
-            if bad.size:
-                raise InputError(f"entry {bad[0]} is {arr[bad[0]]!r}; every value must be a "
-                                 "finite number", file=where, key=key)
-        if t[0] < 0.0:
-            raise InputError(f"the first time is {t[0]:g} s; times start at >= 0",
-                             file=where, key="time_s")
-        step = np.flatnonzero(np.diff(t) <= 0.0)
-        if step.size:
-            i = int(step[0]) + 1
-            raise InputError(f"entry {i} ({t[i]:g} s) does not exceed entry {i - 1} "
-                             f"({t[i - 1]:g} s); time_s must increase strictly", file=where,
-                             key="time_s")
+        t, q = _time_table(t, torque, what="torque", values="torques", key="torque_Nm",
+                           where=source or None)
         return cls(t=readonly(t), value=readonly(q), source=source)
 
     @classmethod
