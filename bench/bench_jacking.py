@@ -16,12 +16,11 @@ path); the change between the two is what ``tests/test_drive_reaction.py`` check
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
 
-from flexpipe.driver import SpeedPI
+from flexpipe.driver import OpenLoopTorque
 from flexpipe.vehicle import bodymodel, load_car, simulate
 from flexpipe.vehicle.simulation import default_driver
 from flexpipe.vehicle.suspension.kinematics import Linkage, solve_kinematics
@@ -38,22 +37,11 @@ CAR = ROOT / "cars" / "sedan_linkage.toml"
 T_END, T_FROM, TORQUE = 2.5, 1.2, -1500.0
 
 
-@dataclasses.dataclass
-class _ConstantTorque(SpeedPI):
-    """The speed controller replaced by a constant total wheel torque (N m)."""
-
-    value: float = 0.0
-
-    def torque(self, v_target, v, dt, a_target=0.0):  # noqa: D102 - SpeedPI's
-        return self.value
-
-
 def _run(share: float, torque: float, reaction: str = "body") -> dict:
     car = load_car(CAR, overrides={"drive.brake_front_share": share,
                                    "drive.drive_reaction": reaction})
     steer, _ = default_driver(car, bodymodel.rigid_properties(car).mass)
-    speed = _ConstantTorque(kp=0.0, ki=0.0, drive_torque_max=1e4, brake_torque_max=1e4,
-                            value=torque)
+    speed = OpenLoopTorque.from_table([0.0], [torque])  # the total wheel torque, held
     r = simulate(car, speed=25.0, t_end=T_END, body="rigid", driver=(steer, speed))
     if r.status != 0:
         raise RuntimeError(r.message)

@@ -9,13 +9,12 @@ is reacted there, at the wheel centre when a driveshaft takes it: the jacking fo
 rig, a solution of the same hardpoints by another method).
 """
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from flexpipe.driver import SpeedPI
+from flexpipe.driver import OpenLoopTorque
 from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel, load_car, simulate
 from flexpipe.vehicle.simulation import default_driver
@@ -33,19 +32,10 @@ SEDAN = ROOT / "cars" / "sedan.toml"
 LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
 
 
-@dataclasses.dataclass
-class _ConstantTorque(SpeedPI):
-    value: float = 0.0
-
-    def torque(self, v_target, v, dt, a_target=0.0):
-        return self.value
-
-
 def _run(path, torque, reaction, *, t_end=2.5):
     car = load_car(path, overrides={"drive.drive_reaction": reaction})
     steer, _ = default_driver(car, bodymodel.rigid_properties(car).mass)
-    speed = _ConstantTorque(kp=0.0, ki=0.0, drive_torque_max=1e4, brake_torque_max=1e4,
-                            value=torque)
+    speed = OpenLoopTorque.from_table([0.0], [torque])  # the total wheel torque, held
     r = simulate(car, speed=15.0, t_end=t_end, body="rigid", driver=(steer, speed),
                  output_step=0.01)
     assert r.status == 0, r.message

@@ -41,8 +41,7 @@ def add_arguments(p) -> None:
 TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [car] "
          "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg, .csv) or "
          "path (.toml with a [path] table, .csv) file, a speed profile (.toml with a "
-         "[speed_profile] table, .csv), a tyre (.tir), or a mesh (.bdf, "
-         ".inp, .msh, .vtu, ...)")
+         "[speed_profile] table, .csv), a tyre (.tir), or a mesh (.bdf, .inp, .msh, .vtu, ...)")
 
 #: TOML files info does not describe: (tables that tell them, what they are, their use),
 #: tried in order.  Any file with a [sweep] table is a sweep, whatever its design (a grid
@@ -115,7 +114,9 @@ def toml_text(path) -> str:
 
         return path_text(read_path(path), file=path, table=doc["path"])
     if kind == "speed profile":
-        return _speed_text(path)
+        from flexpipe.driver.speed import profile_file_text
+
+        return profile_file_text(path)
     use = next((u for _, k, u in _OTHER_TOML if k == kind), None)
     what = (f"is a {kind} file, not a car, mesh or body file ({use})" if kind else
             f"is not a car, road or path file: it has no [car], [road] or [path] table "
@@ -324,7 +325,9 @@ def csv_text(path) -> str:
     ``distance_m, height_m``) or driver path (``x_m, y_m``), told by :func:`csv_kind`."""
     kind = csv_kind(path)
     if kind == "speed profile":
-        return _speed_text(path)
+        from flexpipe.driver.speed import profile_file_text
+
+        return profile_file_text(path)
     if kind == "path":
         from flexpipe.driver import read_path
 
@@ -332,12 +335,6 @@ def csv_text(path) -> str:
     from flexpipe.roads import load_road
 
     return road_text(load_road(path), file=path)
-
-
-def _speed_text(path) -> str:
-    from flexpipe.driver.speed import profile_text, read_speed_profile
-
-    return profile_text(read_speed_profile(path), file=path)
 
 
 def path_text(path, *, file=None, table: dict | None = None) -> str:

@@ -180,6 +180,11 @@ def profile_text(profile: SpeedProfile, *, file=None) -> str:
     return "\n".join(lines)
 
 
+def profile_file_text(path) -> str:
+    """:func:`profile_text` of the profile file ``path`` (``flexpipe info``)."""
+    return profile_text(read_speed_profile(path), file=path)
+
+
 def profile_from_spec(table: dict, *, file=None, name: str = "speed_profile",
                       speed_max: float = math.inf) -> SpeedProfile:
     """A profile from a TOML table: ``time_s`` or ``distance_m``, and ``speed_kmh`` or
