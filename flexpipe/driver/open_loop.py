@@ -104,11 +104,8 @@ class OpenLoopSteer:
         tau = np.linspace(0.0, 0.75 * T, 151)
         first = np.sin(2 * np.pi * frequency * tau)
         tau2 = np.linspace(0.75 * T, T, 51)[1:]
-        t = np.concatenate([[0.0], t_start + tau, t_start + dwell + tau2]) if dwell > 0 else \
-            np.concatenate([[0.0], t_start + tau, t_start + tau2])
-        a = np.concatenate([[0.0], first, np.sin(2 * np.pi * frequency * tau2)])
-        if t_start == 0.0:
-            t, a = t[1:], a[1:]
+        t, a = _at_rest_before(t_start, np.concatenate([tau, dwell + tau2]),
+                               np.concatenate([first, np.sin(2 * np.pi * frequency * tau2)]))
         return cls.from_table(t, sign * math.radians(amplitude_deg) * a,
                               kind="sine_with_dwell",
                               source=f"sine with dwell {amplitude_deg:g} deg, "
@@ -123,9 +120,7 @@ class OpenLoopSteer:
             raise InputError(f"sine steer: cycles = {cycles!r}; give > 0", key="cycles")
         n = max(20, int(math.ceil(100 * cycles)))
         tau = np.linspace(0.0, cycles / frequency, n + 1)
-        t = np.concatenate([[0.0], t_start + tau]) if t_start > 0.0 else tau
-        a = np.sin(2 * np.pi * frequency * tau)
-        a = np.concatenate([[0.0], a]) if t_start > 0.0 else a
+        t, a = _at_rest_before(t_start, tau, np.sin(2 * np.pi * frequency * tau))
         return cls.from_table(t, math.radians(amplitude_deg) * a, kind="sine",
                               source=f"sine {amplitude_deg:g} deg, {frequency:g} Hz")
 
@@ -183,6 +178,14 @@ class OpenLoopSteer:
 
     def describe(self) -> str:
         return f"open-loop steering: {self.source or self.kind}"
+
+
+def _at_rest_before(t_start: float, tau, a):
+    """The input ``a`` at times ``t_start + tau`` (``tau`` from 0), led by a point at rest
+    at t = 0 when it starts later."""
+    if t_start > 0.0:
+        return np.concatenate([[0.0], t_start + tau]), np.concatenate([[0.0], a])
+    return tau, a
 
 
 def _time_table(t, v, *, what: str, values: str, key: str, where):

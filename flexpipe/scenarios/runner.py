@@ -125,6 +125,11 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         from flexpipe.roads import load_road
 
         road = load_road(road)
+    if isinstance(speed, (str, Path)):  # a speed profile file, read once for every body
+        from flexpipe.driver.speed import read_speed_profile
+        from flexpipe.vehicle.run_inputs import SPEED_MAX
+
+        speed = read_speed_profile(speed, speed_max=SPEED_MAX)
     if isinstance(path, str) and path == "road":       # follow the road's reference line
         if road is None or not hasattr(road, "reference_path"):
             raise InputError("path 'road' follows the road's reference line: give a road "
