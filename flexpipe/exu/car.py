@@ -132,6 +132,9 @@ class CarBuild:
     gravity: float = 9.81
     point_nodes: dict = field(default_factory=dict)  # name -> mesh node index
     point_local: dict = field(default_factory=dict)  # name -> body coordinates
+    #: powertrain mounts of a flexible body that take the drive's reaction couple (names
+    #: of its interfaces; empty: the body frame takes it)
+    reaction_mounts: tuple = ()
     suspension: object = None  # linkage cars: Suspension with preloaded springs
 
 
@@ -393,6 +396,8 @@ class CarSystem:
             self.load_drive_body = mbs.AddLoad(eii.LoadTorqueVector(
                 markerNumber=self.frame_marker, loadVector=[0.0, 0.0, 0.0]))
             self._drive_on = ()  # wheels whose drive reaction loads are set
+            #: (CoupleSplit, loads) when powertrain mounts take the couple (add_reaction_mounts)
+            self.reaction = None
         m_c = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
         self.load_drive.append(mbs.AddLoad(eii.LoadTorqueVector(markerNumber=m_c,
                                                                 loadVector=[0.0, 0.0, 0.0])))
@@ -413,7 +418,13 @@ class CarSystem:
             tq = (np.zeros(4) if T is None else np.asarray(T))[:, None] * st.wheel_R[:, :, 1]
             for i in sorted(set(driven) | set(self._drive_on)):
                 setp(self.load_drive[i], "loadVector", tq[i].tolist())
-            setp(self.load_drive_body, "loadVector", (-tq.sum(axis=0)).tolist())
+            tau = -tq.sum(axis=0)  # the couple on the body
+            if self.reaction is None:  # on its frame
+                setp(self.load_drive_body, "loadVector", tau.tolist())
+            else:  # at its powertrain mounts (a flexible body)
+                split, mount_loads = self.reaction
+                for load, f in zip(mount_loads, split.rotated(st.body_R, tau), strict=True):
+                    setp(load, "loadVector", f.tolist())
             self._drive_on = driven
 
     def tire_matrices(self, ts, st: CarState):

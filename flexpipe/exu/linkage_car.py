@@ -105,11 +105,32 @@ class LinkageCarSystem(CarSystem):
         self.spin_node, self.load_spin, self.tire_elem = [], [], []
         for i in range(4):
             self._add_wheel(self.wheel_node[i], spec, i)
+        if spec.chassis == "flexible" and spec.reaction_mounts:
+            self._add_reaction_mounts(h, spec.reaction_mounts)
         lk.add_mount_sensors(self.body_node)
         order = spec.suspension.corners()
         self.design_wheel = np.array([order[c].wheel_center for c in ("fl", "fr", "rl", "rr")])
         self._finish(spec)
         self.joint = []
+
+    def _add_reaction_mounts(self, h, names) -> None:
+        """Force loads at the flexible body's powertrain mounts that pass the drive's
+        reaction couple (:class:`~flexpipe.vehicle.reaction_mounts.CoupleSplit`); a rigid
+        body takes the couple on its frame, the same load for it."""
+        from flexpipe.vehicle.reaction_mounts import CoupleSplit
+
+        missing = [n for n in names if n not in h.position_markers]
+        if missing:
+            raise InputError(f"the flexible body has no interface for the powertrain mount "
+                             f"'{missing[0]}' of [drive] reaction_mounts; reduce the body "
+                             "with it (its interfaces: "
+                             f"{', '.join(sorted(h.position_markers))})",
+                             key="drive.reaction_mounts")
+        split = CoupleSplit(tuple(names), np.array([h.interface_points[n] for n in names]))
+        loads = [self.mbs.AddLoad(eii.LoadForceVector(markerNumber=h.position_markers[n],
+                                                      loadVector=[0.0, 0.0, 0.0]))
+                 for n in names]
+        self.reaction = (split, loads)
 
     def state(self, t: float) -> CarState:
         """Current state; ``jounce`` is the wheel-centre travel along the body z axis."""

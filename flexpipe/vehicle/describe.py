@@ -99,6 +99,11 @@ def car_text(car: Car) -> str:
                  f"{car.drive.layout}-wheel drive, its torque reacted on the "
                  + ("body (driveshafts)" if car.drive.reaction == "body" else
                     "knuckles (in-wheel motors)"))
+    if car.drive.reaction_mounts:
+        lines.append("  drive reaction through the powertrain mounts (a flexible body's "
+                     "interfaces; on a rigid body the couple alone):")
+        for m, p in zip(car.drive.reaction_mounts, car.drive.reaction_points, strict=True):
+            lines.append(f"    {m:<30} {_p(p)} m")
     return "\n".join(lines)
 
 

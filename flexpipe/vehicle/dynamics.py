@@ -19,7 +19,8 @@ at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-ax
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
 per named point ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, without gravity);
 linkage cars, per body mount ``m``: ``mount_m_x|y|z`` force the suspension applies to the
-body there (N, body axes; ``hub_c_*`` is the sum over the corner's own mounts).
+body there (N, body axes; ``hub_c_*`` is the sum over the corner's own mounts), and per
+powertrain mount (``[drive] reaction_mounts``) the force of the drive's reaction there.
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from flexpipe.tires.contact import _cross
 from flexpipe.vehicle import sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.corners import ackermann_angles, road_wheel_angles
+from flexpipe.vehicle.reaction_mounts import CoupleSplit
 from flexpipe.vehicle.sensor_rows import Recorder
 from flexpipe.vehicle.spec import CORNERS
 
@@ -181,6 +183,12 @@ class CarController:
                       f"tire_{cn}_Fy", f"tire_{cn}_Fz", f"travel_{cn}", f"spin_{cn}"]
         for p in self.points:
             names += [f"acc_{p}_x", f"acc_{p}_y", f"acc_{p}_z"]
+        #: powertrain mounts passing the drive's reaction couple (``[drive]
+        #: reaction_mounts``): their forces on the body, body axes, before the suspension's
+        self.reaction, self._tau = None, np.zeros(3)
+        if car.drive.reaction_mounts and self.body_reaction:
+            self.reaction = CoupleSplit(car.drive.reaction_mounts, car.drive.reaction_points)
+            names += [f"mount_{m}_{a}" for m in self.reaction.names for a in "xyz"]
         self.mounts = []
         #: per-mount forces recorded by Exudyn sensors (LinkageModel.add_mount_sensors)
         self.mount_sensors = bool(getattr(linkage, "_sensors", None))
@@ -308,6 +316,9 @@ class CarController:
         # the tyre's own moments are in the implicit element: only drive and brake here
         spin_torque = np.broadcast_to(np.asarray(T, dtype=float), (4,)).copy()
         drive = spin_torque if self.torque > 0.0 and self.body_reaction else None
+        if self.reaction is not None:  # the couple on the body (global), as exu.car applies
+            self._tau = np.zeros(3) if drive is None else \
+                -(drive[:, None] * st.wheel_R[:, :, 1]).sum(axis=0)
 
         from flexpipe.exu.car import CarLoads
 
@@ -471,6 +482,10 @@ class CarController:
                 for p in self.points:
                     row[k:k + 3] = R.T @ acc[p]
                     k += 3
+        if self.reaction is not None:
+            f = self.reaction.forces(R.T @ self._tau)
+            row[k:k + f.size] = f.ravel()
+            k += f.size
         if self.mounts:
             if self.rec.rows == 0 or not self.mount_sensors:
                 mf = self.linkage.mount_forces()

@@ -65,7 +65,8 @@ def body_mounts(car: Car) -> list:
     reduced) or else the nodes
     within :data:`MOUNT_RADIUS_M` of the mount point; :data:`MOUNT_DOFS` DOF unless the car
     file says otherwise (``None``: 6 where a joint or bushing needs the mount's frame, else
-    3, ``Suspension.mount_dofs``)."""
+    3, ``Suspension.mount_dofs``); and every powertrain mount of ``[drive]
+    reaction_mounts`` at its ``point_m``, 3 DOF unless its table says otherwise."""
     from flexpipe.vehicle.mounts import Mount
 
     points = car.suspension.mounts()
@@ -73,6 +74,9 @@ def body_mounts(car: Car) -> list:
     if MOUNT_DOFS is not None:
         dofs = dict.fromkeys(dofs, MOUNT_DOFS)
     given = car.body.mounts or {}
+    powertrain = car.drive.reaction_mounts
+    points = {**points, **{n: given[n]["point"] for n in powertrain}}
+    dofs = {**dofs, **dict.fromkeys(powertrain, 3)}  # forces only: statically equivalent
     for name in given:
         if name not in points:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "

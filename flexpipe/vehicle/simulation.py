@@ -367,7 +367,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         position=p0, rotation=R0, speed=speed, spin_rate=spin0, gravity=GRAVITY,
         body_rates=rates,
         point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
-        suspension=susp,
+        suspension=susp, reaction_mounts=car.drive.reaction_mounts,
         modal_prewarp=(h, SPECTRAL_RADIUS) if prewarp and fb is not None else None,
         inertia_coupling=inertia_coupling if fb is not None else "full")
     def make_system(b):

@@ -35,7 +35,8 @@ File layout (see ``cars/sedan.toml`` for a complete example; defaults in bracket
                      travel difference)
     [drive]          layout ("front" | "rear" | "all"), max_drive_torque_N_m [3000],
                      max_brake_torque_N_m [6000], brake_front_share [0.65], front_share
-                     [0.5] (all-wheel drive)
+                     [0.5] (all-wheel drive), drive_reaction ["body"], reaction_mounts
+                     (powertrain mounts, [body.mounts.<name>] tables; docs/car-file.md)
 
 Checks made when the body is built (they need the mesh or the tyre): hardpoints within
 0.05 m of the structure, non-structural masses surrounded by body nodes, wheel radius equal
@@ -128,6 +129,11 @@ class DriveSpec:
     #: or motor: the wheel gets the torque, the body its reaction) or "knuckle" (in-wheel
     #: motors, as brakes always are: the reaction on the wheel carrier)
     reaction: str = "body"
+    #: powertrain mounts ``[body.mounts.<name>]`` that pass the "body" reaction into the
+    #: body (flexpipe.vehicle.reaction_mounts); empty: the body's reference frame takes it
+    reaction_mounts: tuple = ()
+    #: their points (n, 3), body coordinates (m)
+    reaction_points: np.ndarray | None = None
 
     def drive_shares(self) -> np.ndarray:
         """Share of the drive torque per corner in CORNERS order."""
@@ -436,6 +442,10 @@ def _read_car(doc: Table) -> Car:
         dt.number("brake_front_share", 0.65, lo=0, hi=1),
         dt.number("front_share", 0.5, lo=0, hi=1),
         dt.string("drive_reaction", "body", choices=DRIVE_REACTIONS))
+    if dt.has("reaction_mounts"):
+        from flexpipe.vehicle.reaction_mounts import read_reaction_mounts
+
+        drive = read_reaction_mounts(dt, drive, body, suspension)
     dt.finish()
     doc.finish()
     return Car(name, path, body, corners, steering, arbs, drive, suspension)

@@ -139,6 +139,7 @@ def cases():
         .encode(), "error"
 
     yield from _bounds(text)
+    yield from _powertrain()
 
 
 def _bounds(text: str):
@@ -185,3 +186,39 @@ def _bounds(text: str):
              "wheel_inertia_kg_m2 = [0.45, 0.0, 1.45]", "error")):
         assert old in car, old
         yield f"bound-{label}", "car.toml", car.replace(old, new, 1).encode(), expect
+
+
+def _powertrain():
+    """``[drive] reaction_mounts`` (powertrain mounts on a linkage car): each case one
+    mistake in the mount list or its ``[body.mounts]`` tables, and the valid base."""
+    tables = "".join(f"[body.mounts.{n}]\npoint_m = {p}\nradius_m = 0.05\n\n" for n, p in (
+        ("engine_mount_r", "[0.20, -0.55, 0.55]"), ("gearbox_mount_l", "[0.20, 0.55, 0.55]"),
+        ("roll_restrictor", "[-0.20, 0.0, 0.153]")))
+    names = '["engine_mount_r", "gearbox_mount_l", "roll_restrictor"]'
+    lk = base_text(LINKAGE)
+    assert "\n[drive]\n" in lk
+    good = lk.replace("\n[drive]\n", f"\n{tables}[drive]\nreaction_mounts = {names}\n")
+    for label, old, new, expect in (
+            ("ok", "", "", "ok"),
+            ("string", f"reaction_mounts = {names}", 'reaction_mounts = "engine_mount_r"',
+             "error"),
+            ("numbers", f"reaction_mounts = {names}", "reaction_mounts = [1, 2, 3]", "error"),
+            ("empty", f"reaction_mounts = {names}", "reaction_mounts = []", "error"),
+            ("two", f"reaction_mounts = {names}",
+             'reaction_mounts = ["engine_mount_r", "gearbox_mount_l"]', "error"),
+            ("twice", f"reaction_mounts = {names}",
+             'reaction_mounts = ["engine_mount_r", "gearbox_mount_l", "engine_mount_r"]',
+             "error"),
+            ("no-table", f"reaction_mounts = {names}",
+             'reaction_mounts = ["engine_mount_r", "gearbox_mount_l", "oil_pan"]', "error"),
+            ("suspension-mount", f"reaction_mounts = {names}",
+             'reaction_mounts = ["engine_mount_r", "gearbox_mount_l", "front_rack_mount_l"]',
+             "error"),
+            ("no-point", "point_m = [-0.20, 0.0, 0.153]\n", "", "error"),
+            ("on-one-line", "point_m = [-0.20, 0.0, 0.153]", "point_m = [0.20, 0.0, 0.55]",
+             "error"),
+            ("knuckle", f"reaction_mounts = {names}",
+             f'drive_reaction = "knuckle"\nreaction_mounts = {names}', "error"),
+            ("table-without-list", f"reaction_mounts = {names}\n", "", "error")):
+        assert old in good, old
+        yield f"powertrain-{label}", "car.toml", good.replace(old, new, 1).encode(), expect

@@ -434,13 +434,23 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
     body = doc.get("body")
     mounts = body.get("mounts") if isinstance(body, dict) else None
     valid = susp.mounts()
+    drive = doc.get("drive")
+    powertrain = drive.get("reaction_mounts") if isinstance(drive, dict) else None
+    if isinstance(powertrain, list) and all(isinstance(n, str) for n in powertrain):
+        powertrain = set(powertrain)
+    elif powertrain is not None:  # malformed: the drive's reader names it, not this check
+        return
+    else:
+        powertrain = set()
     for name in mounts if isinstance(mounts, dict) else ():  # else read_body names it
         where = dict(file=susp.file, line=Table({}, f"body.mounts.{name}", susp.file,
                                                 lines)._line(None))
+        if name in powertrain and name not in valid:
+            continue  # a powertrain mount: [drive] reaction_mounts
         if name not in valid:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
-                             f"suspension; valid: {', '.join(valid)}", key=f"body.mounts.{name}",
-                             **where)
+                             f"suspension nor a powertrain mount of [drive] reaction_mounts; "
+                             f"valid: {', '.join(valid)}", key=f"body.mounts.{name}", **where)
         p = mounts[name].get("point_m") if isinstance(mounts[name], dict) else None
         try:
             off = float(np.linalg.norm(np.asarray(p, dtype=float) - valid[name]))
