@@ -135,6 +135,8 @@ class CarBuild:
     #: powertrain mounts of a flexible body that take the drive's reaction couple (names
     #: of its interfaces; empty: the body frame takes it)
     reaction_mounts: tuple = ()
+    #: linkage cars: the powertrain as a rigid body on mounts (it takes the reaction)
+    powertrain: object = None
     suspension: object = None  # linkage cars: Suspension with preloaded springs
 
 
@@ -393,8 +395,9 @@ class CarSystem:
         # the body frame), set each step along the spin axes
         if i == 0:
             self.load_drive = []
-            self.load_drive_body = mbs.AddLoad(eii.LoadTorqueVector(
-                markerNumber=self.frame_marker, loadVector=[0.0, 0.0, 0.0]))
+            self.load_drive_body = mbs.AddLoad(eii.LoadTorqueVector(  # or the powertrain
+                markerNumber=getattr(self, "drive_marker", self.frame_marker),
+                loadVector=[0.0, 0.0, 0.0]))
             self._drive_on = ()  # wheels whose drive reaction loads are set
             #: (CoupleSplit, loads) when powertrain mounts take the couple (add_reaction_mounts)
             self.reaction = None

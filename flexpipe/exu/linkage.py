@@ -91,6 +91,7 @@ class LinkageModel:
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
         self.body_links = []
         self.rack = None
+        self.powertrain = None  # (node, object) of a powertrain on mounts
         for i, cn in enumerate(CORNERS):
             self._corner(i, self.corners[cn])
         for axle in suspension.axles.values():
@@ -251,6 +252,32 @@ class LinkageModel:
         if BODY in (a, b):
             self.body_links.append((j.mount, co, "local" if a == BODY else "local-",
                                     (m0, m1), _I3))
+
+    # ------------------------------------------------------------------ powertrain
+    def add_powertrain(self, pt):
+        """The powertrain (:class:`flexpipe.vehicle.powertrain.Powertrain`) as a rigid
+        body on its bushings at the body mounts; their forces count as those mounts'
+        (``mount_forces``, the sensors).  Returns the rigid marker at its centre of mass
+        (for the drive's reaction couple)."""
+        mbs = self.mbs
+        ref = np.asarray(pt.center_of_mass, float)
+        node, obj = self._body(pt.mass, pt.inertia, ref, ref)
+        for name, p, bu in zip(pt.mounts, pt.points, pt.bushings, strict=True):
+            A = bu.frame
+            m0 = self._framed(self.mount_marker(name, True), A)
+            m1 = self._marker((obj, ref), p, True, frame=A)
+            kw = {}
+            if bu.tables:
+                law = bushing_law(mbs, bu)
+                self._laws.append(law)
+                kw["springForceTorqueUserFunction"] = law
+            co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+                markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
+                damping=np.diag(bu.damping),
+                visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
+            self.body_links.append((name, co, "local", (m0, m1), _I3))
+        self.powertrain = (node, obj)
+        return mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=node))
 
     # ------------------------------------------------------------------ rack, bars
     def _rack_owner(self):

@@ -88,6 +88,9 @@ class LinkageCarSystem(CarSystem):
             mb = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=self.body_obj))
             mbs.AddLoad(eii.LoadMassProportional(markerNumber=mb, loadVector=list(g)))
             points = spec.suspension.mounts()
+            if spec.powertrain is not None:
+                points.update(zip(spec.powertrain.mounts, spec.powertrain.points,
+                                  strict=True))
 
             def mount_marker(name, rigid):
                 key = (name, rigid)
@@ -101,6 +104,8 @@ class LinkageCarSystem(CarSystem):
             self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
         self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker,
                                          p0=p0, R0=R0, v0=v0, gravity=g)
+        if spec.powertrain is not None:  # the drive's reaction goes to it (_add_wheel)
+            self.drive_marker = lk.add_powertrain(spec.powertrain)
         self.wheel_node = list(lk.knuckle_node)
         self.spin_node, self.load_spin, self.tire_elem = [], [], []
         for i in range(4):

@@ -90,7 +90,7 @@ def car_text(car: Car) -> str:
             f"characteristic constraint modes to {band:g} Hz ([body] interface_band_hz)"))
     extra = 0.0 if car.suspension is None else sum(m for m, _ in point_masses(susp)) \
         - sum(unsprung)  # rack and anti-roll-bar arms
-    W = 9.81 * (rb.mass + sum(unsprung) + extra)
+    W = 9.81 * (rb.mass + sum(unsprung) + extra + car.powertrain_mass)
     lines.append("  static wheel loads (N): " + ", ".join(
         f"{n} {v:.1f}" for n, v in zip(CORNERS, N, strict=True))
         + f"; sum {N.sum():.1f} (car weight {W:.1f})")
@@ -99,6 +99,14 @@ def car_text(car: Car) -> str:
                  f"{car.drive.layout}-wheel drive, its torque reacted on the "
                  + ("body (driveshafts)" if car.drive.reaction == "body" else
                     "knuckles (in-wheel motors)"))
+    if car.powertrain is not None:
+        pt = car.powertrain
+        f, _ = pt.frequencies()
+        lines.append(f"  powertrain on mounts: {pt.mass:.1f} kg at {_p(pt.center_of_mass)} m "
+                     "(takes the drive's reaction); natural frequencies on its mounts, body "
+                     f"held: {', '.join(f'{v:.1f}' for v in f)} Hz")
+        for m, p, b in zip(pt.mounts, pt.points, pt.bushings, strict=True):
+            lines.append(f"    {m:<30} {_p(p)} m  rates {_p(pt.rates(b)[:3])} N/m")
     if car.drive.reaction_mounts:
         lines.append("  drive reaction through the powertrain mounts (a flexible body's "
                      "interfaces; on a rigid body the couple alone):")

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import GRAVITY
@@ -66,7 +68,8 @@ def body_mounts(car: Car) -> list:
     within :data:`MOUNT_RADIUS_M` of the mount point; :data:`MOUNT_DOFS` DOF unless the car
     file says otherwise (``None``: 6 where a joint or bushing needs the mount's frame, else
     3, ``Suspension.mount_dofs``); and every powertrain mount of ``[drive]
-    reaction_mounts`` at its ``point_m``, 3 DOF unless its table says otherwise."""
+    reaction_mounts`` or ``[powertrain] mounts`` at its ``point_m``, 3 DOF unless its
+    table says otherwise."""
     from flexpipe.vehicle.mounts import Mount
 
     points = car.suspension.mounts()
@@ -74,7 +77,7 @@ def body_mounts(car: Car) -> list:
     if MOUNT_DOFS is not None:
         dofs = dict.fromkeys(dofs, MOUNT_DOFS)
     given = car.body.mounts or {}
-    powertrain = car.drive.reaction_mounts
+    powertrain = car.drive.reaction_mounts + (car.powertrain.mounts if car.powertrain else ())
     points = {**points, **{n: given[n]["point"] for n in powertrain}}
     dofs = {**dofs, **dict.fromkeys(powertrain, 3)}  # forces only: statically equivalent
     for name in given:
@@ -98,13 +101,16 @@ def linkage_statics(car: Car, rb):
     """Suspension of a linkage car ready to run and its static wheel loads (4,) N.
 
     The knuckles carry the wheels; the static loads follow from the whole car's mass
-    distribution (body, every part at its centre of mass, rack, anti-roll-bar arms) and
+    distribution (body, every part at its centre of mass, rack, anti-roll-bar arms, a
+    powertrain on mounts) and
     every spring is preloaded (virtual work) to hold the design position under them.
     """
     from flexpipe.vehicle.corners import static_wheel_loads
     from flexpipe.vehicle.suspension.statics import point_masses, preloaded, with_wheels
 
     susp = with_wheels(car.suspension, car.suspension.wheels)  # load_car requires all four
-    N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY,
-                           point_masses=point_masses(susp))
+    pm = point_masses(susp)
+    if car.powertrain is not None:  # a rigid body on mounts, not part of the body's mass
+        pm.append((car.powertrain.mass, np.asarray(car.powertrain.center_of_mass)))
+    N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY, point_masses=pm)
     return preloaded(susp, dict(zip(CORNERS, N, strict=True)), g=GRAVITY), N

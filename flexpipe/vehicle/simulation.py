@@ -141,7 +141,12 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
     bodies = bodies or {}
     rb = bodies.get("rigid") or bodymodel.rigid_properties(car, cache=cache)
     tires = _tires(car)
-    corners = corner_arrays(car, rb.mass, rb.center_of_mass, tires=tires)
+    m_s, cg_s = rb.mass, rb.center_of_mass  # the sprung mass, a powertrain on mounts in it
+    if car.powertrain is not None:
+        m_pt = car.powertrain.mass
+        cg_s = (m_s * cg_s + m_pt * car.powertrain.center_of_mass) / (m_s + m_pt)
+        m_s += m_pt
+    corners = corner_arrays(car, m_s, cg_s, tires=tires)
     out = {"rigid": rb, "corners": corners, "tires": tires, "flexbody": None,
            "band_hz": None, "reduction": None}
     if body in ("flexible", "full"):
@@ -282,7 +287,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                                road=road_obj, f_max=f_max,
                                cache=cache, log=log)
     rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]
-    total_mass = rb.mass + corners.m_unsprung.sum()
+    total_mass = rb.mass + corners.m_unsprung.sum() + car.powertrain_mass
     if steering is None or speed_pi is None:  # a driver file may leave [speed] out
         default_steering, default_speed = default_driver(car, total_mass)
         steering = steering or default_steering
@@ -368,6 +373,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         body_rates=rates,
         point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
         suspension=susp, reaction_mounts=car.drive.reaction_mounts,
+        powertrain=car.powertrain,
         modal_prewarp=(h, SPECTRAL_RADIUS) if prewarp and fb is not None else None,
         inertia_coupling=inertia_coupling if fb is not None else "full")
     def make_system(b):

@@ -37,6 +37,9 @@ File layout (see ``cars/sedan.toml`` for a complete example; defaults in bracket
                      max_brake_torque_N_m [6000], brake_front_share [0.65], front_share
                      [0.5] (all-wheel drive), drive_reaction ["body"], reaction_mounts
                      (powertrain mounts, [body.mounts.<name>] tables; docs/car-file.md)
+    [powertrain]     linkage cars: mass_kg, center_of_mass_m, inertia_kg_m2, mounts,
+                     [powertrain.bushings.<mount>] (a rigid powertrain on its mounts,
+                     flexpipe.vehicle.powertrain)
 
 Checks made when the body is built (they need the mesh or the tyre): hardpoints within
 0.05 m of the structure, non-structural masses surrounded by body nodes, wheel radius equal
@@ -159,6 +162,12 @@ class Car:
     anti_roll_bars: dict
     drive: DriveSpec
     suspension: object = None  # flexpipe.vehicle.suspension.Suspension (linkage templates)
+    powertrain: object = None  # flexpipe.vehicle.powertrain.Powertrain (rigid, on mounts)
+
+    @property
+    def powertrain_mass(self) -> float:
+        """Mass of the powertrain on mounts (0 without one), kg."""
+        return 0.0 if self.powertrain is None else float(self.powertrain.mass)
 
     def corner(self, name: str) -> CornerSpec:
         """The corner called ``name`` (fl, fr, rl, rr)."""
@@ -447,5 +456,10 @@ def _read_car(doc: Table) -> Car:
 
         drive = read_reaction_mounts(dt, drive, body, suspension)
     dt.finish()
+    powertrain = None
+    if doc.has("powertrain"):
+        from flexpipe.vehicle.powertrain import read_powertrain
+
+        powertrain = read_powertrain(doc, body, suspension, drive)
     doc.finish()
-    return Car(name, path, body, corners, steering, arbs, drive, suspension)
+    return Car(name, path, body, corners, steering, arbs, drive, suspension, powertrain)

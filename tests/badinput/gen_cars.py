@@ -140,6 +140,7 @@ def cases():
 
     yield from _bounds(text)
     yield from _powertrain()
+    yield from _powertrain_body()
 
 
 def _bounds(text: str):
@@ -222,3 +223,42 @@ def _powertrain():
             ("table-without-list", f"reaction_mounts = {names}\n", "", "error")):
         assert old in good, old
         yield f"powertrain-{label}", "car.toml", good.replace(old, new, 1).encode(), expect
+
+
+def _powertrain_body():
+    """``[powertrain]`` (a rigid powertrain on mounts of a linkage car): one mistake each
+    in its table, its mounts or their bushings, and the valid base."""
+    from tests.test_powertrain import SPREAD, powertrain_text
+
+    lk = base_text(LINKAGE)
+    assert SPREAD in lk
+    good = lk.replace(SPREAD, "").replace("\n[drive]\n", "\n" + powertrain_text() + "[drive]\n")
+    names = '["engine_mount_r", "gearbox_mount_l", "roll_restrictor"]'
+    for label, old, new in (
+            ("ok", "", ""),
+            ("mass-zero", "mass_kg = 190.0", "mass_kg = 0.0"),
+            ("mass-missing", "mass_kg = 190.0\n", ""),
+            ("cm-two", "center_of_mass_m = [0.10, 0.0, 0.55]", "center_of_mass_m = [0.1, 0.0]"),
+            ("inertia-triangle", "inertia_kg_m2 = [8.0, 6.0, 9.0]",
+             "inertia_kg_m2 = [8.0, 6.0, 30.0]"),
+            ("mounts-string", f"mounts = {names}", 'mounts = "engine_mount_r"'),
+            ("mounts-twice", f"mounts = {names}",
+             'mounts = ["engine_mount_r", "engine_mount_r", "roll_restrictor"]'),
+            ("mount-no-table", f"mounts = {names}",
+             'mounts = ["engine_mount_r", "gearbox_mount_l", "oil_pan"]'),
+            ("mount-suspension", f"mounts = {names}",
+             'mounts = ["engine_mount_r", "gearbox_mount_l", "front_rack_mount_l"]'),
+            ("bushing-missing", "[powertrain.bushings.roll_restrictor]",
+             "[powertrain.bushings_spare.roll_restrictor]"),
+            ("bushing-stray", "[powertrain.bushings.roll_restrictor]",
+             "[powertrain.bushings.oil_pan]\nstiffness = [1e5, 1e5, 1e5, 0, 0, 0]\n\n"
+             "[powertrain.bushings.roll_restrictor]"),
+            ("bushing-n-per-mm", "stiffness = [150000.0, 150000.0, 250000.0,",
+             "stiffness = [150.0, 150.0, 250.0,"),
+            ("bushing-negative", "stiffness = [150000.0, 150000.0, 250000.0,",
+             "stiffness = [-150000.0, 150000.0, 250000.0,"),
+            ("no-linkage-drive-reaction", "\n[drive]\n",
+             f"\n[drive]\nreaction_mounts = {names}\n")):
+        assert old in good, old
+        yield (f"powertrain-body-{label}", "car.toml", good.replace(old, new, 1).encode(),
+               "ok" if label == "ok" else "error")

@@ -120,7 +120,9 @@ def _table_xy(t: Table, xkey: str, ykey: str, *, rising: str | None = None,
     return x, y
 
 
-def _bushing(t: Table) -> Bushing:
+def read_bushing(t: Table) -> Bushing:
+    """A bushing table: ``stiffness`` and ``damping`` (6 each), ``axis``, ``dofs``,
+    ``[tables]`` (see docs/car-file.md)."""
     dofs = t.string("dofs", "all", choices=("all", "translational"))
     k = t.vector("stiffness", 6, doc="kx ky kz [N/m] krx kry krz [N m/rad]")
     c = t.vector("damping", 6, np.zeros(6))
@@ -236,7 +238,7 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
             if name not in req + opt:
                 raise bt.error(name, f"unknown hardpoint for a bushing; valid: body-side "
                                      f"hardpoints of {template}")
-            bushings[name] = _bushing(bt.sub(name))
+            bushings[name] = read_bushing(bt.sub(name))
         bt.finish()
     forces = _forces(t)
     preload = forces.pop("_preload", None)
@@ -291,7 +293,7 @@ def _axle(st: Table, axle: str, rack_axle: str | None) -> Axle:
                           SPRING_PART[template],
                           mounts=((f"{axle}_arb_bushing_l", hp["arb_bushing"]),
                                   (f"{axle}_arb_bushing_r", hp["arb_bushing"] * [1, -1, 1])),
-                          bushing_stiffness=(_bushing(at.sub("bushing"))
+                          bushing_stiffness=(read_bushing(at.sub("bushing"))
                                              if at.has("bushing") else None))
         at.finish()
     t.finish()
@@ -434,14 +436,14 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
     body = doc.get("body")
     mounts = body.get("mounts") if isinstance(body, dict) else None
     valid = susp.mounts()
-    drive = doc.get("drive")
-    powertrain = drive.get("reaction_mounts") if isinstance(drive, dict) else None
-    if isinstance(powertrain, list) and all(isinstance(n, str) for n in powertrain):
-        powertrain = set(powertrain)
-    elif powertrain is not None:  # malformed: the drive's reader names it, not this check
-        return
-    else:
-        powertrain = set()
+    powertrain = set()
+    for table, key in (("drive", "reaction_mounts"), ("powertrain", "mounts")):
+        t = doc.get(table)
+        names = t.get(key) if isinstance(t, dict) else None
+        if isinstance(names, list) and all(isinstance(n, str) for n in names):
+            powertrain |= set(names)
+        elif names is not None:  # malformed: that table's reader names it, not this check
+            return
     for name in mounts if isinstance(mounts, dict) else ():  # else read_body names it
         where = dict(file=susp.file, line=Table({}, f"body.mounts.{name}", susp.file,
                                                 lines)._line(None))
@@ -449,7 +451,8 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
             continue  # a powertrain mount: [drive] reaction_mounts
         if name not in valid:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
-                             f"suspension nor a powertrain mount of [drive] reaction_mounts; "
+                             f"suspension nor a powertrain mount ([powertrain] mounts, [drive] "
+                             f"reaction_mounts); "
                              f"valid: {', '.join(valid)}", key=f"body.mounts.{name}", **where)
         p = mounts[name].get("point_m") if isinstance(mounts[name], dict) else None
         try:
