@@ -207,22 +207,7 @@ class LinkageModel:
         """Joint ``j`` between owners ``a`` and ``b`` (see module docstring)."""
         mbs = self.mbs
         if j.bushing is not None and not self.kinematic:
-            body_first = b == BODY
-            part = a if body_first else b
-            bu = j.bushing
-            A = bu.frame
-            m0 = self._framed(self.mount_marker(j.mount, True), A)
-            m1 = self._marker(part, j.point, True, frame=A)
-            kw = {}
-            if bu.tables:  # nonlinear directions: the bushing's law inside Exudyn
-                law = bushing_law(mbs, bu)
-                self._laws.append(law)
-                kw["springForceTorqueUserFunction"] = law
-            co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
-                markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
-                damping=np.diag(bu.damping),
-                visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
-            self.body_links.append((j.mount, co, "local", (m0, m1), _I3))
+            self._body_bushing(j.mount, j.bushing, a if b == BODY else b, j.point)
             return
         if j.kind == "spherical":
             m0 = (self.mount_marker(j.mount, False) if a == BODY
@@ -253,6 +238,23 @@ class LinkageModel:
             self.body_links.append((j.mount, co, "local" if a == BODY else "local-",
                                     (m0, m1), _I3))
 
+    def _body_bushing(self, mount, bu, owner, point) -> None:
+        """Bushing ``bu`` from the body's ``mount`` (marker 0) to ``owner`` at ``point``,
+        in the bushing's frame; its force counts as the mount's (``body_links``)."""
+        mbs = self.mbs
+        m0 = self._framed(self.mount_marker(mount, True), bu.frame)
+        m1 = self._marker(owner, point, True, frame=bu.frame)
+        kw = {}
+        if bu.tables:  # nonlinear directions: the bushing's law inside Exudyn
+            law = bushing_law(mbs, bu)
+            self._laws.append(law)
+            kw["springForceTorqueUserFunction"] = law
+        co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+            markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
+            damping=np.diag(bu.damping),
+            visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
+        self.body_links.append((mount, co, "local", (m0, m1), _I3))
+
     # ------------------------------------------------------------------ powertrain
     def add_powertrain(self, pt):
         """The powertrain (:class:`flexpipe.vehicle.powertrain.Powertrain`) as a rigid
@@ -263,19 +265,7 @@ class LinkageModel:
         ref = np.asarray(pt.center_of_mass, float)
         node, obj = self._body(pt.mass, pt.inertia, ref, ref)
         for name, p, bu in zip(pt.mounts, pt.points, pt.bushings, strict=True):
-            A = bu.frame
-            m0 = self._framed(self.mount_marker(name, True), A)
-            m1 = self._marker((obj, ref), p, True, frame=A)
-            kw = {}
-            if bu.tables:
-                law = bushing_law(mbs, bu)
-                self._laws.append(law)
-                kw["springForceTorqueUserFunction"] = law
-            co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
-                markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
-                damping=np.diag(bu.damping),
-                visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
-            self.body_links.append((name, co, "local", (m0, m1), _I3))
+            self._body_bushing(name, bu, (obj, ref), p)
         self.powertrain = (node, obj)
         return mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=node))
 
