@@ -17,7 +17,7 @@ from flexpipe.driver import OpenLoopTorque
 from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel, load_car, simulate
 from flexpipe.vehicle.linkage_setup import GRAVITY
-from flexpipe.vehicle.powertrain import Powertrain
+from flexpipe.vehicle.mounted import MountedBody
 from flexpipe.vehicle.simulation import default_driver
 from flexpipe.vehicle.suspension.model import Bushing
 from flexpipe.vehicle.suspension.statics import point_masses, with_wheels
@@ -62,7 +62,7 @@ def car_file(tmp_path, **kw) -> Path:
     return path
 
 
-def _statics(pt: Powertrain, load: np.ndarray) -> np.ndarray:
+def _statics(pt: MountedBody, load: np.ndarray) -> np.ndarray:
     """Forces (n, 3) on the body at the mounts (body axes) of the powertrain held by its
     linear translational mounts under ``load`` = (force, moment about its centre of
     mass)."""
@@ -83,7 +83,7 @@ def test_car_reads_the_powertrain(tmp_path):
     car = load_car(car_file(tmp_path))
     pt = car.powertrain
     assert pt.mounts == tuple(MOUNTS)
-    assert car.powertrain_mass == MASS
+    assert car.mounted_mass == MASS
     np.testing.assert_allclose(pt.points, [p for p, _, _ in MOUNTS.values()])
 
 
@@ -92,7 +92,7 @@ def test_symmetric_mounts_bounce_at_the_closed_form_frequency():
     # bounce decoupled, f = sqrt(4 k / m) / (2 pi)
     k = np.array([1e5, 1e5, 2e5, 0.0, 0.0, 0.0])
     pts = np.array([[0.3, 0.3, 0.0], [0.3, -0.3, 0.0], [-0.3, 0.3, 0.0], [-0.3, -0.3, 0.0]])
-    pt = Powertrain(150.0, np.zeros(3), np.diag([6.0, 5.0, 7.0]), ("a", "b", "c", "d"), pts,
+    pt = MountedBody(150.0, np.zeros(3), np.diag([6.0, 5.0, 7.0]), ("a", "b", "c", "d"), pts,
                     tuple(Bushing(k) for _ in range(4)))
     f, V = pt.frequencies()
     bounce = int(np.argmax(np.abs(V[2])))

@@ -117,7 +117,7 @@ def test_bad_reaction_mounts_name_file_and_key(tmp_path, kw, match):
 
 
 def test_powertrain_tables_without_reaction_mounts_are_refused(tmp_path):
-    with pytest.raises(InputError, match="nor a powertrain mount") as err:
+    with pytest.raises(InputError, match="nor a mount of \\[powertrain\\]") as err:
         load_car(_car_file(tmp_path, mounts=None))
     assert err.value.key == f"body.mounts.{NAMES[0]}"
 

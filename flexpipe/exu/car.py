@@ -137,6 +137,7 @@ class CarBuild:
     reaction_mounts: tuple = ()
     #: linkage cars: the powertrain as a rigid body on mounts (it takes the reaction)
     powertrain: object = None
+    subframes: tuple = ()  # linkage cars: subframes on mounts carrying suspension mounts
     suspension: object = None  # linkage cars: Suspension with preloaded springs
 
 

@@ -57,6 +57,23 @@ def _inertia6(J):
     return [J[0, 0], J[1, 1], J[2, 2], J[1, 2], J[0, 2], J[0, 1]]
 
 
+def add_rigid_part(mbs, mass, J_cm, cm, ref, *, p0, R0, v0, gravity):
+    """A rigid body (with its weight) whose node sits at ``ref`` (body coordinates at the
+    design position, the body frame at ``p0, R0`` moving at ``v0``); centre of mass ``cm``
+    and inertia ``J_cm`` about it.  Returns ``(node, object)``."""
+    ref = np.asarray(ref, float)
+    d = np.asarray(cm, float) - ref
+    J = np.asarray(J_cm, float) + mass * (d @ d * np.eye(3) - np.outer(d, d))
+    node = mbs.AddNode(GetRigidBodyNode(
+        nodeType=NODE_TYPE, position=list(np.asarray(p0) + np.asarray(R0) @ ref),
+        velocity=list(v0), rotationMatrix=np.asarray(R0), angularVelocity=[0.0, 0.0, 0.0]))
+    obj = mbs.AddObject(eii.ObjectRigidBody(mass=float(mass), nodeNumber=node,
+                                            inertia=_inertia6(J), centerOfMass=list(d)))
+    m = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
+    mbs.AddLoad(eii.LoadMassProportional(markerNumber=m, loadVector=list(gravity)))
+    return node, obj
+
+
 class LinkageModel:
     """The suspension of a car added to an Exudyn system (see module docstring).
 
@@ -101,18 +118,8 @@ class LinkageModel:
     # ------------------------------------------------------------------ helpers
     def _body(self, mass, J_cm, cm, ref):
         """Rigid body with node at ``ref`` (body coordinates at design), cm and inertia."""
-        mbs = self.mbs
-        d = np.asarray(cm, float) - ref
-        J = np.asarray(J_cm, float) + mass * (d @ d * np.eye(3) - np.outer(d, d))
-        node = mbs.AddNode(GetRigidBodyNode(
-            nodeType=NODE_TYPE, position=list(self.p0 + self.R0 @ ref),
-            velocity=list(self.v0), rotationMatrix=self.R0, angularVelocity=[0.0, 0.0, 0.0]))
-        obj = mbs.AddObject(eii.ObjectRigidBody(mass=float(mass), nodeNumber=node,
-                                                inertia=_inertia6(J),
-                                                centerOfMass=list(d)))
-        m = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=obj))
-        mbs.AddLoad(eii.LoadMassProportional(markerNumber=m, loadVector=list(self.g)))
-        return node, obj
+        return add_rigid_part(self.mbs, mass, J_cm, cm, ref, p0=self.p0, R0=self.R0,
+                              v0=self.v0, gravity=self.g)
 
     def _marker(self, owner, point, rigid, frame=None):
         """Marker at ``point`` (body coordinates) on ``owner`` = (obj, ref) or 'body'; on a
@@ -255,9 +262,16 @@ class LinkageModel:
             visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
         self.body_links.append((mount, co, "local", (m0, m1), _I3))
 
-    # ------------------------------------------------------------------ powertrain
+    # ------------------------------------------------------------------ mounted bodies
+    def add_subframe_mounts(self, sf, node_obj) -> None:
+        """The bushings of subframe ``sf`` (its rigid body ``node_obj``, built before the
+        corners that it carries) at its body mounts."""
+        ref = np.asarray(sf.center_of_mass, float)
+        for name, p, bu in zip(sf.mounts, sf.points, sf.bushings, strict=True):
+            self._body_bushing(name, bu, (node_obj[1], ref), p)
+
     def add_powertrain(self, pt):
-        """The powertrain (:class:`flexpipe.vehicle.powertrain.Powertrain`) as a rigid
+        """The powertrain (:class:`flexpipe.vehicle.mounted.MountedBody`) as a rigid
         body on its bushings at the body mounts; their forces count as those mounts'
         (``mount_forces``, the sensors).  Returns the rigid marker at its centre of mass
         (for the drive's reaction couple)."""

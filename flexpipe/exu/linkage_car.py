@@ -30,7 +30,7 @@ from flexpipe.errors import InputError
 from flexpipe.exu.body import NODE_TYPE, add_flexible_body
 from flexpipe.exu.brackets import frame_bracket, mount_bracket
 from flexpipe.exu.car import CarState, CarSystem
-from flexpipe.exu.linkage import LinkageModel
+from flexpipe.exu.linkage import LinkageModel, add_rigid_part
 
 
 class LinkageCarSystem(CarSystem):
@@ -88,9 +88,9 @@ class LinkageCarSystem(CarSystem):
             mb = mbs.AddMarker(eii.MarkerBodyMass(bodyNumber=self.body_obj))
             mbs.AddLoad(eii.LoadMassProportional(markerNumber=mb, loadVector=list(g)))
             points = spec.suspension.mounts()
-            if spec.powertrain is not None:
-                points.update(zip(spec.powertrain.mounts, spec.powertrain.points,
-                                  strict=True))
+            for b in (spec.powertrain, *spec.subframes):
+                if b is not None:
+                    points.update(zip(b.mounts, b.points, strict=True))
 
             def mount_marker(name, rigid):
                 key = (name, rigid)
@@ -102,8 +102,16 @@ class LinkageCarSystem(CarSystem):
                 return cache[key]
         if spec.chassis != "flexible":
             self.frame_marker = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=self.body_node))
+        subframes = {sf.name: add_rigid_part(mbs, sf.mass, sf.inertia, sf.center_of_mass,
+                                             sf.center_of_mass, p0=p0, R0=R0, v0=v0,
+                                             gravity=g)
+                     for sf in spec.subframes}
+        if subframes:
+            mount_marker = _on_subframes(mbs, spec, subframes, mount_marker)
         self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker,
                                          p0=p0, R0=R0, v0=v0, gravity=g)
+        for sf in spec.subframes:
+            lk.add_subframe_mounts(sf, subframes[sf.name])
         if spec.powertrain is not None:  # the drive's reaction goes to it (_add_wheel)
             self.drive_marker = lk.add_powertrain(spec.powertrain)
         self.wheel_node = list(lk.knuckle_node)
@@ -162,3 +170,27 @@ class LinkageCarSystem(CarSystem):
 
     def joint_forces(self):  # the hub force comes from hub_forces for linkage cars
         return np.zeros((4, 3))
+
+
+def _on_subframes(mbs, spec, subframes, body_marker):
+    """``mount_marker`` with the suspension mounts a subframe carries on that subframe's
+    rigid body (``subframes``: name -> (node, object)) at their hardpoints, the others on
+    the body (``body_marker``)."""
+    points = spec.suspension.mounts()
+    owner = {n: sf for sf in spec.subframes for n in sf.carries}
+    cache = {}
+
+    def mount_marker(name, rigid):
+        sf = owner.get(name)
+        if sf is None:
+            return body_marker(name, rigid)
+        key = (name, rigid)
+        if key not in cache:
+            obj = subframes[sf.name][1]
+            local = [float(v) for v in np.asarray(points[name]) - sf.center_of_mass]
+            item = (eii.MarkerBodyRigid if rigid else eii.MarkerBodyPosition)(
+                bodyNumber=obj, localPosition=local)
+            cache[key] = mbs.AddMarker(item)
+        return cache[key]
+
+    return mount_marker

@@ -81,7 +81,9 @@ def car_text(car: Car) -> str:
         lines.append(f"  body mounts ({len(mounts)}; interface DOF 3 = forces, 6 = forces "
                      "and moments):")
         for m, p in mounts.items():
-            lines.append(f"    {m:<30} {_p(p)} m  dofs {dofs[m]}")
+            sf = car.carrier_of(m)
+            lines.append(f"    {m:<30} {_p(p)} m  " + (f"on {sf.name}" if sf is not None
+                                                        else f"dofs {dofs[m]}"))
         from flexpipe.vehicle.linkage_setup import interface_band
 
         band = interface_band(car)
@@ -90,7 +92,7 @@ def car_text(car: Car) -> str:
             f"characteristic constraint modes to {band:g} Hz ([body] interface_band_hz)"))
     extra = 0.0 if car.suspension is None else sum(m for m, _ in point_masses(susp)) \
         - sum(unsprung)  # rack and anti-roll-bar arms
-    W = 9.81 * (rb.mass + sum(unsprung) + extra + car.powertrain_mass)
+    W = 9.81 * (rb.mass + sum(unsprung) + extra + car.mounted_mass)
     lines.append("  static wheel loads (N): " + ", ".join(
         f"{n} {v:.1f}" for n, v in zip(CORNERS, N, strict=True))
         + f"; sum {N.sum():.1f} (car weight {W:.1f})")
@@ -99,12 +101,13 @@ def car_text(car: Car) -> str:
                  f"{car.drive.layout}-wheel drive, its torque reacted on the "
                  + ("body (driveshafts)" if car.drive.reaction == "body" else
                     "knuckles (in-wheel motors)"))
-    if car.powertrain is not None:
-        pt = car.powertrain
+    for pt in car.mounted_bodies:
         f, _ = pt.frequencies()
-        lines.append(f"  powertrain on mounts: {pt.mass:.1f} kg at {_p(pt.center_of_mass)} m "
-                     "(takes the drive's reaction); natural frequencies on its mounts, body "
-                     f"held: {', '.join(f'{v:.1f}' for v in f)} Hz")
+        what = ("takes the drive's reaction" if pt.name == "powertrain" else
+                f"carries {', '.join(pt.carries)}")
+        lines.append(f"  {pt.name} on mounts: {pt.mass:.1f} kg at {_p(pt.center_of_mass)} m "
+                     f"({what}); natural frequencies on its mounts, body held: "
+                     f"{', '.join(f'{v:.1f}' for v in f)} Hz")
         for m, p, b in zip(pt.mounts, pt.points, pt.bushings, strict=True):
             lines.append(f"    {m:<30} {_p(p)} m  rates {_p(pt.rates(b)[:3])} N/m")
     if car.drive.reaction_mounts:

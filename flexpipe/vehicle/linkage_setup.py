@@ -68,8 +68,8 @@ def body_mounts(car: Car) -> list:
     within :data:`MOUNT_RADIUS_M` of the mount point; :data:`MOUNT_DOFS` DOF unless the car
     file says otherwise (``None``: 6 where a joint or bushing needs the mount's frame, else
     3, ``Suspension.mount_dofs``); and every powertrain mount of ``[drive]
-    reaction_mounts`` or ``[powertrain] mounts`` at its ``point_m``, 3 DOF unless its
-    table says otherwise."""
+    reaction_mounts``, ``[powertrain]`` or ``[subframe.*]`` mounts at its ``point_m``, 3
+    DOF unless its table says otherwise; not the suspension mounts a subframe carries."""
     from flexpipe.vehicle.mounts import Mount
 
     points = car.suspension.mounts()
@@ -77,9 +77,11 @@ def body_mounts(car: Car) -> list:
     if MOUNT_DOFS is not None:
         dofs = dict.fromkeys(dofs, MOUNT_DOFS)
     given = car.body.mounts or {}
-    powertrain = car.drive.reaction_mounts + (car.powertrain.mounts if car.powertrain else ())
-    points = {**points, **{n: given[n]["point"] for n in powertrain}}
-    dofs = {**dofs, **dict.fromkeys(powertrain, 3)}  # forces only: statically equivalent
+    carried = {n for s in car.subframes for n in s.carries}  # on a subframe, not the body
+    points = {n: p for n, p in points.items() if n not in carried}
+    extra = car.drive.reaction_mounts + tuple(n for b in car.mounted_bodies for n in b.mounts)
+    points = {**points, **{n: given[n]["point"] for n in extra}}
+    dofs = {**dofs, **dict.fromkeys(extra, 3)}  # forces only; 6 where the table says
     for name in given:
         if name not in points:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
@@ -102,15 +104,14 @@ def linkage_statics(car: Car, rb):
 
     The knuckles carry the wheels; the static loads follow from the whole car's mass
     distribution (body, every part at its centre of mass, rack, anti-roll-bar arms, a
-    powertrain on mounts) and
+    powertrain or subframe on mounts) and
     every spring is preloaded (virtual work) to hold the design position under them.
     """
     from flexpipe.vehicle.corners import static_wheel_loads
     from flexpipe.vehicle.suspension.statics import point_masses, preloaded, with_wheels
 
     susp = with_wheels(car.suspension, car.suspension.wheels)  # load_car requires all four
-    pm = point_masses(susp)
-    if car.powertrain is not None:  # a rigid body on mounts, not part of the body's mass
-        pm.append((car.powertrain.mass, np.asarray(car.powertrain.center_of_mass)))
+    pm = point_masses(susp)  # + powertrain and subframes: on mounts, not in the body
+    pm += [(b.mass, np.asarray(b.center_of_mass)) for b in car.mounted_bodies]
     N = static_wheel_loads(car, rb.mass, rb.center_of_mass, g=GRAVITY, point_masses=pm)
     return preloaded(susp, dict(zip(CORNERS, N, strict=True)), g=GRAVITY), N

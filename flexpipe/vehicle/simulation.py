@@ -141,11 +141,10 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
     bodies = bodies or {}
     rb = bodies.get("rigid") or bodymodel.rigid_properties(car, cache=cache)
     tires = _tires(car)
-    m_s, cg_s = rb.mass, rb.center_of_mass  # the sprung mass, a powertrain on mounts in it
-    if car.powertrain is not None:
-        m_pt = car.powertrain.mass
-        cg_s = (m_s * cg_s + m_pt * car.powertrain.center_of_mass) / (m_s + m_pt)
-        m_s += m_pt
+    m_s, cg_s = rb.mass, rb.center_of_mass  # the sprung mass, with powertrain and subframes
+    for b in car.mounted_bodies:
+        cg_s = (m_s * cg_s + b.mass * b.center_of_mass) / (m_s + b.mass)
+        m_s += b.mass
     corners = corner_arrays(car, m_s, cg_s, tires=tires)
     out = {"rigid": rb, "corners": corners, "tires": tires, "flexbody": None,
            "band_hz": None, "reduction": None}
@@ -287,7 +286,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
                                road=road_obj, f_max=f_max,
                                cache=cache, log=log)
     rb, corners, tires = prep["rigid"], prep["corners"], prep["tires"]
-    total_mass = rb.mass + corners.m_unsprung.sum() + car.powertrain_mass
+    total_mass = rb.mass + corners.m_unsprung.sum() + car.mounted_mass
     if steering is None or speed_pi is None:  # a driver file may leave [speed] out
         default_steering, default_speed = default_driver(car, total_mass)
         steering = steering or default_steering
@@ -373,7 +372,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         body_rates=rates,
         point_nodes=pn if pn else {n: -1 for n in names}, point_local=local,
         suspension=susp, reaction_mounts=car.drive.reaction_mounts,
-        powertrain=car.powertrain,
+        powertrain=car.powertrain, subframes=car.subframes,
         modal_prewarp=(h, SPECTRAL_RADIUS) if prewarp and fb is not None else None,
         inertia_coupling=inertia_coupling if fb is not None else "full")
     def make_system(b):

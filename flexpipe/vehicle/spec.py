@@ -39,7 +39,8 @@ File layout (see ``cars/sedan.toml`` for a complete example; defaults in bracket
                      (powertrain mounts, [body.mounts.<name>] tables; docs/car-file.md)
     [powertrain]     linkage cars: mass_kg, center_of_mass_m, inertia_kg_m2, mounts,
                      [powertrain.bushings.<mount>] (a rigid powertrain on its mounts,
-                     flexpipe.vehicle.powertrain)
+                     flexpipe.vehicle.mounted)
+    [subframe.<name>]  linkage cars: the same keys plus carries (suspension mounts on it)
 
 Checks made when the body is built (they need the mesh or the tyre): hardpoints within
 0.05 m of the structure, non-structural masses surrounded by body nodes, wheel radius equal
@@ -162,12 +163,22 @@ class Car:
     anti_roll_bars: dict
     drive: DriveSpec
     suspension: object = None  # flexpipe.vehicle.suspension.Suspension (linkage templates)
-    powertrain: object = None  # flexpipe.vehicle.powertrain.Powertrain (rigid, on mounts)
+    powertrain: object = None  # flexpipe.vehicle.mounted.MountedBody (rigid, on mounts)
+    subframes: tuple = ()  # MountedBody each, carrying suspension mounts
 
     @property
-    def powertrain_mass(self) -> float:
-        """Mass of the powertrain on mounts (0 without one), kg."""
-        return 0.0 if self.powertrain is None else float(self.powertrain.mass)
+    def mounted_bodies(self) -> tuple:
+        """The rigid bodies on bushings at body mounts: powertrain, then subframes."""
+        return ((self.powertrain,) if self.powertrain is not None else ()) + self.subframes
+
+    @property
+    def mounted_mass(self) -> float:
+        """Mass of the powertrain and subframes on mounts (0 without), kg."""
+        return float(sum(b.mass for b in self.mounted_bodies))
+
+    def carrier_of(self, mount: str):
+        """The subframe carrying suspension mount ``mount``, or None (on the body)."""
+        return next((s for s in self.subframes if mount in s.carries), None)
 
     def corner(self, name: str) -> CornerSpec:
         """The corner called ``name`` (fl, fr, rl, rr)."""
@@ -458,8 +469,14 @@ def _read_car(doc: Table) -> Car:
     dt.finish()
     powertrain = None
     if doc.has("powertrain"):
-        from flexpipe.vehicle.powertrain import read_powertrain
+        from flexpipe.vehicle.mounted import read_powertrain
 
         powertrain = read_powertrain(doc, body, suspension, drive)
+    subframes = ()
+    if doc.has("subframe"):
+        from flexpipe.vehicle.mounted import read_subframes
+
+        subframes = read_subframes(doc, body, suspension)
     doc.finish()
-    return Car(name, path, body, corners, steering, arbs, drive, suspension, powertrain)
+    return Car(name, path, body, corners, steering, arbs, drive, suspension, powertrain,
+               subframes)

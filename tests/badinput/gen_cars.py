@@ -141,6 +141,7 @@ def cases():
     yield from _bounds(text)
     yield from _powertrain()
     yield from _powertrain_body()
+    yield from _subframe()
 
 
 def _bounds(text: str):
@@ -261,4 +262,36 @@ def _powertrain_body():
              f"\n[drive]\nreaction_mounts = {names}\n")):
         assert old in good, old
         yield (f"powertrain-body-{label}", "car.toml", good.replace(old, new, 1).encode(),
+               "ok" if label == "ok" else "error")
+
+
+def _subframe():
+    """``[subframe.<name>]`` (a cradle on bushings carrying suspension mounts): one mistake
+    each, and the valid base."""
+    from tests.test_subframe import CARRIED, SOFT, subframe_text
+
+    lk = base_text(LINKAGE)
+    good = lk.replace("\n[drive]\n", "\n" + subframe_text(**SOFT) + "[drive]\n")
+    carried = str(CARRIED).replace("'", '"')
+    for label, old, new in (
+            ("ok", "", ""),
+            ("carries-string", f"carries = {carried}", 'carries = "front_rack_mount_l"'),
+            ("carries-unknown", f"carries = {carried}", 'carries = ["oil_pan"]'),
+            ("carries-twice", f"carries = {carried}",
+             'carries = ["front_rack_mount_l", "front_rack_mount_l"]'),
+            ("carries-missing", f"carries = {carried}\n", ""),
+            ("carried-tied", "\n[drive]\n",
+             "\n[body.mounts.front_rack_mount_l]\nradius_m = 0.02\n\n[drive]\n"),
+            ("mass-negative", "mass_kg = 20.0", "mass_kg = -20.0"),
+            ("mount-untied", "[body.mounts.cradle_rear_r]", "[body.mounts.cradle_rear_x]"),
+            ("bushing-stray", "[subframe.front.bushings.cradle_rear_r]",
+             "[subframe.front.bushings.cradle_x]"),
+            ("prismatic", "", "")):
+        if label == "prismatic":
+            text = base_text().replace("\n[drive]\n",
+                                       "\n[subframe.front]\nmass_kg = 20.0\n\n[drive]\n")
+            yield "subframe-prismatic", "car.toml", text.encode(), "error"
+            continue
+        assert old in good, old
+        yield (f"subframe-{label}", "car.toml", good.replace(old, new, 1).encode(),
                "ok" if label == "ok" else "error")

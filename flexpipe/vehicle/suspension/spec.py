@@ -437,8 +437,10 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
     mounts = body.get("mounts") if isinstance(body, dict) else None
     valid = susp.mounts()
     powertrain = set()
-    for table, key in (("drive", "reaction_mounts"), ("powertrain", "mounts")):
-        t = doc.get(table)
+    sub = doc.get("subframe")
+    tables = [(doc.get("drive"), "reaction_mounts"), (doc.get("powertrain"), "mounts")] + [
+        (t, "mounts") for t in (sub.values() if isinstance(sub, dict) else ())]
+    for t, key in tables:
         names = t.get(key) if isinstance(t, dict) else None
         if isinstance(names, list) and all(isinstance(n, str) for n in names):
             powertrain |= set(names)
@@ -451,8 +453,8 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
             continue  # a powertrain mount: [drive] reaction_mounts
         if name not in valid:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
-                             f"suspension nor a powertrain mount ([powertrain] mounts, [drive] "
-                             f"reaction_mounts); "
+                             f"suspension nor a mount of [powertrain], [subframe.*] or [drive] "
+                             f"reaction_mounts; "
                              f"valid: {', '.join(valid)}", key=f"body.mounts.{name}", **where)
         p = mounts[name].get("point_m") if isinstance(mounts[name], dict) else None
         try:
