@@ -21,6 +21,7 @@ from flexpipe.vehicle.mounted import MountedBody
 from flexpipe.vehicle.simulation import default_driver
 from flexpipe.vehicle.suspension.model import Bushing
 from flexpipe.vehicle.suspension.statics import point_masses, with_wheels
+from tests._mountstatics import mount_forces
 
 ROOT = Path(__file__).resolve().parents[1]
 LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
@@ -60,22 +61,6 @@ def car_file(tmp_path, **kw) -> Path:
     path = tmp_path / "car_powertrain.toml"
     path.write_text(text)
     return path
-
-
-def _statics(pt: MountedBody, load: np.ndarray) -> np.ndarray:
-    """Forces (n, 3) on the body at the mounts (body axes) of the powertrain held by its
-    linear translational mounts under ``load`` = (force, moment about its centre of
-    mass)."""
-    K = np.zeros((6, 6))
-    blocks = []
-    for p, b in zip(pt.points, pt.bushings, strict=True):
-        x, y, z = p - pt.center_of_mass
-        T = np.hstack([np.eye(3), -np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])])
-        k = b.frame @ np.diag(b.stiffness[:3]) @ b.frame.T
-        K += T.T @ k @ T
-        blocks.append(k @ T)
-    u = np.linalg.solve(K, load)
-    return np.array([B @ u for B in blocks])
 
 
 # ----------------------------------------------------------------------------- reader
@@ -138,7 +123,7 @@ def test_parked_powertrain_hangs_in_its_mounts(tmp_path, body, tol):
     sel = r.t > 1.0
     f = np.array([[r[f"mount_{n}_{a}"][sel].mean() for a in "xyz"] for n in pt.mounts])
     W = MASS * GRAVITY
-    ref = _statics(pt, np.array([0.0, 0.0, -W, 0.0, 0.0, 0.0]))
+    ref = mount_forces(pt, np.array([0.0, 0.0, -W, 0.0, 0.0, 0.0]))
     # the flexible body's mounts move under the load: the bushings see that too
     assert np.abs(f - ref).max() <= tol * W
     # the tyres carry the whole car, the powertrain on its mounts included
@@ -164,5 +149,5 @@ def test_drive_couple_reaches_the_body_through_the_mounts(tmp_path, body):
     # the couple passes whole (the inertia and weight act at the centre of mass)
     assert M[1] == pytest.approx(-torque, rel=0.01)
     # the mounts share the loads as the linear statics of the powertrain on them say
-    ref = _statics(pt, np.concatenate([F, M]))
+    ref = mount_forces(pt, np.concatenate([F, M]))
     assert np.abs(f - ref).max() <= 0.015 * np.abs(f).max()

@@ -108,7 +108,6 @@ class LinkageModel:
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
         self.body_links = []
         self.rack = None
-        self.powertrain = None  # (node, object) of a powertrain on mounts
         for i, cn in enumerate(CORNERS):
             self._corner(i, self.corners[cn])
         for axle in suspension.axles.values():
@@ -263,25 +262,21 @@ class LinkageModel:
         self.body_links.append((mount, co, "local", (m0, m1), _I3))
 
     # ------------------------------------------------------------------ mounted bodies
-    def add_subframe_mounts(self, sf, node_obj) -> None:
-        """The bushings of subframe ``sf`` (its rigid body ``node_obj``, built before the
-        corners that it carries) at its body mounts."""
-        ref = np.asarray(sf.center_of_mass, float)
-        for name, p, bu in zip(sf.mounts, sf.points, sf.bushings, strict=True):
+    def add_body_mounts(self, b, node_obj) -> None:
+        """The bushings of ``b`` (a :class:`flexpipe.vehicle.mounted.MountedBody`: the
+        powertrain or a subframe; ``node_obj`` its rigid body) at its body mounts; their
+        forces count as those mounts' (``mount_forces``, the sensors)."""
+        ref = np.asarray(b.center_of_mass, float)
+        for name, p, bu in zip(b.mounts, b.points, b.bushings, strict=True):
             self._body_bushing(name, bu, (node_obj[1], ref), p)
 
     def add_powertrain(self, pt):
-        """The powertrain (:class:`flexpipe.vehicle.mounted.MountedBody`) as a rigid
-        body on its bushings at the body mounts; their forces count as those mounts'
-        (``mount_forces``, the sensors).  Returns the rigid marker at its centre of mass
-        (for the drive's reaction couple)."""
-        mbs = self.mbs
+        """The powertrain as a rigid body on its bushings at the body mounts; returns the
+        rigid marker at its centre of mass (for the drive's reaction couple)."""
         ref = np.asarray(pt.center_of_mass, float)
         node, obj = self._body(pt.mass, pt.inertia, ref, ref)
-        for name, p, bu in zip(pt.mounts, pt.points, pt.bushings, strict=True):
-            self._body_bushing(name, bu, (obj, ref), p)
-        self.powertrain = (node, obj)
-        return mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=node))
+        self.add_body_mounts(pt, (node, obj))
+        return self.mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=node))
 
     # ------------------------------------------------------------------ rack, bars
     def _rack_owner(self):

@@ -111,7 +111,7 @@ class LinkageCarSystem(CarSystem):
         self.linkage = lk = LinkageModel(mbs, spec.suspension, mount_marker=mount_marker,
                                          p0=p0, R0=R0, v0=v0, gravity=g)
         for sf in spec.subframes:
-            lk.add_subframe_mounts(sf, subframes[sf.name])
+            lk.add_body_mounts(sf, subframes[sf.name])
         if spec.powertrain is not None:  # the drive's reaction goes to it (_add_wheel)
             self.drive_marker = lk.add_powertrain(spec.powertrain)
         self.wheel_node = list(lk.knuckle_node)

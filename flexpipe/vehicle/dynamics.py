@@ -19,8 +19,9 @@ at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-ax
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
 per named point ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, without gravity);
 linkage cars, per body mount ``m``: ``mount_m_x|y|z`` force the suspension applies to the
-body there (N, body axes; ``hub_c_*`` is the sum over the corner's own mounts), and per
-powertrain mount (``[drive] reaction_mounts``) the force of the drive's reaction there.
+body there (N, body axes; ``hub_c_*`` is the sum over the corner's own mounts; on the
+subframe for a mount a subframe carries), and the force on the body at every mount of a
+powertrain or subframe (``[drive] reaction_mounts``: the drive's reaction couple there).
 """
 
 from __future__ import annotations
