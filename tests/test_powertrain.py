@@ -151,3 +151,15 @@ def test_drive_couple_reaches_the_body_through_the_mounts(tmp_path, body):
     # the mounts share the loads as the linear statics of the powertrain on them say
     ref = mount_forces(pt, np.concatenate([F, M]))
     assert np.abs(f - ref).max() <= 0.015 * np.abs(f).max()
+
+
+def test_sweep_overrides_reach_the_bushings(tmp_path):
+    # a sweep's car overrides set the bushings (car.powertrain.bushings.<mount>.<key>):
+    # four times every rate, twice every body-held frequency (f ~ sqrt(k / m))
+    path = car_file(tmp_path)
+    base = load_car(path)
+    stiff = load_car(path, overrides={f"powertrain.bushings.{n}.stiffness": [4 * v for v in
+                                                                            (*k, 0, 0, 0)]
+                                      for n, (_, k, _) in MOUNTS.items()})
+    np.testing.assert_allclose(stiff.powertrain.frequencies()[0],
+                               2 * base.powertrain.frequencies()[0], rtol=1e-9)
