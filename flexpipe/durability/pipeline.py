@@ -37,8 +37,9 @@ DESCRIPTIONS = {
     "motion_flexible.npz": "flexible body pose (origin position m, body-to-global rotation) "
                            "and elastic modal coordinates per output step, with the body "
                            "file, its band and a road strip (input of flexpipe stress/animate)",
-    "hardpoints.csv": "elastic displacement (m) and rotation (rad) of every suspension "
-                      "hardpoint of the flexible body, global axes, vs time",
+    "hardpoints.csv": "elastic displacement (m) and rotation (rad) of every interface of "
+                      "the flexible body (suspension hardpoints, powertrain and subframe "
+                      "mounts), global axes, vs time",
 }
 
 
