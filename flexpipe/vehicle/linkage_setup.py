@@ -78,9 +78,9 @@ def body_mounts(car: Car) -> list:
         dofs = dict.fromkeys(dofs, MOUNT_DOFS)
     given = car.body.mounts or {}
     carried = {n for s in car.subframes for n in s.carries}  # on a subframe, not the body
-    points = {n: p for n, p in points.items() if n not in carried}
     extra = car.drive.reaction_mounts + tuple(n for b in car.mounted_bodies for n in b.mounts)
-    points = {**points, **{n: given[n]["point"] for n in extra}}
+    points = {**{n: p for n, p in points.items() if n not in carried},
+              **{n: given[n]["point"] for n in extra}}
     dofs = {**dofs, **dict.fromkeys(extra, 3)}  # forces only; 6 where the table says
     for name in given:
         if name not in points:

@@ -25,15 +25,11 @@ import numpy as np
 from scipy.linalg import eigh
 
 from flexpipe._arrays import frozen_arrays
+from flexpipe.vehicle.suspension.kinematics import skew
 from flexpipe.vehicle.suspension.model import BUSHING_DOFS
 
 #: deflection (m or rad) about which a nonlinear table's slope counts as its rate
 TABLE_SLOPE_STEP = 1e-4
-
-
-def _skew(r) -> np.ndarray:
-    x, y, z = r
-    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
 @dataclass(frozen=True)
@@ -70,7 +66,8 @@ class MountedBody:
     name: str = "powertrain"
     carries: tuple = ()
 
-    def rates(self, b) -> np.ndarray:
+    @staticmethod
+    def rates(b) -> np.ndarray:
         """The six rates of bushing ``b`` at zero deflection (a table's slope there)."""
         k = np.array(b.stiffness, dtype=float)
         for i, dof in enumerate(BUSHING_DOFS):
@@ -92,7 +89,7 @@ class MountedBody:
             Kj[:3, :3] = A @ np.diag(k[:3]) @ A.T
             Kj[3:, 3:] = A @ np.diag(k[3:]) @ A.T
             T = np.eye(6)
-            T[:3, 3:] = -_skew(p - self.center_of_mass)
+            T[:3, 3:] = -skew(p - self.center_of_mass)
             K += T.T @ Kj @ T
         return K
 
@@ -111,7 +108,8 @@ class MountedBody:
         return np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi), V
 
 
-def _names(t, key: str) -> list:
+def mount_names(t, key: str) -> list:
+    """The list of mount names under ``key`` of table ``t``: non-empty strings, each once."""
     names = t.raw(key)
     if not (isinstance(names, list) and names and all(isinstance(n, str) and n.strip()
                                                       for n in names)):
@@ -120,6 +118,26 @@ def _names(t, key: str) -> list:
         raise t.error(key, "a mount is named more than once: "
                            f"{sorted({n for n in names if names.count(n) > 1})}")
     return names
+
+
+def mount_points(t, key: str, names, body, suspension) -> np.ndarray:
+    """Points (n, 3) of the body mounts ``names`` (listed under ``key`` of table ``t``):
+    each a ``[body.mounts.<name>]`` table with ``point_m``, and no suspension mount."""
+    given, susp = body.mounts or {}, suspension.mounts()
+    points = []
+    for n in names:
+        if n in susp:
+            raise t.error(key, f"'{n}' is a suspension mount; a mount of [{t.name}] needs a "
+                               "name of its own (a [body.mounts.<name>] table with point_m)")
+        if n not in given:
+            raise t.error(key, f"'{n}' has no [body.mounts.{n}] table: give one with point_m "
+                               "(where the mount sits on the body, m) and radius_m, node_set "
+                               "or node_ids (the body nodes it is bolted to)")
+        if given[n].get("point") is None:
+            raise t.error(key, f"[body.mounts.{n}] needs point_m: where the mount sits on the "
+                               "body (m, body coordinates)")
+        points.append(given[n]["point"])
+    return np.array(points, dtype=float)
 
 
 def _read_mounted(t, body, suspension, *, carries=()) -> MountedBody:
@@ -134,18 +152,8 @@ def _read_mounted(t, body, suspension, *, carries=()) -> MountedBody:
     cm = t.vector("center_of_mass_m")
     J = read_inertia(t, "inertia_kg_m2")
     check_principal_moments(t, "inertia_kg_m2", J)
-    names = _names(t, "mounts")
-    given, susp = body.mounts or {}, suspension.mounts()
-    points = []
-    for n in names:
-        if n in susp:
-            raise t.error("mounts", f"'{n}' is a suspension mount; a mount of [{t.name}] "
-                                    "needs a name of its own (a [body.mounts.<name>] table)")
-        if n not in given or given[n].get("point") is None:
-            raise t.error("mounts", f"'{n}' needs a [body.mounts.{n}] table with point_m "
-                                    "(where the mount sits on the body, m) and radius_m, "
-                                    "node_set or node_ids (the body nodes it is bolted to)")
-        points.append(given[n]["point"])
+    names = mount_names(t, "mounts")
+    points = mount_points(t, "mounts", names, body, suspension)
     bt = t.sub("bushings")
     for n in bt.data:
         if n not in names:
@@ -159,7 +167,7 @@ def _read_mounted(t, body, suspension, *, carries=()) -> MountedBody:
         bushings.append(read_bushing(bt.sub(n)))
     bt.finish()
     t.finish()
-    out = MountedBody(mass, cm, J, tuple(names), np.array(points), tuple(bushings),
+    out = MountedBody(mass, cm, J, tuple(names), points, tuple(bushings),
                       name=t.name, carries=tuple(carries))
     lam = np.linalg.eigvalsh(out.stiffness_matrix())
     if lam[0] <= 1e-9 * max(lam[-1], 1e-300):
@@ -212,7 +220,7 @@ def read_subframes(doc, body, suspension) -> tuple:
     seen, out = {}, []
     for name in list(st.data):
         t = st.sub(name)
-        carries = _names(t, "carries")
+        carries = mount_names(t, "carries")
         for n in carries:
             if n not in susp:
                 raise t.error("carries", f"'{n}' is no mount of this car's suspension; "

@@ -81,15 +81,10 @@ def read_reaction_mounts(dt, drive, body, suspension):
     reaction_mounts`` read from the table ``dt`` and checked: unique names of
     ``[body.mounts]`` tables with a ``point_m`` that are no suspension mounts, at least
     three not on one line, on a linkage car whose drive reacts on the body."""
+    from flexpipe.vehicle.mounted import mount_names, mount_points
+
     key = "reaction_mounts"
-    names = dt.raw(key)
-    if not (isinstance(names, list) and names and all(isinstance(n, str) and n.strip()
-                                                      for n in names)):
-        raise dt.error(key, "expected a list of mount names (strings), each a "
-                            f"[body.mounts.<name>] table, got {names!r}")
-    if len(set(names)) < len(names):
-        twice = sorted({n for n in names if names.count(n) > 1})
-        raise dt.error(key, f"names {', '.join(twice)} more than once")
+    names = mount_names(dt, key)
     if drive.reaction != "body":
         raise dt.error(key, f"drive_reaction = {drive.reaction!r} reacts the drive torque on "
                             "the knuckles (in-wheel motors): powertrain mounts need "
@@ -98,26 +93,12 @@ def read_reaction_mounts(dt, drive, body, suspension):
         raise dt.error(key, "powertrain mounts need a linkage suspension car ([suspension.*], "
                             "whose body mounts are tied in [body.mounts]); this car has "
                             "prismatic corners: remove reaction_mounts")
-    given = body.mounts or {}
-    susp = suspension.mounts()
-    points = []
-    for n in names:
-        if n in susp:
-            raise dt.error(key, f"'{n}' is a suspension mount; a powertrain mount needs a "
-                                "name of its own (a [body.mounts.<name>] table with point_m)")
-        if n not in given:
-            raise dt.error(key, f"'{n}' has no [body.mounts.{n}] table: give one with "
-                                "point_m (where the mount sits on the body) and radius_m, "
-                                "node_set or node_ids (the body nodes it is bolted to)")
-        if given[n].get("point") is None:
-            raise dt.error(key, f"[body.mounts.{n}] needs point_m: where the powertrain "
-                                "mount sits on the body (m, body coordinates)")
-        points.append(given[n]["point"])
+    points = mount_points(dt, key, names, body, suspension)
     if len(names) < 3:
         raise dt.error(key, f"{len(names)} mount(s) cannot pass a couple about every axis: "
                             "give at least three, not on one line")
     try:
-        split = CoupleSplit(tuple(names), np.array(points))
+        split = CoupleSplit(tuple(names), points)
     except InputError as exc:  # the file and line of the key
         raise dt.error(key, exc.message) from None
     return replace(drive, reaction_mounts=split.names, reaction_points=split.points)

@@ -436,21 +436,21 @@ def _check_body_mounts(doc: dict, susp: Suspension, lines: list[str]) -> None:
     body = doc.get("body")
     mounts = body.get("mounts") if isinstance(body, dict) else None
     valid = susp.mounts()
-    powertrain = set()
+    others = set()  # mounts of the powertrain, the subframes and the drive's reaction
     sub = doc.get("subframe")
     tables = [(doc.get("drive"), "reaction_mounts"), (doc.get("powertrain"), "mounts")] + [
         (t, "mounts") for t in (sub.values() if isinstance(sub, dict) else ())]
     for t, key in tables:
         names = t.get(key) if isinstance(t, dict) else None
         if isinstance(names, list) and all(isinstance(n, str) for n in names):
-            powertrain |= set(names)
+            others |= set(names)
         elif names is not None:  # malformed: that table's reader names it, not this check
             return
     for name in mounts if isinstance(mounts, dict) else ():  # else read_body names it
         where = dict(file=susp.file, line=Table({}, f"body.mounts.{name}", susp.file,
                                                 lines)._line(None))
-        if name in powertrain and name not in valid:
-            continue  # a powertrain mount: [drive] reaction_mounts
+        if name in others and name not in valid:
+            continue  # a powertrain, subframe or drive-reaction mount
         if name not in valid:
             raise InputError(f"[body.mounts] names '{name}', which is no mount of this car's "
                              f"suspension nor a mount of [powertrain], [subframe.*] or [drive] "
