@@ -1,4 +1,5 @@
-"""Magic Formula version, MF 5.2 file formats and TeimOrbit corner cases of the .tir reader.
+"""Magic Formula version, MF 5.2 / 6.x file formats and TeimOrbit corner cases of the .tir
+reader.
 
 References written out here, independent of flexpipe:
 
@@ -90,32 +91,49 @@ def base_forces():
 
 
 # ======================================================================== FITTYP
-@pytest.mark.parametrize("fittyp, version", [(60, "6.0"), (61, "6.1"), (62, "6.2")])
-def test_mf6_fittyp_is_refused_naming_file_line_key_and_supported_versions(tmp_path, fittyp,
-                                                                          version):
-    """The audit's case: FITTYP 61 with PKY4 = 1.5 was evaluated silently as MF 5.2."""
-    text = insert_after(BASE, "[MODEL]", f"FITTYP                   = {fittyp}")
-    text = insert_after(text, "PKY3", "PKY4                     = 1.5")
+def test_mf60_fittyp_is_refused_naming_file_line_key_and_supported_versions(tmp_path):
+    """MF 6.0's equations are neither MF 5.2's nor MF 6.1's: refused, not guessed."""
+    text = insert_after(BASE, "[MODEL]", "FITTYP                   = 60")
     path = write(tmp_path, text)
     for load in (read_tir, tire_from_file, lambda p: tire_from_file(p, model="fiala")):
         with pytest.raises(InputError) as exc:
             load(path)
         msg = str(exc.value)
         assert str(path) in msg and f"line {line_of(text, 'FITTYP')}" in msg
-        assert "key 'FITTYP'" in msg and f"Magic Formula {version}" in msg
-        assert "flexpipe evaluates PAC2002 / MF 5.2 (FITTYP 6 or 21" in msg
-        assert "not supported" in msg
+        assert "key 'FITTYP'" in msg and "Magic Formula 6.0" in msg
+        assert "6, 21, 61, 62" in msg and "wrong forces" in msg
 
 
-def test_mf61_file_fails_on_its_version_before_entries_flexpipe_cannot_read(tmp_path):
-    """MF 6.x files as MF-Tool writes them: no PROPERTY_FILE_FORMAT, empty entries."""
+@pytest.mark.parametrize("fittyp", [61, 62])
+def test_mf61_and_mf62_fits_are_evaluated_with_the_mf6_equations(tmp_path, fittyp):
+    """The audit's case (FITTYP 61, PKY4 = 1.5, once evaluated silently as MF 5.2): the
+    cornering stiffness is MF 6.1's closed form, 805.2 N/deg, not MF 5.2's 1005.3, in
+    both the Magic Formula and the Fiala tyre derived from the file."""
+    text = insert_after(BASE, "[MODEL]", f"FITTYP                   = {fittyp}")
+    text = insert_after(text, "PKY3", "PKY4                     = 1.5")
+    path = write(tmp_path, text)
+    props = quiet(read_tir, path)
+    assert props.is_mf6 and props.fittyp == fittyp
+    r = raw_numbers(path)
+    kx61, ky61 = mf61_stiffness(r, FZ)
+    assert abs(ky61) * math.pi / 180 == pytest.approx(805.2, abs=0.1)
+    kx, ky = quiet(tire_from_file, path).mf.slip_stiffness(FZ)
+    assert float(ky) == pytest.approx(ky61, rel=1e-12) and float(kx) == pytest.approx(kx61)
+    fiala = quiet(tire_from_file, path, model="fiala")
+    assert fiala.params.c_alpha == pytest.approx(abs(ky61), rel=1e-12)
+
+
+def test_mf61_file_as_mf_tool_writes_it_is_read(tmp_path):
+    """MF 6.x files as MF-Tool writes them: no PROPERTY_FILE_FORMAT, empty entries in
+    [MODEL] (skipped), MF-Tyre's three-digit USE_MODE (slip part 4: combined)."""
     text = BASE.replace("PROPERTY_FILE_FORMAT     = 'PAC2002'",
                         "FITTYP                   = 61\nROAD_INCREMENT           =")
+    text = text.replace("USE_MODE                 = 14", "USE_MODE                 = 124")
     path = write(tmp_path, text)
-    with pytest.raises(InputError) as exc:
-        read_tir(path)
-    assert f"line {line_of(text, 'FITTYP')}, key 'FITTYP'" in str(exc.value)
-    assert "Magic Formula 6.1" in str(exc.value)
+    props = quiet(read_tir, path)
+    assert props.is_mf6 and props.get("MODEL", "ROAD_INCREMENT") is None
+    tire = quiet(tire_from_file, path)
+    assert tire.mf.use_mode == 4 and tire.relaxation
 
 
 @pytest.mark.parametrize("fittyp", [6, 21])
@@ -208,6 +226,32 @@ def test_pressure_term_warns_when_pressure_is_not_nominal(tmp_path, units, inflp
     kx61, _ = mf61_stiffness(r, FZ, dpi=(180000.0 - 250000.0) / 250000.0)
     assert kx52 == pytest.approx(84.0e3) and kx61 == pytest.approx(95.76e3)
     assert float(tire.mf.slip_stiffness(FZ)[0]) == pytest.approx(kx52, rel=1e-12)
+
+
+@pytest.mark.parametrize("units, inflpres, nompres", [
+    ("", "180000", "250000"),
+    ("PRESSURE                 = 'bar'\n", "1.8", "2.5"),
+])
+def test_pressure_term_acts_in_an_mf61_fit(tmp_path, units, inflpres, nompres):
+    """The same file as an MF 6.1 fit: Kx is MF 6.1's 95.76 kN at 1.8 of 2.5 bar, without a
+    warning; ``pressure=`` moves it along the closed form, the vertical stiffness with
+    ``1 + PFZ1 dpi``."""
+    text = insert_after(BASE, "[MODEL]", "FITTYP                   = 61")
+    text = insert_after(text, "PKX3", "PPX1                     = -0.5")
+    text = insert_after(text, "FNOMIN", "PFZ1                     = 0.6")
+    text = insert_after(text, "TIME", units) if units else text
+    text += (f"[OPERATING_CONDITIONS]\nINFLPRES = {inflpres}\nNOMPRES  = {nompres}\n")
+    path = write(tmp_path, text)
+    tire = quiet(tire_from_file, path, vertical_law="linear")
+    r = raw_numbers(path)
+    kx61, _ = mf61_stiffness(r, FZ, dpi=(180000.0 - 250000.0) / 250000.0)
+    assert kx61 == pytest.approx(95.76e3)
+    assert float(tire.mf.slip_stiffness(FZ)[0]) == pytest.approx(kx61, rel=1e-12)
+    assert tire.vertical.k == pytest.approx(r["VERTICAL_STIFFNESS"] * (1.0 - 0.6 * 0.28))
+    at = quiet(tire_from_file, path, vertical_law="linear", pressure=300000.0)
+    kx61, _ = mf61_stiffness(r, FZ, dpi=0.2)
+    assert float(at.mf.slip_stiffness(FZ)[0]) == pytest.approx(kx61, rel=1e-12)
+    assert at.vertical.k == pytest.approx(r["VERTICAL_STIFFNESS"] * (1.0 + 0.6 * 0.2))
 
 
 def test_pressure_term_warns_with_adams_tire_conditions(tmp_path):
@@ -314,7 +358,7 @@ def test_unsupported_format_names_the_supported_ones(tmp_path):
     msg = str(exc.value)
     assert str(path) in msg and f"line {line_of(text, 'PROPERTY_FILE_FORMAT')}" in msg
     assert "'MF-TYRE'" in msg and "'PAC2002'" in msg and "'MF_05'" in msg
-    assert "6.x" in msg and "not supported" in msg
+    assert "6.1 / 6.2" in msg and "FITTYP 61 or 62" in msg
 
 
 # ======================================================================== comment blocks

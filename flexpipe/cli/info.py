@@ -235,10 +235,9 @@ def road_text(road, *, file=None, table: dict | None = None) -> str:
 
 
 def tire_text(path) -> str:
-    """Summary of a ``.tir`` tyre file as flexpipe reads it (PAC2002): size, vertical
-    model, and at the nominal load FNOMIN the peak friction, slip stiffnesses, relaxation
-    lengths and the loaded radius.  The file is read once (its warnings show once); a file
-    without ``[DIMENSION] WIDTH``, which a run does not need, says "width not given"."""
+    """Summary of a ``.tir`` file as flexpipe reads it: Magic Formula version (MF 6.x: the
+    pressure), size, vertical model, and at FNOMIN the peak friction, slip stiffnesses,
+    relaxation lengths and loaded radius (read once: its warnings show once)."""
     import numpy as np
 
     from flexpipe.tires import read_tir
@@ -258,9 +257,11 @@ def tire_text(path) -> str:
     width = ("width not given" if width is None else
              f"width {width * 1e3:.0f} mm" if isinstance(width, float) else
              f"width {width!r} (not a number)")
+    version = (f"Magic Formula {props.fittyp / 10:.1f} at {mf.pressure / 1e3:.0f} kPa (NOMPRES "
+               f"{mf.nominal_pressure / 1e3:.0f} kPa)" if props.is_mf6 else "Magic Formula 5.2")
     return "\n".join([
-        f"{path}: tyre ({props.property_file_format}, USE_MODE {props.use_mode}, "
-        f"TYRESIDE {props.tyre_side})",
+        f"{path}: tyre ({props.property_file_format or 'no PROPERTY_FILE_FORMAT'}, "
+        f"USE_MODE {props.use_mode}, TYRESIDE {props.tyre_side}); {version}",
         f"  unloaded radius {props.unloaded_radius * 1e3:.1f} mm, {width}; vertical "
         f"stiffness {props.vertical_stiffness:.4g} N/m, damping "
         f"{props.vertical_damping:.4g} N s/m",

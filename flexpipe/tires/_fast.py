@@ -1,4 +1,4 @@
-"""Compiled (Numba) wheel forces of a PAC2002 tyre: the per-step hot path of a car run.
+"""Compiled (Numba) wheel forces of a Magic Formula tyre: the per-step hot path of a car run.
 
 :meth:`flexpipe.tires.contact.TireModel.wheel_forces` with the PAC2002 model is NumPy code
 vectorised over the wheels; for the 4 to 24 rows a car step evaluates, NumPy's per-call
@@ -6,10 +6,11 @@ overhead dominates (measured 0.4 ms per call, two calls per step).  This module 
 the same equations row by row in one compiled function: contact geometry, vertical force,
 effective rolling radius, slips, first-order relaxation (slip-velocity form) and the
 PAC2002 Magic Formula (pure and combined slip, aligning, overturning and rolling
-resistance moments).  It is a transcription of :mod:`flexpipe.tires.contact`,
-:mod:`flexpipe.tires.relaxation`, :mod:`flexpipe.tires.vertical` and
-:mod:`flexpipe.tires.pac2002`, which stay the reference: ``tests/test_tire_fast.py``
-checks both against each other on random inputs for every ``.tir`` file at hand.
+resistance moments) or the MF 6.1 / 6.2 one.  It is a transcription of
+:mod:`flexpipe.tires.contact`, :mod:`flexpipe.tires.relaxation`,
+:mod:`flexpipe.tires.vertical`, :mod:`flexpipe.tires.pac2002` and
+:mod:`flexpipe.tires.mf61`, which stay the reference: ``tests/test_tire_fast.py`` checks
+both against each other on random inputs for every ``.tir`` file at hand.
 
 Numba is the standard JIT compiler for numerical Python (``cache=True``: compiled once per
 machine into ``__pycache__``).  Setting the environment variable ``FLEXPIPE_NO_JIT=1``
@@ -33,8 +34,9 @@ except ImportError:  # pragma: no cover - exercised only without numba
 _COEFFS = (_keys.SCALING + _keys.LONGITUDINAL + _keys.LATERAL + _keys.ALIGNING
            + _keys.OVERTURNING + _keys.ROLLING)
 _EXTRA = ("fnomin", "fz0", "r0_mf", "use_mode", "kmin", "kmax", "amin", "amax", "gmin",
-          "gmax", "fz_max", "longvl", "vxlow_mf", "k", "k3", "c_vert", "R0", "relax",
-          "vxlow", "has_reff", "breff", "dreff", "freff")
+          "gmax", "fz_max", "longvl", "vxlow_mf", "k", "k2", "k3", "c_vert", "R0", "relax",
+          "vxlow", "has_reff", "breff", "dreff", "freff", "mf6", "dpi", "p_ratio", "fz_min",
+          "cx0", "cy0", "pcfx1", "pcfx2", "pcfx3", "pcfy1", "pcfy2", "pcfy3")
 #: every number the compiled tyre needs, as one record of floats (a NumPy structured
 #: dtype: a one-element array of it passes to compiled code at the cost of an array, and
 #: its fields read by name there)
@@ -70,10 +72,19 @@ def pack(tire) -> np.ndarray:
         fnomin=mf.fnomin, fz0=mf.fz0, r0_mf=mf.r0, use_mode=float(mf.use_mode),
         kmin=mf.kappa_range[0], kmax=mf.kappa_range[1], amin=mf.alpha_range[0],
         amax=mf.alpha_range[1], gmin=mf.gamma_range[0], gmax=mf.gamma_range[1],
-        fz_max=mf.fz_max, longvl=mf.longvl, vxlow_mf=mf.vxlow, k=vert.k, k3=vert.k3,
+        fz_max=mf.fz_max, longvl=mf.longvl, vxlow_mf=mf.vxlow, k=vert.k, k2=vert.k2,
+        k3=vert.k3,
         c_vert=vert.c, R0=tire.unloaded_radius, relax=float(bool(tire.relaxation)),
         vxlow=tire.vxlow, has_reff=float(have), breff=tire.breff or 0.0,
         dreff=tire.dreff or 0.0, freff=tire.freff or 0.0)
+    mf6 = hasattr(mf, "pcfx")   # an MF 6.1 / 6.2 tyre (flexpipe.tires.mf61)
+    extra.update(mf6=float(mf6), dpi=mf.dpi if mf6 else 0.0,
+                 p_ratio=mf.pressure / mf.nominal_pressure if mf6 else 1.0,
+                 fz_min=mf.fz_min if mf6 else 0.0, cx0=mf.cx0 if mf6 else np.nan,
+                 cy0=mf.cy0 if mf6 else np.nan)
+    for i in range(3):
+        extra[f"pcfx{i + 1}"] = mf.pcfx[i] if mf6 else 0.0
+        extra[f"pcfy{i + 1}"] = mf.pcfy[i] if mf6 else 0.0
     out = np.zeros(1, dtype=PACKED)
     for k in _COEFFS:
         out[k] = float(getattr(c, k))
@@ -134,9 +145,141 @@ def _phi(a):
 
 
 @_jit
+def _sgn1(x):
+    return 1.0 if x >= 0.0 else -1.0
+
+
+@_jit
+def _kx6(q, Fz, dfz):
+    return (Fz * (q.PKX1 + q.PKX2 * dfz) * math.exp(q.PKX3 * dfz)
+            * (1.0 + q.PPX1 * q.dpi + q.PPX2 * q.dpi * q.dpi) * q.LKX)
+
+
+@_jit
+def _ky6(q, Fz, gs):
+    return (q.PKY1 * q.fz0 * (1.0 + q.PPY1 * q.dpi) * (1.0 - q.PKY3 * abs(gs))
+            * math.sin(q.PKY4 * math.atan(Fz / q.fz0 / ((q.PKY2 + q.PKY5 * gs * gs)
+                                                        * (1.0 + q.PPY2 * q.dpi)))) * q.LKY)
+
+
+@_jit
+def _fy6(q, a_s, Fz, dfz, gs, lmuy):
+    """MF 6.x pure Fy0 with Kya, By, Cy, muy, SHy, SVy (see :mod:`flexpipe.tires.mf61`)."""
+    Ky = _ky6(q, Fz, gs)
+    Kyg0 = Fz * (q.PKY6 + q.PKY7 * dfz) * (1.0 + q.PPY5 * q.dpi) * q.LKYC
+    SVyg = Fz * (q.PVY3 + q.PVY4 * dfz) * gs * q.LKYC * lmuy
+    SHy = (q.PHY1 + q.PHY2 * dfz) * q.LHY + (Kyg0 * gs - SVyg) / (Ky + 1e-6 * _sgn1(Ky))
+    SVy = Fz * (q.PVY1 + q.PVY2 * dfz) * q.LVY * lmuy + SVyg
+    ay = a_s + SHy
+    Cy = q.PCY1 * q.LCY
+    muy = ((q.PDY1 + q.PDY2 * dfz) * (1.0 + q.PPY3 * q.dpi + q.PPY4 * q.dpi * q.dpi)
+           * (1.0 - q.PDY3 * gs * gs) * lmuy)
+    Ey = min((q.PEY1 + q.PEY2 * dfz) * (1.0 + q.PEY5 * gs * gs - (q.PEY3 + q.PEY4 * gs)
+                                        * _sgn1(ay)) * q.LEY, 1.0)
+    By = Ky / (Cy * muy * Fz)
+    return muy * Fz * _mf(By, Cy, Ey, ay) + SVy, Ky, By, Cy, muy, SHy, SVy
+
+
+@_jit
+def _slip_forces6(q, kappa, alpha, Fz_in, gamma, vx, mirror, mu):
+    """MF 6.1 / 6.2 steady-state (Fx, Fy, Mz, Mx, My), W-axes, for one wheel: a
+    transcription of :meth:`flexpipe.tires.mf61.MagicFormula61.forces`."""
+    fz0, fnom, dpi = q.fz0, q.fnomin, q.dpi
+    Fz = _clip(Fz_in, 1e-9 * fnom, q.fz_max)
+    dfz = (Fz - fz0) / fz0
+    sgn = -1.0 if mirror else 1.0
+    kappa = _clip(kappa, q.kmin, q.kmax)
+    alpha = _clip(sgn * alpha, q.amin, q.amax)
+    gamma = _clip(sgn * gamma, q.gmin, q.gmax)
+    a_s, gs = math.tan(alpha), math.sin(gamma)
+    lmux, lmuy = q.LMUX * mu, q.LMUY * mu
+    mode = int(q.use_mode)
+    Fx = Fy = Mz = Mx = My = 0.0
+    Kx = 0.0
+    if mode == 1 or mode == 3 or mode == 4:
+        kx = kappa + (q.PHX1 + q.PHX2 * dfz) * q.LHX
+        Cx = q.PCX1 * q.LCX
+        Dx = ((q.PDX1 + q.PDX2 * dfz) * (1.0 + q.PPX3 * dpi + q.PPX4 * dpi * dpi)
+              * (1.0 - q.PDX3 * gamma * gamma) * lmux * Fz)
+        Ex = min((q.PEX1 + q.PEX2 * dfz + q.PEX3 * dfz * dfz)
+                 * (1.0 - q.PEX4 * _sign(kx)) * q.LEX, 1.0)
+        Kx = _kx6(q, Fz, dfz)
+        Fx = Dx * _mf(Kx / (Cx * Dx), Cx, Ex, kx) + Fz * (q.PVX1 + q.PVX2 * dfz) * q.LVX * lmux
+    if mode == 2 or mode == 3 or mode == 4:
+        Fy0, Ky, By, Cy, muy, SHy, SVy = _fy6(q, a_s, Fz, dfz, gs, lmuy)
+        Fyg0 = _fy6(q, a_s, Fz, dfz, 0.0, lmuy)[0]
+        Fy = Fy0
+        combined = mode == 4
+        if combined:
+            SHxa = q.RHX1
+            Bxa = (q.RBX1 + q.RBX3 * gs * gs) * math.cos(math.atan(q.RBX2 * kappa)) * q.LXAL
+            Exa = min(q.REX1 + q.REX2 * dfz, 1.0)
+            Fx = Fx * _cosmf(Bxa, q.RCX1, Exa, a_s + SHxa) / _cosmf(Bxa, q.RCX1, Exa, SHxa)
+            SHyk = q.RHY1 + q.RHY2 * dfz
+            Byk = ((q.RBY1 + q.RBY4 * gs * gs) * math.cos(math.atan(q.RBY2 * (a_s - q.RBY3)))
+                   * q.LYKA)
+            Eyk = min(q.REY1 + q.REY2 * dfz, 1.0)
+            Gyk = _cosmf(Byk, q.RCY1, Eyk, kappa + SHyk) / _cosmf(Byk, q.RCY1, Eyk, SHyk)
+            DVyk = (muy * Fz * (q.RVY1 + q.RVY2 * dfz + q.RVY3 * gs)
+                    * math.cos(math.atan(q.RVY4 * a_s)))
+            Fy = Fy0 * Gyk + DVyk * math.sin(q.RVY5 * math.atan(q.RVY6 * kappa)) * q.LVYKA
+            Fyg0 = Fyg0 * Gyk
+        # aligning moment
+        Kyp = Ky + 1e-6 * _sgn1(Ky)
+        ar = a_s + SHy + SVy / Kyp
+        at = a_s + q.QHZ1 + q.QHZ2 * dfz + (q.QHZ3 + q.QHZ4 * dfz) * gs
+        Bt = ((q.QBZ1 + q.QBZ2 * dfz + q.QBZ3 * dfz * dfz)
+              * (1.0 + q.QBZ4 * gamma + q.QBZ5 * abs(gamma)) * q.LKY / q.LMUY)
+        Ct = q.QCZ1
+        Dt = ((q.QDZ1 + q.QDZ2 * dfz) * (1.0 - q.PPZ1 * dpi)
+              * (1.0 + q.QDZ3 * gamma + q.QDZ4 * gamma * gamma) * Fz * q.r0_mf / fz0 * q.LTR)
+        Et = min((q.QEZ1 + q.QEZ2 * dfz + q.QEZ3 * dfz * dfz)
+                 * (1.0 + (q.QEZ4 + q.QEZ5 * gs) * (2.0 / math.pi) * math.atan(Bt * Ct * at)),
+                 1.0)
+        Br = q.QBZ9 * q.LKY / q.LMUY + q.QBZ10 * By * Cy
+        Dr = (Fz * q.r0_mf * ((q.QDZ6 + q.QDZ7 * dfz) * q.LRES
+                              + ((q.QDZ8 + q.QDZ9 * dfz) * (1.0 + q.PPZ2 * dpi)
+                                 + (q.QDZ10 + q.QDZ11 * dfz) * abs(gs)) * gs * q.LKZC)
+              * lmuy * math.cos(a_s))
+        cos_a = math.cos(alpha)
+        if combined:
+            k2 = (Kx / Kyp * kappa) ** 2
+            at = math.atan(math.sqrt(math.tan(at) ** 2 + k2)) * _sgn1(at)
+            ar = math.atan(math.sqrt(math.tan(ar) ** 2 + k2)) * _sgn1(ar)
+            t = Dt * _cosmf(Bt, Ct, Et, at) * cos_a * q.LFZO
+            s = (q.r0_mf * (q.SSZ1 + q.SSZ2 * Fy / fnom + (q.SSZ3 + q.SSZ4 * dfz) * gamma)
+                 * q.LS)
+            Mz = -t * Fyg0 + Dr * math.cos(math.atan(Br * ar)) + s * Fx
+        else:
+            t = Dt * _cosmf(Bt, Ct, Et, at) * cos_a
+            Mz = -t * Fyg0 + Dr * math.cos(math.atan(Br * ar)) * cos_a
+        Fze = Fz * (Fz / q.fz_min) ** 2 if Fz < q.fz_min else Fz
+        Mx = (q.r0_mf * Fze * q.LMX
+              * (q.QSX1 * q.LVMX - q.QSX2 * gamma * (1.0 + q.PPMX1 * dpi) + q.QSX3 * Fy / fnom
+                 + q.QSX4 * math.cos(q.QSX5 * math.atan((q.QSX6 * Fze / fnom) ** 2))
+                 * math.sin(q.QSX7 * gamma + q.QSX8 * math.atan(q.QSX9 * Fy / fnom))
+                 + q.QSX10 * math.atan(q.QSX11 * Fze / fnom) * gamma)
+              + q.r0_mf * q.LMX * (Fy * (q.QSX13 + q.QSX14 * abs(gamma))
+                                   - Fze * q.QSX12 * gamma * abs(gamma)))
+    if mode == 1 or mode == 3 or mode == 4:
+        vr = vx / q.longvl
+        Fze = Fz * Fz / q.fz_min if Fz < q.fz_min else Fz
+        My = (-q.r0_mf * fnom * q.LMY
+              * (q.QSY1 + q.QSY2 * Fx / fnom + q.QSY3 * abs(vr) + q.QSY4 * vr ** 4
+                 + (q.QSY5 + q.QSY6 * Fze / fnom) * gamma * gamma)
+              * (Fze / fnom) ** q.QSY7 * q.p_ratio ** q.QSY8 * math.tanh(vx / q.vxlow_mf))
+    if not Fz_in > 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    return Fx, sgn * Fy, sgn * Mz, sgn * Mx, My
+
+
+@_jit
 def slip_forces(q, kappa, alpha, Fz_in, gamma, vx, mirror, mu):
     """PAC2002 steady-state (Fx, Fy, Mz, Mx, My), W-axes, for one wheel (see
-    :meth:`flexpipe.tires.pac2002.MagicFormula.forces`)."""
+    :meth:`flexpipe.tires.pac2002.MagicFormula.forces`); an MF 6.x tyre's by
+    :func:`_slip_forces6`."""
+    if q.mf6 > 0.0:
+        return _slip_forces6(q, kappa, alpha, Fz_in, gamma, vx, mirror, mu)
     fz0 = q.fz0
     Fz = _clip(Fz_in, 1e-9 * q.fnomin, q.fz_max)
     dfz = (Fz - fz0) / fz0
@@ -230,6 +373,10 @@ def slip_forces(q, kappa, alpha, Fz_in, gamma, vx, mirror, mu):
 def _relaxation_lengths(q, Fz, gamma):
     Fz = _clip(Fz, 1e-9 * q.fnomin, q.fz_max)
     dfz = (Fz - q.fz0) / q.fz0
+    if q.mf6 > 0.0:   # MF 6.x: slip stiffness over carcass stiffness (nan without one)
+        Cx = q.cx0 * (1.0 + q.pcfx1 * dfz + q.pcfx2 * dfz * dfz) * (1.0 + q.pcfx3 * q.dpi)
+        Cy = q.cy0 * (1.0 + q.pcfy1 * dfz + q.pcfy2 * dfz * dfz) * (1.0 + q.pcfy3 * q.dpi)
+        return abs(_kx6(q, Fz, dfz) / Cx), abs(_ky6(q, Fz, math.sin(gamma)) / Cy)
     sk = (Fz * (q.PTX1 + q.PTX2 * dfz) * math.exp(-q.PTX3 * dfz) * q.r0_mf / q.fnomin
           * q.LSGKP) if q.PTX1 != 0.0 else np.nan
     sa = (q.PTY1 * math.sin(2.0 * math.atan(Fz / (q.PTY2 * q.fz0))) * (1.0 - q.PKY3 * abs(gamma))
@@ -270,7 +417,7 @@ def wheel_kernel(qa, C, s_in, n_in, omega, v, w, has_w, road_h, mirror, mu, st_k
         rho = q.R0 - Rl if ok else -1.0
         r0_, r1_, r2_ = Rl * d0, Rl * d1, Rl * d2  # P - C
         rho_dot = -(n0 * v[i, 0] + n1 * v[i, 1] + n2 * v[i, 2]) / cs
-        f = q.k * rho + q.k3 * rho ** 3 + q.c_vert * rho_dot
+        f = q.k * rho + q.k2 * rho * rho + q.k3 * rho ** 3 + q.c_vert * rho_dot
         Fz = max(f, 0.0) if rho > 0.0 else 0.0
         V0, V1, V2 = v[i, 0], v[i, 1], v[i, 2]
         if has_w:

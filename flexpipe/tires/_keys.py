@@ -10,8 +10,9 @@ The tables here decide which entries :func:`flexpipe.tires.read_tir` accepts:
   extra overturning ``QSX4..`` and rolling ``QSY5..`` terms, turn slip); the extensions are
   accepted but not used by the model: ``MF6_ONLY`` lists those that change the forces, and
   a file that gives one of them a value other than its neutral one gets a warning.
-* ``MF52_FORMATS`` / ``MF52_FITTYP`` / ``MF6_FITTYP`` — the ``[MODEL] PROPERTY_FILE_FORMAT``
-  and ``FITTYP`` values of Magic Formula 5.2 files (evaluated) and of MF 6.x fits (refused).
+* ``MF52_FORMATS`` / ``MF52_FITTYP`` / ``MF6_FITTYP`` / ``MF6_EVALUATED`` — the ``[MODEL]
+  PROPERTY_FILE_FORMAT`` and ``FITTYP`` values of Magic Formula 5.2 files and of MF 6.x
+  fits (6.1 and 6.2 evaluated by :mod:`flexpipe.tires.mf61`, 6.0 refused).
 * ``KNOWN_SECTIONS`` — other sections whose unknown keys only warn.
 * ``UNIT_DIMENSIONS`` — exponents ``(length, force, angle, mass, time, pressure)`` of the
   dimensional keys; these are converted to SI according to ``[UNITS]``.  Magic Formula
@@ -65,11 +66,14 @@ MF52_FORMATS = ("PAC2002", "MF_05")
 #: ``[MODEL] FITTYP`` of a Magic Formula 5.2 fit (MF-Tyre writes 6 or 21; Adams PAC2002
 #: files usually have no FITTYP at all).
 MF52_FITTYP = (6, 21)
-#: ``[MODEL] FITTYP`` of the Magic Formula 6.x fits (MF-Tyre / MF-Swift 6.x), which
-#: flexpipe does not evaluate: version shown in the error.
+#: ``[MODEL] FITTYP`` of the Magic Formula 6.x fits (MF-Tyre / MF-Swift 6.x): version.
 MF6_FITTYP = {60: "6.0", 61: "6.1", 62: "6.2"}
+#: Those evaluated with the MF 6.1 / 6.2 equations (:mod:`flexpipe.tires.mf61`), whatever
+#: the file's PROPERTY_FILE_FORMAT ('MF-TYRE', 'USER', 'MF_61', ...).
+MF6_EVALUATED = (61, 62)
 
-#: Coefficients of the MF 6.x equations that the MF 5.2 / PAC2002 equations do not have:
+#: Coefficients of the MF 6.x equations that the MF 5.2 / PAC2002 equations do not have
+#: (warned about in an MF 5.2 file only; an MF 6.1 / 6.2 file is evaluated with them):
 #: ``(section, key) -> (neutral values, what it changes)``.  A value other than a neutral
 #: one would change the forces under MF 6.x but is ignored here, so it warns.  Neutral:
 #: the value that gives the MF 5.2 result, plus 0 where 0 is only a placeholder (PKY4 = 0
@@ -192,6 +196,8 @@ UNIT_DIMENSIONS = {
     ("INFLATION_PRESSURE_RANGE", "PRESMIN"): _P,
     ("INFLATION_PRESSURE_RANGE", "PRESMAX"): _P,
     ("ALIGNING_COEFFICIENTS", "MBELT"): _M,
+    ("STRUCTURAL", "LONGITUDINAL_STIFFNESS"): _F_PER_L,
+    ("STRUCTURAL", "LATERAL_STIFFNESS"): _F_PER_L,
     ("PARAMETER", "CSLIP"): _F,
     ("PARAMETER", "CALPHA"): (0, 1, -1, 0, 0, 0),
     ("PARAMETER", "CGAMMA"): (0, 1, -1, 0, 0, 0),

@@ -6,9 +6,10 @@ Key names: an unknown key in a PAC2002 / MF_05 coefficient section (or FIALA
 edit away from a known one (a typo that would silently fall back to a default), which is an
 error.
 
-Magic Formula version: ``[MODEL] FITTYP`` must be 6 or 21 (MF 5.2) when given; an MF 6.x
-fit is an error (:func:`check_fittyp`).  MF 6.x coefficients with a non-neutral value in an
-MF 5.2 file warn, since they are ignored (:func:`warn_unused_mf6`).
+Magic Formula version: ``[MODEL] FITTYP`` must be 6 or 21 (MF 5.2) or 61 / 62 (MF 6.1 /
+6.2) when given; another version is an error (:func:`check_fittyp`).  MF 6.x coefficients
+with a non-neutral value in an MF 5.2 file warn, since they are ignored
+(:func:`warn_unused_mf6`).
 
 Every value that would make the tyre model divide by zero, return NaN, or give plausible
 but wrong forces is rejected with an :class:`~flexpipe.errors.InputError` naming the file,
@@ -325,18 +326,19 @@ def file_warning(message: str) -> None:
 
 # ---------------------------------------------------------------- Magic Formula version
 def check_fittyp(path, sections, lines) -> None:
-    """``[MODEL] FITTYP``, when given, must mark an MF 5.2 fit (:data:`_keys.MF52_FITTYP`).
+    """``[MODEL] FITTYP``, when given, must mark a Magic Formula version flexpipe evaluates:
+    MF 5.2 (:data:`_keys.MF52_FITTYP`) or MF 6.1 / 6.2 (:data:`_keys.MF6_EVALUATED`).
 
-    An MF 6.x fit (FITTYP 60, 61, 62) evaluated with the MF 5.2 equations gives plausible
-    but wrong forces (its PKY4..PKY7, PEY5, pressure and QSX4.. terms are missing from
-    them), so it is refused rather than read.
+    Any other version (e.g. MF 6.0, FITTYP 60, whose equations are neither) would give
+    plausible but wrong forces, so it is refused rather than read.
     """
     raw = sections.get("MODEL", {}).get("FITTYP")
     if raw is None:
         return
     line = lines.get(("MODEL", "FITTYP"))
-    supported = ("flexpipe evaluates PAC2002 / MF 5.2 (FITTYP 6 or 21, or no FITTYP as in "
-                 "Adams PAC2002 files) only")
+    valid = sorted(_keys.MF52_FITTYP + _keys.MF6_EVALUATED)
+    supported = ("flexpipe evaluates Magic Formula 5.2 (FITTYP 6 or 21, or no FITTYP as in "
+                 "Adams PAC2002 files) and MF 6.1 / 6.2 (FITTYP 61 / 62)")
     try:
         value = float(raw)
     except (TypeError, ValueError):
@@ -345,20 +347,14 @@ def check_fittyp(path, sections, lines) -> None:
         raise InputError(f"[MODEL] FITTYP = '{raw}' is not a Magic Formula version number; "
                          f"{supported}", file=path, line=line, key="FITTYP")
     fittyp = int(value)
-    if fittyp in _keys.MF52_FITTYP:
+    if fittyp in valid:
         return
-    if fittyp in _keys.MF6_FITTYP:
-        raise InputError(
-            f"[MODEL] FITTYP = {fittyp} marks a Magic Formula {_keys.MF6_FITTYP[fittyp]} fit "
-            f"(MF-Tyre/MF-Swift 6.x), which is not supported: {supported}; the MF 6.x "
-            "equations differ (cornering stiffness shape PKY4, camber stiffness PKY6/PKY7, "
-            "inflation pressure terms PPX*/PPY*/PPZ*, overturning QSX4..), so its "
-            "coefficients would give wrong forces; use an MF 5.2 / PAC2002 fit of the tyre",
-            file=path, line=line, key="FITTYP")
-    raise InputError(f"[MODEL] FITTYP = {fittyp} is not a Magic Formula 5.2 fit; valid: "
-                     f"{' or '.join(str(v) for v in _keys.MF52_FITTYP)}: {supported}; "
-                     f"MF 6.x fits ({', '.join(str(v) for v in _keys.MF6_FITTYP)}) are not "
-                     "supported either", file=path, line=line, key="FITTYP")
+    what = (f"a Magic Formula {_keys.MF6_FITTYP[fittyp]} fit" if fittyp in _keys.MF6_FITTYP
+            else "no Magic Formula version flexpipe knows")
+    raise InputError(f"[MODEL] FITTYP = {fittyp} marks {what}; valid: "
+                     f"{', '.join(str(v) for v in valid)}: {supported}; evaluating the fit "
+                     "with another version's equations would give wrong forces",
+                     file=path, line=line, key="FITTYP")
 
 
 def warn_unused_mf6(path, sections, lines) -> None:
@@ -429,9 +425,11 @@ def scale(exponents, factors) -> float:
                      if e)
 
 
-def check_keys(path, fmt, sections, lines):
+def check_keys(path, fmt, sections, lines, *, strict_as=None):
+    """Unknown sections and keys (see :mod:`flexpipe.tires._keys`); ``strict_as`` checks
+    the file as one of that format (an MF 6.x fit as a PAC2002 file: the same keys)."""
     strict = {"PAC2002": _keys.PAC2002_STRICT, "MF_05": _keys.PAC2002_STRICT,
-              "FIALA": _keys.FIALA_STRICT}.get(fmt, {})
+              "FIALA": _keys.FIALA_STRICT}.get(strict_as or fmt, {})
     for name, sec in sections.items():
         allowed = strict.get(name)
         if allowed is None:

@@ -108,8 +108,11 @@ class FialaTire(TireModel):
                 rolling_resistance=props.number("PARAMETER", "ROLLING_RESISTANCE", 0.0),
                 relax_length_x=props.relaxation_length_longitudinal(),
                 relax_length_y=props.relaxation_length_lateral())
-        elif props.is_mf52:
-            mf = MagicFormula.from_properties(props, use_mode=3)
+        elif props.is_mf52 or props.is_mf6:
+            from flexpipe.tires.mf61 import MagicFormula61
+
+            mf = (MagicFormula61 if props.is_mf6 else MagicFormula).from_properties(
+                props, use_mode=3)
             fn = props.fnomin
             kx, ky = mf.slip_stiffness(fn)
             mux, muy = mf.peak_friction(fn)
@@ -121,13 +124,15 @@ class FialaTire(TireModel):
                 relax_length_y=None if np.isnan(sa) else float(sa))
         else:
             raise InputError(f"PROPERTY_FILE_FORMAT '{fmt}' cannot give Fiala parameters; "
-                             "valid: 'FIALA', 'PAC2002', 'MF_05'", file=props.path,
+                             "valid: 'FIALA', 'PAC2002', 'MF_05', or an MF 6.1 / 6.2 "
+                             "fit (FITTYP 61 / 62)", file=props.path,
                              line=props.lines.get(("MODEL", "PROPERTY_FILE_FORMAT")),
                              key="PROPERTY_FILE_FORMAT")
         return cls(
             params=p, vertical=VerticalModel.from_properties(props, law=vertical_law),
             unloaded_radius=props.unloaded_radius,
-            relaxation=(abs(props.use_mode) >= 10) if relaxation is None else relaxation,
+            relaxation=((abs(props.use_mode) // 10) % 10 >= 1) if relaxation is None
+            else relaxation,
             vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
             tyre_side="SYMMETRIC", mirror_all=False)
 

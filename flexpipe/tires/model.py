@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flexpipe._args import as_path, checked_bool, checked_choice
+from flexpipe._args import as_path, checked_bool, checked_choice, checked_number
 from flexpipe.errors import InputError
 from flexpipe.tires import _fast, _keys
 from flexpipe.tires.checks import probe_forces
@@ -54,9 +54,10 @@ class Pac2002Tire(TireModel):
 
     @classmethod
     def from_properties(cls, props: TireProperties, *, use_mode: int | None = None,
-                        relaxation: bool | None = None, vertical_law: str = "auto"
-                        ) -> Pac2002Tire:
-        """Build from a ``PAC2002`` or ``MF_05`` (MF 5.2) :class:`TireProperties`.
+                        relaxation: bool | None = None, vertical_law: str = "auto",
+                        pressure: float | None = None) -> Pac2002Tire:
+        """Build from a Magic Formula :class:`TireProperties`: ``PAC2002`` or ``MF_05``
+        (MF 5.2), or an MF 6.1 / 6.2 fit (FITTYP 61 / 62, :mod:`flexpipe.tires.mf61`).
 
         Parameters
         ----------
@@ -64,28 +65,49 @@ class Pac2002Tire(TireModel):
         use_mode : int, optional
             Override of the slip part of USE_MODE (0-4).
         relaxation : bool, optional
-            Override of ``abs(USE_MODE) >= 10``.
+            Override of the file's USE_MODE (tens digit >= 1: relaxation).
         vertical_law : {"auto", "linear", "duffing"}
             See :meth:`VerticalModel.from_properties`.
+        pressure : float, optional
+            Inflation pressure of an MF 6.x tyre, Pa (default: the file's INFLPRES); its
+            slip forces, relaxation lengths and vertical stiffness (``1 + PFZ1 dpi``)
+            follow it.  An MF 5.2 file has no pressure terms: an error.
         """
         if relaxation is not None:
             relaxation = checked_bool(relaxation, "relaxation")
-        if not props.is_mf52:
+        if pressure is not None:
+            pressure = checked_number(pressure, "pressure (inflation pressure)", lo=0.0,
+                                      unit="Pa", key="pressure")
+        if not (props.is_mf52 or props.is_mf6):
             raise InputError(
                 f"PROPERTY_FILE_FORMAT is '{props.property_file_format}'; the PAC2002 model "
-                "evaluates the Magic Formula 5.2 equations and reads "
+                "evaluates the Magic Formula and reads "
                 f"{' or '.join(repr(f) for f in _keys.MF52_FORMATS)} files (Adams PAC2002, "
-                "MF-Tyre 5.x); MF-Tyre/MF-Swift 6.x files (e.g. 'MF-TYRE' with FITTYP 61 or "
-                "62) are not supported, and a 'FIALA' file needs model='fiala'",
+                "MF-Tyre 5.x) and MF-Tyre/MF-Swift 6.1 / 6.2 fits ([MODEL] FITTYP 61 or 62); "
+                "a 'FIALA' file needs model='fiala'",
                 file=props.path, line=props.lines.get(("MODEL", "PROPERTY_FILE_FORMAT")),
                 key="PROPERTY_FILE_FORMAT")
+        if props.is_mf6:
+            from flexpipe.tires.mf61 import MagicFormula61
+            from flexpipe.tires.vertical import mf6_vertical
+
+            mf = MagicFormula61.from_properties(props, use_mode=use_mode, pressure=pressure)
+            vertical = mf6_vertical(props, law=vertical_law, dpi=mf.dpi)
+        else:
+            if pressure is not None:
+                raise InputError(
+                    "pressure is given but the file is a Magic Formula 5.2 fit, whose "
+                    "equations have no inflation pressure; use an MF 6.1 / 6.2 file "
+                    "(FITTYP 61 / 62) or leave pressure out", file=props.path, key="pressure")
+            mf = MagicFormula.from_properties(props, use_mode=use_mode)
+            vertical = VerticalModel.from_properties(props, law=vertical_law)
         refs = [props.get("VERTICAL", k) for k in ("BREFF", "DREFF", "FREFF")]
         have = any(r is not None for r in refs)
         return cls(
-            mf=MagicFormula.from_properties(props, use_mode=use_mode),
-            vertical=VerticalModel.from_properties(props, law=vertical_law),
+            mf=mf, vertical=vertical,
             unloaded_radius=props.unloaded_radius,
-            relaxation=(abs(props.use_mode) >= 10) if relaxation is None else relaxation,
+            relaxation=((abs(props.use_mode) // 10) % 10 >= 1) if relaxation is None
+            else relaxation,
             vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
             tyre_side=props.tyre_side, mirror_all=props.use_mode < 0,
             breff=(refs[0] or 0.0) if have else None, dreff=(refs[1] or 0.0) if have else None,
@@ -167,7 +189,7 @@ class Pac2002Tire(TireModel):
 
 
 #: keyword options of :func:`tire_from_file` per model
-_OPTIONS = {"pac2002": ("use_mode", "relaxation", "vertical_law"),
+_OPTIONS = {"pac2002": ("use_mode", "relaxation", "vertical_law", "pressure"),
             "fiala": ("relaxation", "vertical_law")}
 
 
@@ -183,6 +205,9 @@ def _check_options(model: str, options: dict) -> None:
         checked_choice(options["vertical_law"], "vertical_law", ("auto", "linear", "duffing"))
     if options.get("use_mode") is not None:
         checked_use_mode(options["use_mode"])
+    if options.get("pressure") is not None:
+        checked_number(options["pressure"], "pressure (inflation pressure)", lo=0.0,
+                       unit="Pa", key="pressure")
 
 
 def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
@@ -193,13 +218,15 @@ def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
     path : str or Path
         Tyre property file.
     model : {"pac2002", "fiala"}
-        ``pac2002`` needs a PAC2002 or MF_05 (Magic Formula 5.2) file; ``fiala`` accepts a
-        FIALA file or derives its parameters from a PAC2002 / MF_05 file.
+        ``pac2002`` needs a Magic Formula file: PAC2002 or MF_05 (MF 5.2), or an MF 6.1 /
+        6.2 fit (FITTYP 61 / 62); ``fiala`` accepts a FIALA file or derives its parameters
+        from a PAC2002 / MF_05 file.
     **options
         Passed to :meth:`Pac2002Tire.from_properties` / :meth:`FialaTire.from_properties`:
         ``relaxation`` (None or bool), ``vertical_law`` (``"auto"``, ``"linear"``,
         ``"duffing"``), and for PAC2002 ``use_mode`` (None or 0-4, the slip part of
-        USE_MODE; see :mod:`flexpipe.tires`).
+        USE_MODE; see :mod:`flexpipe.tires`) and ``pressure`` (inflation pressure of an
+        MF 6.x tyre, Pa; default the file's INFLPRES).
 
     Returns
     -------

@@ -269,14 +269,9 @@ class MagicFormula:
         SlipForces
         """
         c, mode = self.c, self.use_mode
-        Fz_in = np.asarray(Fz, dtype=float)
-        Fz, dfz = self._load(Fz_in)
-        sgn = np.where(mirror, -1.0, 1.0)
-        kappa = np.clip(kappa, *self.kappa_range)
-        alpha = np.clip(sgn * np.asarray(alpha, dtype=float), *self.alpha_range)
-        gamma = np.clip(sgn * np.asarray(gamma, dtype=float), *self.gamma_range)
+        Fz_in, Fz, dfz, sgn, kappa, alpha, gamma, zero = self._inputs(kappa, alpha, Fz, gamma,
+                                                                      mirror)
         lmux, lmuy = c.LMUX * mu_scale, c.LMUY * mu_scale
-        zero = np.zeros(np.broadcast(kappa, alpha, Fz, gamma, sgn).shape)
         Fx = Fy = Mz = Mx = My = zero
         if mode in (1, 3, 4):
             Fx, Kx = self._pure_x(kappa, Fz, dfz, gamma, lmux)
@@ -306,6 +301,23 @@ class MagicFormula:
             vr = v / self.longvl
             My = (-self.r0 * Fz * (c.QSY1 + c.QSY2 * Fx / self.fz0 + c.QSY3 * np.abs(vr)
                                    + c.QSY4 * vr ** 4) * c.LMY * np.tanh(v / self.vxlow))
+        return self._outputs(Fz_in, sgn, Fx, Fy, Mz, Mx, My)
+
+    def _inputs(self, kappa, alpha, Fz, gamma, mirror):
+        """Inputs clipped to the file's ranges, the characteristic mirrored where asked:
+        ``(Fz_in, Fz, dfz, sign, kappa, alpha, gamma, zeros of the broadcast shape)``."""
+        Fz_in = np.asarray(Fz, dtype=float)
+        Fz, dfz = self._load(Fz_in)
+        sgn = np.where(mirror, -1.0, 1.0)
+        kappa = np.clip(kappa, *self.kappa_range)
+        alpha = np.clip(sgn * np.asarray(alpha, dtype=float), *self.alpha_range)
+        gamma = np.clip(sgn * np.asarray(gamma, dtype=float), *self.gamma_range)
+        zero = np.zeros(np.broadcast(kappa, alpha, Fz, gamma, sgn).shape)
+        return Fz_in, Fz, dfz, sgn, kappa, alpha, gamma, zero
+
+    @staticmethod
+    def _outputs(Fz_in, sgn, Fx, Fy, Mz, Mx, My) -> SlipForces:
+        """Zero where the tyre is off the road; Fy, Mz, Mx mirrored back."""
         on = Fz_in > 0.0
         return SlipForces(Fx=np.where(on, Fx, 0.0), Fy=np.where(on, sgn * Fy, 0.0),
                           Mz=np.where(on, sgn * Mz, 0.0), Mx=np.where(on, sgn * Mx, 0.0),

@@ -65,6 +65,18 @@ _NUMBER_RE = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?$")
 #: USE_MODE values honoured (sign = mirroring, tens = transient behaviour).
 VALID_USE_MODES = frozenset(s * (t + u) for s in (1, -1) for t in (0, 10, 20)
                             for u in range(5))
+#: An MF 6.1 / 6.2 file may also carry MF-Tyre's three-digit USE_MODE (e.g. 124): its
+#: hundreds digit (the contact method) is not used, flexpipe's contact is a single point.
+VALID_USE_MODES_MF6 = VALID_USE_MODES | frozenset(
+    s * (100 * h + t + u) for s in (1, -1) for h in range(1, 10) for t in range(0, 60, 10)
+    for u in range(5))
+
+
+def _fittyp(sections) -> int | None:
+    try:
+        return int(float(sections.get("MODEL", {}).get("FITTYP")))
+    except (TypeError, ValueError):
+        return None
 
 
 @dataclass(frozen=True)
@@ -170,8 +182,24 @@ class TireProperties:
     @property
     def is_mf52(self) -> bool:
         """True for a Magic Formula 5.2 file (``PROPERTY_FILE_FORMAT`` ``'PAC2002'`` or
-        ``'MF_05'``), evaluated by :class:`flexpipe.tires.Pac2002Tire`."""
-        return self.property_file_format in _keys.MF52_FORMATS
+        ``'MF_05'``, FITTYP none, 6 or 21), evaluated by :class:`flexpipe.tires.Pac2002Tire`."""
+        return self.property_file_format in _keys.MF52_FORMATS and not self.is_mf6
+
+    @property
+    def is_mf6(self) -> bool:
+        """True for a Magic Formula 6.1 or 6.2 fit (``[MODEL] FITTYP`` 61 or 62, any
+        PROPERTY_FILE_FORMAT but 'FIALA'), evaluated by :mod:`flexpipe.tires.mf61`."""
+        return (self.property_file_format != "FIALA"
+                and self.fittyp in _keys.MF6_EVALUATED)
+
+    @property
+    def pressures(self) -> tuple[float, float] | None:
+        """``(INFLPRES, NOMPRES)`` of ``[OPERATING_CONDITIONS]`` in Pa, or None when the
+        file does not give both."""
+        sec = "OPERATING_CONDITIONS"
+        if self.get(sec, "INFLPRES") is None or self.get(sec, "NOMPRES") is None:
+            return None
+        return self.number(sec, "INFLPRES"), self.number(sec, "NOMPRES")
 
     @property
     def use_mode(self) -> int:
@@ -298,7 +326,7 @@ def _parse_value(raw: str):
 def _required_sections(fmt: str, use_mode: int) -> list[str]:
     if fmt == "FIALA":
         return ["MODEL", "DIMENSION", "VERTICAL", "PARAMETER"]
-    if fmt not in _keys.MF52_FORMATS:
+    if fmt not in _keys.MF52_FORMATS and fmt != "MF6":
         return ["MODEL"]
     req = ["MODEL", "DIMENSION", "VERTICAL"]
     mode = abs(use_mode) % 10
@@ -391,6 +419,9 @@ def read_tir(path) -> TireProperties:
             key, value = m.group(1).upper(), _parse_value(m.group(2))
             table_open = None
             if value == "":
+                if current in _keys.FREE_SECTIONS and \
+                        _fittyp(sections) in _keys.MF6_EVALUATED:
+                    continue   # MF-Tool writes empty entries (ROAD_INCREMENT =) it does not use
                 raise InputError(f"[{current}] {key} has no value", file=path, line=lineno,
                                  key=key)
             if key in sections[current]:
@@ -438,27 +469,33 @@ def read_tir(path) -> TireProperties:
     if not sections:
         raise InputError("no [SECTION] found: not a TeimOrbit tyre property file", file=path)
     fmt = str(sections.get("MODEL", {}).get("PROPERTY_FILE_FORMAT", "")).upper()
+    # an MF 6.1 / 6.2 fit is checked as a Magic Formula file whatever its format's name
+    mf6 = fmt != "FIALA" and _fittyp(sections) in _keys.MF6_EVALUATED
+    kind = "MF6" if mf6 else fmt
     use_mode = sections.get("MODEL", {}).get("USE_MODE", 4.0)
+    valid = VALID_USE_MODES_MF6 if mf6 else VALID_USE_MODES
     if not isinstance(use_mode, float) or use_mode != int(use_mode) or \
-            int(use_mode) not in VALID_USE_MODES:
+            int(use_mode) not in valid:
+        more = (", or MF-Tyre's three digits 1xy..9xy with x 0..5, y 0..4 (e.g. 124)"
+                if mf6 else "")
         raise InputError(f"[MODEL] USE_MODE = {use_mode!r} is not valid; valid: 0..4, 10..14, "
-                         "20..24 (negative = mirrored)", file=path,
+                         f"20..24 (negative = mirrored){more}", file=path,
                          line=lines.get(("MODEL", "USE_MODE")), key="USE_MODE")
-    for name in _required_sections(fmt, int(use_mode)):
+    for name in _required_sections(kind, int(use_mode)):
         if name not in sections:
             raise InputError(f"required section [{name}] is missing for a {fmt or 'tyre'} "
                              f"file with USE_MODE {int(use_mode)}", file=path, key=name)
         if not sections[name] and name not in tables:
             raise InputError(f"required section [{name}] is empty (truncated file?)",
                              file=path, line=lines[(name, "")], key=name)
-    if "PROPERTY_FILE_FORMAT" not in sections["MODEL"]:
+    if "PROPERTY_FILE_FORMAT" not in sections["MODEL"] and not mf6:
         raise InputError("[MODEL] has no PROPERTY_FILE_FORMAT (e.g. 'PAC2002', 'MF_05' or "
                          "'FIALA')",
                          file=path, line=lines[("MODEL", "")], key="PROPERTY_FILE_FORMAT")
-    check_keys(path, fmt, sections, lines)
+    check_keys(path, fmt, sections, lines, strict_as="PAC2002" if mf6 else None)
 
     factors = unit_factors(path, sections.get("UNITS", {}), lines)
-    if fmt in _keys.MF52_FORMATS and factors["ANGLE"] != 1.0:
+    if (fmt in _keys.MF52_FORMATS or mf6) and factors["ANGLE"] != 1.0:
         file_warning(f"{path}, line {lines.get(('UNITS', 'ANGLE'))}: [UNITS] ANGLE = "
                      f"'{sections['UNITS']['ANGLE']}' is not radian; the angle ranges are "
                      "converted, but Magic Formula coefficients are still interpreted as "
@@ -479,8 +516,9 @@ def read_tir(path) -> TireProperties:
             data = data * np.array([scale(d, factors) for d in dims])
         data.setflags(write=False)
         frozen_tables[name] = TirTable(cols, data, lineno, tuple(row_lines))
-    check_tir(path, fmt, int(use_mode), sections, lines, frozen_tables)
-    if fmt in _keys.MF52_FORMATS:
+    check_tir(path, "PAC2002" if mf6 else fmt, int(use_mode), sections, lines,
+              frozen_tables)
+    if fmt in _keys.MF52_FORMATS and not mf6:
         warn_unused_mf6(path, sections, lines)
 
     return TireProperties(

@@ -124,15 +124,22 @@ def corner_arrays(car: Car, body_mass: float, body_cg, *, tires=None,
             if abs(c.wheel_center[2] - z_static) > RIDE_HEIGHT_TOL:
                 off.append((c, z_static, Nz))
         if off:
+            def key(c):   # where the car file gives the design wheel centre
+                if car.suspension is None:
+                    return f"corners.{c.name}.wheel_center_m"
+                axle = "front" if c.name.startswith("f") else "rear"
+                return f"suspension.{axle}.hardpoints_m.wheel_center (+ location_m)"
+
             what = "; ".join(
-                f"corners.{c.name}.wheel_center_m z = {c.wheel_center[2]:.4f} m, the tyre's "
+                f"{key(c)} z = {c.wheel_center[2]:.4f} m, the tyre's "
                 f"static loaded radius under the static wheel load {Nz:.0f} N is "
-                f"{z_static:.4f} m (tyre {c.tire.name}): set z to {z_static:.4f}"
-                for c, z_static, Nz in off)
+                f"{z_static:.4f} m (tyre {c.tire.name}"
+                f"{'' if c.tire_pressure is None else f' at {c.tire_pressure:g} Pa'}): "
+                f"set z to {z_static:.4f}" for c, z_static, Nz in off)
             raise InputError(
                 f"{what}; the design position must be the ride height at rest (within "
                 f"{RIDE_HEIGHT_TOL * 1e3:g} mm)", file=car.file,
-                key=f"corners.{off[0][0].name}.wheel_center_m")
+                key=key(off[0][0]).split(" ")[0])
     arb = np.array([car.anti_roll_bars.get("front", 0.0), car.anti_roll_bars.get("rear", 0.0)])
     return CornerArrays(
         hardpoint=np.array([c.hardpoint for c in cs]),

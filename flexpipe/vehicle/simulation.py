@@ -110,9 +110,16 @@ def _tires(car: Car):
 
     models, out = {}, []
     for c in car.corners:
-        key = str(c.tire)
+        key = (str(c.tire), c.tire_pressure)
         if key not in models:
-            models[key] = tire_from_file(c.tire)
+            try:
+                models[key] = tire_from_file(c.tire, **(
+                    {} if c.tire_pressure is None else {"pressure": c.tire_pressure}))
+            except InputError as exc:
+                if exc.key != "pressure":
+                    raise
+                raise InputError(str(exc), file=car.file,
+                                 key=f"corners.{c.name}.tire_pressure_Pa") from None
         tire = models[key]
         if abs(tire.unloaded_radius - c.wheel_radius) > 1e-3:
             raise InputError(f"wheel_radius_m = {c.wheel_radius:g} m but the tyre file "

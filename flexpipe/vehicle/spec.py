@@ -96,6 +96,7 @@ class CornerSpec:
     wheel_radius: float
     spin_inertia: float
     tire: Path
+    tire_pressure: float | None = None
 
     @property
     def axle(self) -> str:
@@ -231,7 +232,7 @@ def _corner(corners: Table, name: str, base: Path) -> CornerSpec:
         unsprung_inertia=read_inertia(c, "unsprung_inertia_kg_m2"),
         wheel_radius=c.number("wheel_radius_m", lo=0, lo_open=True),
         spin_inertia=c.number("wheel_spin_inertia_kg_m2", lo=0, lo_open=True),
-        tire=tire,
+        tire=tire, tire_pressure=_tire_pressure(c),
     )
     c.finish()
     dampers = (("damper_N_s_per_m", cj),) if has_lin else (
@@ -288,6 +289,16 @@ def _check_corner_envelope(c: Table, spec: CornerSpec) -> None:
                                      "axle, 0.3-0.7 m from the wheel centre in cars)")
 
 
+def _tire_pressure(c) -> float | None:
+    """``tire_pressure_Pa``: the inflation pressure of an MF 6.x tyre (None: the file's
+    INFLPRES); checked against the file's range when the tyre is built."""
+    p = c.number("tire_pressure_Pa", None, lo=0, lo_open=True)
+    if p is not None and not 2e4 <= p <= 2e6:
+        raise c.error("tire_pressure_Pa", f"{p:g} Pa is not a tyre pressure; valid: "
+                      "20000 .. 2000000 Pa (the key is in Pa: 2.3 bar = 230 kPa = 230000)")
+    return p
+
+
 def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> CornerSpec:
     """A corner of a car with linkage suspension: wheel, tyre and the linkage's masses
     (``wheel``: rim + tyre mass and inertia, from ``Suspension.wheels``)."""
@@ -311,7 +322,7 @@ def _wheel_corner(corners: Table, name: str, base: Path, linkage, wheel) -> Corn
         unsprung_inertia=J_wheel,
         wheel_radius=c.number("wheel_radius_m", lo=0, lo_open=True),
         spin_inertia=c.number("wheel_spin_inertia_kg_m2", lo=0, lo_open=True),
-        tire=tire)
+        tire=tire, tire_pressure=_tire_pressure(c))
     c.finish()
     c.magnitude("wheel_spin_inertia_kg_m2", spec.spin_inertia, *lim.WHEEL_SPIN_INERTIA_KG_M2,
                 unit="kg m^2", what="the spin inertia of a wheel", slips=lim.INERTIA_SLIPS)
