@@ -369,6 +369,7 @@ def read_tir(path) -> TireProperties:
     sections: dict[str, dict] = {}
     lines: dict[tuple[str, str], int] = {}
     tables: dict[str, tuple[tuple[str, ...], list, int]] = {}
+    empty = []      # (section, key, line) of empty entries in free sections
     current = None
     table_open = None
     comments = 0    # in a (COMMENTS) block: 1 right after its header line, 2 in its rows
@@ -419,9 +420,11 @@ def read_tir(path) -> TireProperties:
             key, value = m.group(1).upper(), _parse_value(m.group(2))
             table_open = None
             if value == "":
-                if current in _keys.FREE_SECTIONS and \
-                        _fittyp(sections) in _keys.MF6_EVALUATED:
-                    continue   # MF-Tool writes empty entries (ROAD_INCREMENT =) it does not use
+                if current in _keys.FREE_SECTIONS:
+                    # MF-Tool writes empty entries (ROAD_INCREMENT =): skipped in an MF 6.x
+                    # file, an error in any other (decided once FITTYP is known)
+                    empty.append((current, key, lineno))
+                    continue
                 raise InputError(f"[{current}] {key} has no value", file=path, line=lineno,
                                  key=key)
             if key in sections[current]:
@@ -472,6 +475,9 @@ def read_tir(path) -> TireProperties:
     # an MF 6.1 / 6.2 fit is checked as a Magic Formula file whatever its format's name
     mf6 = fmt != "FIALA" and _fittyp(sections) in _keys.MF6_EVALUATED
     kind = "MF6" if mf6 else fmt
+    if empty and not mf6:
+        sec, key, lineno = empty[0]
+        raise InputError(f"[{sec}] {key} has no value", file=path, line=lineno, key=key)
     use_mode = sections.get("MODEL", {}).get("USE_MODE", 4.0)
     valid = VALID_USE_MODES_MF6 if mf6 else VALID_USE_MODES
     if not isinstance(use_mode, float) or use_mode != int(use_mode) or \

@@ -12,6 +12,7 @@ import re
 from pathlib import Path
 
 BASE = Path(__file__).resolve().parents[2] / "tires" / "sedan_205_55R16.tir"
+MF61 = BASE.with_name("sedan_205_55R16_mf61.tir")
 
 
 def load(path):
@@ -46,7 +47,7 @@ def _cut_after(text: str, marker: str) -> str:
 
 
 def cases():
-    """Yield the corpus (about 80 cases)."""
+    """Yield the corpus (about 130 cases)."""
     base = BASE.read_text()
     b = base.encode()
     yield "ok_base", "base.tir", b, "ok"
@@ -161,3 +162,31 @@ def cases():
             r"(\{pen\s+fz\}\n)(\s*[-0-9.]+\s+[-0-9.]+\n)+", r"\1", base).encode(), "error"
         yield "table_and_stiffness_disagree", "disagree.tir", _set(
             base, "VERTICAL_STIFFNESS", "400000").encode(), "ok"
+    yield from _mf61_cases()
+
+
+def _mf61_cases():
+    """The MF 6.1 sample: valid variants MF-Tool writes, and bad pressures and MF 6.x
+    coefficients (each an error naming the file)."""
+    m6 = MF61.read_text()
+    yield "ok_mf61_base", "mf61.tir", m6.encode(), "ok"
+    yield "ok_mf62", "mf62.tir", _set(m6, "FITTYP", "62").encode(), "ok"
+    yield "ok_mf61_use_mode_124", "mf61_124.tir", _set(m6, "USE_MODE", "124").encode(), "ok"
+    yield "ok_mf61_no_format_empty_entry", "mf61_tool.tir", m6.replace(
+        "PROPERTY_FILE_FORMAT     = 'MF-TYRE'", "ROAD_INCREMENT           =").encode(), "ok"
+    yield "ok_mf61_q_fz2", "mf61_qfz2.tir", re.sub(
+        r"\[DEFLECTION_LOAD_CURVE\]\n\{pen +fz\}\n( *[0-9.]+ +[0-9]+\n)+", "",
+        m6.replace("PFZ1 ", "Q_FZ2 = 12.0\nPFZ1 ")).encode(), "ok"
+    for key, value in (("FITTYP", "60"), ("FITTYP", "63"), ("USE_MODE", "125"),
+                       ("USE_MODE", "164"), ("INFLPRES", "400000"), ("INFLPRES", "0"),
+                       ("INFLPRES", "-230000"), ("NOMPRES", "0"), ("PKY4", "0"),
+                       ("PRESMIN", "300000")):
+        yield f"mf61_{key}_{value}", f"mf61_{key}.tir", _set(m6, key, value).encode(), "error"
+    yield "mf61_no_operating_conditions", "mf61_nop.tir", re.sub(
+        r"\[OPERATING_CONDITIONS\]\n(.*\n){2}", "", m6).encode(), "error"
+    yield "mf61_q_fz2_negative", "mf61_qfz2n.tir", re.sub(
+        r"\[DEFLECTION_LOAD_CURVE\]\n\{pen +fz\}\n( *[0-9.]+ +[0-9]+\n)+", "",
+        m6.replace("PFZ1 ", "Q_FZ2 = -5.0\nPFZ1 ")).encode(), "error"
+    yield "mf61_pfz1_no_stiffness", "mf61_pfz1.tir", _set(_set(m6, "PFZ1", "-20.0"),
+                                                            "INFLPRES", "300000").encode(), "error"
+    yield "mf61_typo_PPX5", "mf61_ppx5.tir", _rename(m6, "PPX4", "PPX5").encode(), "error"
