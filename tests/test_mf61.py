@@ -224,12 +224,15 @@ def test_a_car_on_the_mf61_sample_drives_as_on_the_mf52_sample(tmp_path):
 
 
 def test_a_car_file_tire_pressure_reaches_the_tyre_and_is_checked(tmp_path):
-    """``tire_pressure_Pa`` of a corner: the tyre's pressure, its vertical stiffness times
-    1 + PFZ1 dpi; a value in bar, or one for an MF 5.2 tyre, is an error naming the key."""
+    """``tire_pressure_Pa`` of a corner: the tyre's pressure (``flexpipe info`` shows it),
+    its vertical stiffness times 1 + PFZ1 dpi; a value in bar, or one for an MF 5.2 tyre,
+    is an error naming the key."""
     from flexpipe.vehicle import load_car
+    from flexpipe.vehicle.describe import car_text
     from flexpipe.vehicle.simulation import _tires
 
     path = linkage_with(tmp_path, f'tire = "{MF61}"\ntire_pressure_Pa = 240000')
+    assert "tyres: sedan_205_55R16_mf61.tir at 240 kPa;" in car_text(load_car(path))
     tires = _tires(load_car(path))
     assert all(t.mf.pressure == 240000.0 for t in tires)
     k0 = tire_from_file(MF61).vertical.k

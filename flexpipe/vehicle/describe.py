@@ -96,7 +96,9 @@ def car_text(car: Car) -> str:
     lines.append("  static wheel loads (N): " + ", ".join(
         f"{n} {v:.1f}" for n, v in zip(CORNERS, N, strict=True))
         + f"; sum {N.sum():.1f} (car weight {W:.1f})")
-    lines.append(f"  tyres: {', '.join(sorted({c.tire.name for c in car.corners}))}; "
+    tyres = sorted({c.tire.name + ("" if c.tire_pressure is None else
+                                   f" at {c.tire_pressure / 1e3:g} kPa") for c in car.corners})
+    lines.append(f"  tyres: {', '.join(tyres)}; "
                  f"steering ratio {car.steering.ratio:g} on the {car.steering.axle} axle; "
                  f"{car.drive.layout}-wheel drive, its torque reacted on the "
                  + ("body (driveshafts)" if car.drive.reaction == "body" else
