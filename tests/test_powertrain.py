@@ -1,10 +1,10 @@
 """The powertrain as a rigid body on mounts (``[powertrain]`` of a linkage car).
 
 References: the linear statics of a rigid body on springs (the mount forces that hold
-the powertrain's weight, and those that pass a given resultant and moment, from the 6x6
-stiffness of the mounts solved with NumPy); a closed form for the mounts' stiffness and
-the bounce frequency of a symmetric layout; conservation (the tyres carry the whole car's
-weight, the powertrain's included).
+the powertrain's weight, the bushings' deflections under it, and the forces that pass a
+given resultant and moment, from the 6x6 stiffness of the mounts solved with NumPy); a
+closed form for the mounts' stiffness and the bounce frequency of a symmetric layout;
+conservation (the tyres carry the whole car's weight, the powertrain's included).
 """
 
 import re
@@ -16,6 +16,7 @@ import pytest
 from flexpipe.driver import OpenLoopTorque
 from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel, load_car, simulate
+from flexpipe.vehicle.export import channel_unit
 from flexpipe.vehicle.linkage_setup import GRAVITY
 from flexpipe.vehicle.mounted import MountedBody
 from flexpipe.vehicle.simulation import default_driver
@@ -126,6 +127,23 @@ def test_parked_powertrain_hangs_in_its_mounts(tmp_path, body, tol):
     ref = mount_forces(pt, np.array([0.0, 0.0, -W, 0.0, 0.0, 0.0]))
     # the flexible body's mounts move under the load: the bushings see that too
     assert np.abs(f - ref).max() <= tol * W
+    # each bushing's deflection channels (bushing frame): the same statics, the weight's
+    # motion (u, theta) = K^-1 (W_body, 0) of the centre of mass at the mount, with the
+    # weight in body axes (the body pitches at rest) the resultant of the mount forces
+    u = np.linalg.solve(pt.stiffness_matrix(), np.r_[f.sum(axis=0), 0.0, 0.0, 0.0])
+    for n, p, b in zip(pt.mounts, pt.points, pt.bushings, strict=True):
+        ref_d = np.r_[b.frame.T @ (u[:3] + np.cross(u[3:], p - pt.center_of_mass)),
+                      b.frame.T @ u[3:]]
+        got = np.array([r[f"bushing_{n}_{a}"][sel].mean()
+                        for a in ("dx", "dy", "dz", "rx", "ry", "rz")])
+        # the force criterion above in the softest direction: tol W / k_min
+        assert np.abs(got[:3] - ref_d[:3]).max() <= tol * W / min(b.stiffness[:3]), n
+        # rotations on the rigid body (a flexible body's mount turns with the shell's local
+        # slope under the mount's 750 N, 0.29 mrad here, which the bushing sees too);
+        # 3e-3: linear statics against Exudyn's finite rotation (the 1.7 mrad pitch)
+        if body == "rigid":
+            assert np.abs(got[3:] - ref_d[3:]).max() <= 3e-3 * np.abs(ref_d[3:]).max(), n
+    assert (channel_unit(f"bushing_{n}_dz"), channel_unit(f"bushing_{n}_ry")) == ("m", "rad")
     # the tyres carry the whole car, the powertrain on its mounts included
     m = bodymodel.rigid_properties(car).mass + MASS + sum(
         mp for mp, _ in point_masses(with_wheels(car.suspension, car.suspension.wheels)))

@@ -107,6 +107,8 @@ class LinkageModel:
         self._pos_markers = {}
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
         self.body_links = []
+        #: bushings at body mounts: (mount, connector), deflection channels
+        self.bushings = []
         self.rack = None
         for i, cn in enumerate(CORNERS):
             self._corner(i, self.corners[cn])
@@ -260,6 +262,19 @@ class LinkageModel:
             damping=np.diag(bu.damping),
             visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
         self.body_links.append((mount, co, "local", (m0, m1), _I3))
+        self.bushings.append((mount, co))
+
+    def bushing_deflections(self) -> dict:
+        """Per body-mount bushing: displacement (m) and rotation (rad) of its outer end
+        relative to the mount, in the bushing's frame: ``{mount: (6,)}`` (read now)."""
+        go = self.mbs.GetObjectOutput
+        return {m: np.r_[go(co, OV.DisplacementLocal), go(co, OV.Rotation)]
+                for m, co in self.bushings}
+
+    def bushing_history(self, t: np.ndarray):
+        """:meth:`bushing_deflections` at the times ``t`` from the sensors
+        (:func:`flexpipe.exu.mount_sensors.bushing_history`)."""
+        return mount_sensors.bushing_history(self, t)
 
     # ------------------------------------------------------------------ mounted bodies
     def add_body_mounts(self, b, node_obj) -> None:

@@ -55,6 +55,8 @@ def add(model, body_node) -> None:
         return sensor(lambda **k: eii.SensorBody(bodyNumber=o, localPosition=cm,
                                                  outputVariableType=OV.Acceleration, **k))
 
+    model._bushing_sensors = [(m, obj(co, OV.DisplacementLocal), obj(co, OV.Rotation))
+                              for m, co in model.bushings]
     model._hub_sensors = (
         [[(acc(o, cm), m) for o, m, cm in parts] for parts in model.part_nodes],
         [(i, obj(co, OV.Force), mark(ma, OV.Position), mark(mb, OV.Position))
@@ -118,4 +120,17 @@ def history(model, t: np.ndarray):
         F = np.einsum("nji,nj->ni", Rb, out[mount])  # global -> body axes
         F[~ok] = np.nan
         out[mount] = F
+    return out
+
+
+def bushing_history(model, t: np.ndarray):
+    """Per body-mount bushing deflections (displacement m, rotation rad, bushing frame) at
+    the times ``t`` from the sensors of :func:`add`: ``{mount: (n, 6)}``, rows NaN where
+    no sensor sample lies within 1e-9 s of ``t``."""
+    data, ok = _reader(model, t)
+    out = {}
+    for mount, sd, sr in model._bushing_sensors:
+        d = np.c_[data(sd, 3), data(sr, 3)]
+        d[~ok] = np.nan
+        out[mount] = d
     return out

@@ -36,7 +36,7 @@ from flexpipe.vehicle import sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.corners import ackermann_angles, road_wheel_angles
 from flexpipe.vehicle.reaction_mounts import CoupleSplit
-from flexpipe.vehicle.sensor_rows import Recorder
+from flexpipe.vehicle.sensor_rows import BUSHING_AXES, Recorder, record_mounts
 from flexpipe.vehicle.spec import CORNERS
 
 #: offsets (in units of the finite-difference step) of the road-normal stencil
@@ -190,7 +190,7 @@ class CarController:
         if car.drive.reaction_mounts and self.body_reaction:
             self.reaction = CoupleSplit(car.drive.reaction_mounts, car.drive.reaction_points)
             names += [f"mount_{m}_{a}" for m in self.reaction.names for a in "xyz"]
-        self.mounts = []
+        self.mounts, self.bushings = [], []
         #: per-mount forces recorded by Exudyn sensors (LinkageModel.add_mount_sensors)
         self.mount_sensors = bool(getattr(linkage, "_sensors", None))
         #: hub forces of the rows after the first made of Exudyn's sensor records after
@@ -201,6 +201,8 @@ class CarController:
             self.mounts = sorted({m for m, *_ in linkage.body_links})
             for m in self.mounts:
                 names += [f"mount_{m}_x", f"mount_{m}_y", f"mount_{m}_z"]
+            self.bushings = sorted({m for m, _ in linkage.bushings})  # their deflections
+            names += [f"bushing_{m}_{a}" for m in self.bushings for a in BUSHING_AXES]
         n_rows = int(round(t_end / h)) // self.output_every + 2
         self.rec = Recorder(names, n_rows)
         self._row = np.full(len(names), np.nan)  # one output row, filled by _record
@@ -488,13 +490,7 @@ class CarController:
             row[k:k + f.size] = f.ravel()
             k += f.size
         if self.mounts:
-            if self.rec.rows == 0 or not self.mount_sensors:
-                mf = self.linkage.mount_forces()
-                for m in self.mounts:
-                    row[k:k + 3] = R.T @ mf[m]
-                    k += 3
-            else:  # filled after the run from Exudyn's sensors (fill_from_sensors)
-                row[k:] = np.nan
+            record_mounts(self, row, k, R)
         self.rec.add(st.t, row)
         if self.body_motion is not None and len(self.motion) < self.rec.rows and not later:
             self.motion.append(self.body_motion())

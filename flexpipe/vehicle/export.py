@@ -53,6 +53,8 @@ _UNITS = (
     (r"^drive_torque$", "N m"),
     (r"^hub_\w+_[xyz]$", "N"),
     (r"^mount_\w+_[xyz]$", "N"),
+    (r"^bushing_\w+_d[xyz]$", "m"),
+    (r"^bushing_\w+_r[xyz]$", "rad"),
     (r"^tire_\w+_F[xyz]$", "N"),
     (r"^travel_\w+$", "m"),
     (r"^spin_\w+$", "rad/s"),

@@ -38,6 +38,29 @@ class Recorder:
         return {n: self.data[: self.rows, i].copy() for i, n in enumerate(self.names)}
 
 
+#: suffixes of a bushing's deflection channels: its outer end's displacement (m) and
+#: rotation (rad) relative to the mount, in the bushing's frame
+BUSHING_AXES = ("dx", "dy", "dz", "rx", "ry", "rz")
+
+
+def record_mounts(ctrl, row, k: int, R) -> None:
+    """The mount forces (body axes, ``R`` the body's rotation) and bushing deflections of
+    the row being recorded, from ``row[k]`` on: read now for the first row or a run
+    without sensors, else NaN (filled after the run, :func:`fill`)."""
+    if ctrl.rec.rows and ctrl.mount_sensors:
+        row[k:] = np.nan
+        return
+    mf = ctrl.linkage.mount_forces()
+    for m in ctrl.mounts:
+        row[k:k + 3] = R.T @ mf[m]
+        k += 3
+    if ctrl.bushings:
+        bd = ctrl.linkage.bushing_deflections()
+        for m in ctrl.bushings:
+            row[k:k + 6] = bd[m]
+            k += 6
+
+
 def fill(ctrl) -> None:
     """Fill the rows after the first of the controller ``ctrl``'s recorder (and its body
     motion) from the sensors of its run; nothing to do with fewer than two rows."""
@@ -75,6 +98,11 @@ def _mounts_and_hubs(ctrl) -> None:
     for m in ctrl.mounts:
         for k, ax in enumerate("xyz"):
             rec.data[rows, rec.index[f"mount_{m}_{ax}"]] = hist[m][:, k]
+    if ctrl.bushings:
+        bd = ctrl.linkage.bushing_history(rec.t[rows])
+        for m in ctrl.bushings:
+            for k, ax in enumerate(BUSHING_AXES):
+                rec.data[rows, rec.index[f"bushing_{m}_{ax}"]] = bd[m][:, k]
     hub_rows = ctrl._hub_rows
     if hub_rows:
         idx = np.array(sorted(hub_rows))
@@ -87,4 +115,4 @@ def _mounts_and_hubs(ctrl) -> None:
                 rec.data[idx, rec.index[f"hub_{corner}_{ax}"]] = hub[:, c, k]
 
 
-__all__ = ["fill"]
+__all__ = ["BUSHING_AXES", "fill", "record_mounts"]
