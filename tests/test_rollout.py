@@ -27,8 +27,10 @@ def _coasting_driver(car, mass):
     return steering, SpeedPI(kp=0.0, ki=0.0, drive_torque_max=1.0, brake_torque_max=1.0)
 
 
-def test_rollout_deceleration_is_the_tyres_rolling_resistance():
-    car = fp.load_car(CAR)
+def _rollout(car, tire, pressure_factor=1.0):
+    """The car coasting from 70 km/h: (result, measured deceleration, the closed form
+    F_rr / m_eff of the rolling resistance ``R0 Fz QSY1 LMY pressure_factor`` at the
+    loaded radius, over the mass and the wheels' spin inertia ``J / R_e^2``)."""
     rb = bodymodel.rigid_properties(car)
     mass = rb.mass + car.unsprung_mass
     r = fp.simulate(car, speed=70 / 3.6, t_end=4.0, body="rigid",
@@ -36,15 +38,20 @@ def test_rollout_deceleration_is_the_tyres_rolling_resistance():
     assert r.status == 0, r.message
     sel = r.t >= 1.0
     decel = -np.polyfit(r.t[sel], r["speed"][sel], 1)[0]
-    tire = tire_from_file(car.corners[0].tire)
     c = tire.mf.c
     assert c.QSY2 == c.QSY3 == c.QSY4 == 0.0
     N = static_wheel_loads(car, rb.mass, rb.center_of_mass)
     R_l = np.array([static_loaded_radius(tire, n) for n in N])
-    F_rr = float(np.sum(tire.unloaded_radius * N * c.QSY1 * c.LMY / R_l))
+    F_rr = float(np.sum(tire.unloaded_radius * N * c.QSY1 * c.LMY * pressure_factor / R_l))
     R_e = np.array([float(tire.effective_rolling_radius(tire.unloaded_radius - x)) for x in R_l])
     m_eff = mass + sum(cn.spin_inertia / re**2 for cn, re in zip(car.corners, R_e, strict=True))
-    assert decel == pytest.approx(F_rr / m_eff, rel=0.05)
+    return r, decel, F_rr / m_eff
+
+
+def test_rollout_deceleration_is_the_tyres_rolling_resistance():
+    car = fp.load_car(CAR)
+    r, decel, ref = _rollout(car, tire_from_file(car.corners[0].tire))
+    assert decel == pytest.approx(ref, rel=0.05)
     assert np.abs(r["y"]).max() < 0.01  # m
     assert np.abs(r["yaw"]).max() < 1e-3  # rad
 
@@ -64,8 +71,8 @@ def test_parked_car_stays_parked(body):
 
 
 def _mf61_rollout(tmp_path, pressure):
-    """(measured deceleration, the rolling resistance's F_rr / m_eff) of the prismatic car
-    on the MF 6.1 sample tyre at ``pressure`` coasting from 70 km/h."""
+    """(measured deceleration, closed form) of the prismatic car on the MF 6.1 sample tyre
+    at ``pressure`` (:func:`_rollout` with the factor ``(p/NOMPRES)^QSY8``)."""
     import re
 
     mf61 = ROOT / "tires" / "sedan_205_55R16_mf61.tir"
@@ -75,24 +82,11 @@ def _mf61_rollout(tmp_path, pressure):
     assert text.count(old) == 4
     path = tmp_path / f"car_{pressure:.0f}.toml"
     path.write_text(text.replace(old, f'tire = "{mf61}"\ntire_pressure_Pa = {pressure}'))
-    car = fp.load_car(path)
-    rb = bodymodel.rigid_properties(car)
-    mass = rb.mass + car.unsprung_mass
-    r = fp.simulate(car, speed=70 / 3.6, t_end=4.0, body="rigid",
-                    driver=_coasting_driver(car, mass))
-    assert r.status == 0, r.message
-    sel = r.t >= 1.0
-    decel = -np.polyfit(r.t[sel], r["speed"][sel], 1)[0]
     tire = tire_from_file(mf61, pressure=pressure)
     c = tire.mf.c
-    assert c.QSY2 == c.QSY3 == c.QSY4 == c.QSY6 == 0.0 and c.QSY7 == 1.0
-    N = static_wheel_loads(car, rb.mass, rb.center_of_mass)
-    R_l = np.array([static_loaded_radius(tire, n) for n in N])
-    F_rr = float(np.sum(tire.unloaded_radius * N * c.QSY1 * c.LMY
-                        * (pressure / 230000.0) ** c.QSY8 / R_l))
-    R_e = np.array([float(tire.effective_rolling_radius(tire.unloaded_radius - x)) for x in R_l])
-    m_eff = mass + sum(cn.spin_inertia / re**2 for cn, re in zip(car.corners, R_e, strict=True))
-    return decel, F_rr / m_eff
+    assert c.QSY6 == 0.0 and c.QSY7 == 1.0
+    _, decel, ref = _rollout(fp.load_car(path), tire, (pressure / 230000.0) ** c.QSY8)
+    return decel, ref
 
 
 def test_rollout_on_mf61_tyres_follows_their_pressure(tmp_path):
