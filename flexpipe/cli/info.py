@@ -251,8 +251,7 @@ def tire_text(path) -> str:
     kx, ky = (float(np.asarray(k)) for k in mf.slip_stiffness(fz))
     sk, sa = (float(np.asarray(x)) for x in mf.relaxation_lengths(fz))
     relax = ("no relaxation data" if np.isnan(sk) and np.isnan(sa) else
-             f"relaxation lengths {sk * 1e3:.0f} mm (longitudinal), {sa * 1e3:.0f} mm "
-             "(lateral)")
+             f"relaxation lengths {sk * 1e3:.0f} mm (longitudinal), {sa * 1e3:.0f} mm (lateral)")
     width = props.get("DIMENSION", "WIDTH")
     width = ("width not given" if width is None else
              f"width {width * 1e3:.0f} mm" if isinstance(width, float) else
@@ -263,8 +262,7 @@ def tire_text(path) -> str:
         f"{path}: tyre ({props.property_file_format or 'no PROPERTY_FILE_FORMAT'}, "
         f"USE_MODE {props.use_mode}, TYRESIDE {props.tyre_side}); {version}",
         f"  unloaded radius {props.unloaded_radius * 1e3:.1f} mm, {width}; vertical "
-        f"stiffness {props.vertical_stiffness:.4g} N/m, damping "
-        f"{props.vertical_damping:.4g} N s/m",
+        f"stiffness {tire.vertical.k:.4g} N/m, damping {tire.vertical.c:.4g} N s/m",
         f"  at FNOMIN = {fz:.0f} N: peak friction mu_x {mux:.3f}, mu_y {muy:.3f}; slip "
         f"stiffness {kx:.4g} N, cornering stiffness {abs(ky) * np.pi / 180:.4g} N/deg; "
         f"{relax}",

@@ -77,7 +77,9 @@ def pack(tire) -> np.ndarray:
         c_vert=vert.c, R0=tire.unloaded_radius, relax=float(bool(tire.relaxation)),
         vxlow=tire.vxlow, has_reff=float(have), breff=tire.breff or 0.0,
         dreff=tire.dreff or 0.0, freff=tire.freff or 0.0)
-    mf6 = hasattr(mf, "pcfx")   # an MF 6.1 / 6.2 tyre (flexpipe.tires.mf61)
+    from flexpipe.tires.mf61 import MagicFormula61
+
+    mf6 = isinstance(mf, MagicFormula61)
     extra.update(mf6=float(mf6), dpi=mf.dpi if mf6 else 0.0,
                  p_ratio=mf.pressure / mf.nominal_pressure if mf6 else 1.0,
                  fz_min=mf.fz_min if mf6 else 0.0, cx0=mf.cx0 if mf6 else np.nan,

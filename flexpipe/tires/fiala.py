@@ -131,8 +131,7 @@ class FialaTire(TireModel):
         return cls(
             params=p, vertical=VerticalModel.from_properties(props, law=vertical_law),
             unloaded_radius=props.unloaded_radius,
-            relaxation=((abs(props.use_mode) // 10) % 10 >= 1) if relaxation is None
-            else relaxation,
+            relaxation=props.relaxation if relaxation is None else relaxation,
             vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
             tyre_side="SYMMETRIC", mirror_all=False)
 
