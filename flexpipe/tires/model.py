@@ -219,7 +219,8 @@ def tire_from_file(path, *, model: str = "pac2002", **options) -> TireModel:
     model : {"pac2002", "fiala"}
         ``pac2002`` needs a Magic Formula file: PAC2002 or MF_05 (MF 5.2), or an MF 6.1 /
         6.2 fit (FITTYP 61 / 62); ``fiala`` accepts a FIALA file or derives its parameters
-        from a PAC2002 / MF_05 file.
+        from a Magic Formula file (slip stiffnesses, friction and relaxation lengths at
+        FNOMIN).
     **options
         Passed to :meth:`Pac2002Tire.from_properties` / :meth:`FialaTire.from_properties`:
         ``relaxation`` (None or bool), ``vertical_law`` (``"auto"``, ``"linear"``,
