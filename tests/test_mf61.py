@@ -262,3 +262,31 @@ def test_a_pressure_that_moves_the_ride_height_names_the_linkage_wheel_centre(tm
     assert "suspension.rear.hardpoints_m.wheel_center (+ location_m) z = 0.3013 m" in msg
     assert "at 190000 Pa" in msg and "set z to 0.2983" in msg
     assert "corners.rl.wheel_center_m" not in msg and "suspension.front" not in msg
+
+
+def test_info_prints_the_tyre_over_its_pressure_range(capsys):
+    """``flexpipe info`` on the MF 6.1 sample: at FNOMIN and 150 / 230 / 320 kPa the
+    cornering stiffness ``PKY1 Fz0 (1 + PPY1 dpi) sin(PKY4 atan(1 / (PKY2 (1 + PPY2
+    dpi))))``, slip stiffness ``Fz0 PKX1 (1 + PPX1 dpi + PPX2 dpi^2)``, ``mu_y = PDY1 (1 +
+    PPY3 dpi + PPY4 dpi^2)`` and the vertical stiffness times ``1 + PFZ1 dpi``, written
+    out here from the file's numbers."""
+    import math
+
+    from flexpipe.cli import main
+
+    assert main(["info", str(MF61)]) == 0
+    out = capsys.readouterr().out
+    assert "Magic Formula 6.1 at 230 kPa (NOMPRES 230 kPa)" in out
+    k0 = tire_from_file(MF61).vertical.k
+    rows = re.findall(r"(\d+) kPa: cornering stiffness ([0-9.e+]+) N/deg, slip stiffness "
+                      r"([0-9.e+]+) N, mu_y ([0-9.]+), vertical stiffness ([0-9.e+]+) N/m", out)
+    assert [int(r[0]) for r in rows] == [150, 230, 320]
+    for p, ky, kx, muy, cz in rows:
+        d = (float(p) - 230.0) / 230.0
+        want_ky = 18.0 * 4000.0 * (1 - 0.6 * d) * math.sin(
+            2.0 * math.atan(1.0 / (2.0 * (1 - 0.07 * d)))) * math.pi / 180
+        assert float(ky) == pytest.approx(want_ky, rel=1e-3)
+        assert float(kx) == pytest.approx(4000.0 * 21.0 * (1 - 0.35 * d + 0.3 * d * d),
+                                          rel=1e-3)
+        assert float(muy) == pytest.approx(1.05 * (1 - 0.15 * d + 0.25 * d * d), abs=6e-4)
+        assert float(cz) == pytest.approx(k0 * (1 + 0.7 * d), rel=1e-3)
