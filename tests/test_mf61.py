@@ -237,6 +237,10 @@ def test_a_car_file_tire_pressure_reaches_the_tyre_and_is_checked(tmp_path):
     assert all(t.mf.pressure == 240000.0 for t in tires)
     k0 = tire_from_file(MF61).vertical.k
     assert tires[0].vertical.k == pytest.approx(k0 * (1.0 + 0.7 * 10000 / 230000), rel=1e-12)
+    # a sweep's override sets it on a car file without the key (docs/sweeps.md)
+    plain = linkage_with(tmp_path, f'tire = "{MF61}"')
+    over = load_car(plain, overrides={"corners.rl.tire_pressure_Pa": 250000.0})
+    assert [t.mf.pressure for t in _tires(over)] == [230000.0, 230000.0, 250000.0, 230000.0]
     path = linkage_with(tmp_path, f'tire = "{MF61}"\ntire_pressure_Pa = 2.4')
     with pytest.raises(InputError, match=r"corners\.fl\.tire_pressure_Pa.*2\.4 Pa is not a "
                                          r"tyre pressure.*2\.3 bar = 230 kPa"):
