@@ -22,6 +22,7 @@ import pytest
 from flexpipe.errors import InputError
 from flexpipe.tires import SlipState, _fast, read_tir, tire_from_file
 from flexpipe.tires.contact import TireModel
+from tests._carfiles import absolute_text
 
 ROOT = Path(__file__).resolve().parents[1]
 MF61 = ROOT / "tires" / "sedan_205_55R16_mf61.tir"
@@ -191,8 +192,7 @@ LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
 
 
 def linkage_with(tmp_path, tire_line: str) -> Path:
-    text = re.sub(r'"(\.\./[^"]+)"', lambda m: f'"{(LINKAGE.parent / m[1]).resolve()}"',
-                  LINKAGE.read_text())
+    text = absolute_text(LINKAGE)
     old = f'tire = "{MF52}"'
     assert text.count(old) == 4
     path = tmp_path / "car.toml"

@@ -7,7 +7,6 @@ closed form for the mounts' stiffness and the bounce frequency of a symmetric la
 conservation (the tyres carry the whole car's weight, the powertrain's included).
 """
 
-import re
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +21,7 @@ from flexpipe.vehicle.mounted import MountedBody
 from flexpipe.vehicle.simulation import default_driver
 from flexpipe.vehicle.suspension.model import Bushing
 from flexpipe.vehicle.suspension.statics import point_masses, with_wheels
+from tests._carfiles import absolute_text
 from tests._mountstatics import mount_forces
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -54,8 +54,7 @@ def powertrain_text(*, mounts=MOUNTS, extra="", bushings=None) -> str:
 
 def car_file(tmp_path, **kw) -> Path:
     """The linkage sample with its powertrain on mounts in place of the spread mass."""
-    text = re.sub(r'"(\.\./[^"]+)"', lambda m: f'"{(LINKAGE.parent / m[1]).resolve()}"',
-                  LINKAGE.read_text())
+    text = absolute_text(LINKAGE)
     assert SPREAD in text
     text = text.replace(SPREAD, "").replace("\n[drive]\n",
                                             "\n" + powertrain_text(**kw) + "[drive]\n")

@@ -8,7 +8,6 @@ than the same couple on its reference frame, which no elastic mode sees); conser
 (a load system with zero resultant moves neither the car's speed nor its axle loads).
 """
 
-import re
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +18,7 @@ from flexpipe.errors import InputError
 from flexpipe.vehicle import bodymodel, load_car, simulate
 from flexpipe.vehicle.reaction_mounts import CoupleSplit
 from flexpipe.vehicle.simulation import default_driver
+from tests._carfiles import absolute_text
 
 ROOT = Path(__file__).resolve().parents[1]
 LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
@@ -27,16 +27,11 @@ NAMES = ("engine_mount_r", "gearbox_mount_l", "roll_restrictor")
 POINTS = ((0.20, -0.55, 0.55), (0.20, 0.55, 0.55), (-0.20, 0.0, 0.153))
 
 
-def _absolute(text: str, src: Path) -> str:
-    """``text`` of the car file ``src`` with its relative paths made absolute."""
-    return re.sub(r'"(\.\./[^"]+)"', lambda m: f'"{(src.parent / m[1]).resolve()}"', text)
-
-
 def _car_file(tmp_path, *, mounts=NAMES, points=POINTS, drive_extra="", src=LINKAGE,
               reaction=None):
     """The sample car with powertrain mounts ``[body.mounts.<name>]`` at ``points`` and
     ``[drive] reaction_mounts = mounts`` (None: key left out)."""
-    text = _absolute(src.read_text(), src)
+    text = absolute_text(src)
     tables = "".join(f"[body.mounts.{n}]\npoint_m = {list(p)}\nradius_m = 0.05\n\n"
                      for n, p in zip(NAMES, points, strict=False)
                      if mounts is None or n in mounts)
@@ -123,7 +118,7 @@ def test_powertrain_tables_without_reaction_mounts_are_refused(tmp_path):
 
 
 def test_prismatic_car_has_no_powertrain_mounts(tmp_path):
-    text = _absolute(SEDAN.read_text(), SEDAN).replace(
+    text = absolute_text(SEDAN).replace(
         "\n[drive]\n", '\n[drive]\nreaction_mounts = ["a", "b", "c"]\n')
     path = tmp_path / "sedan.toml"
     path.write_text(text)

@@ -17,6 +17,7 @@ from flexpipe.tires import tire_from_file
 from flexpipe.vehicle import bodymodel
 from flexpipe.vehicle.corners import static_loaded_radius, static_wheel_loads
 from flexpipe.vehicle.simulation import default_driver
+from tests._carfiles import absolute_text
 
 ROOT = Path(__file__).resolve().parents[1]
 CAR = ROOT / "cars" / "sedan.toml"
@@ -73,11 +74,8 @@ def test_parked_car_stays_parked(body):
 def _mf61_rollout(tmp_path, pressure):
     """(measured deceleration, closed form) of the prismatic car on the MF 6.1 sample tyre
     at ``pressure`` (:func:`_rollout` with the factor ``(p/NOMPRES)^QSY8``)."""
-    import re
-
     mf61 = ROOT / "tires" / "sedan_205_55R16_mf61.tir"
-    text = re.sub(r'"(\.\./[^"]+)"', lambda m: f'"{(CAR.parent / m[1]).resolve()}"',
-                  CAR.read_text())
+    text = absolute_text(CAR)
     old = f'tire = "{ROOT / "tires" / "sedan_205_55R16.tir"}"'
     assert text.count(old) == 4
     path = tmp_path / f"car_{pressure:.0f}.toml"

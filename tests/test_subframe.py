@@ -7,7 +7,6 @@ bushings reproduces the car whose mounts sit on the body); conservation (the tyr
 the whole car's weight, the subframe's included).
 """
 
-import re
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +16,7 @@ from flexpipe.errors import InputError
 from flexpipe.scenarios.runner import _straight_road
 from flexpipe.vehicle import load_car, simulate
 from flexpipe.vehicle.linkage_setup import GRAVITY
+from tests._carfiles import absolute_text
 from tests._mountstatics import mount_forces
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,8 +44,7 @@ def subframe_text(*, mass, k, c, carried=CARRIED, mounts=MOUNTS, extra="") -> st
 
 
 def car_file(tmp_path, name="car_subframe.toml", **kw) -> Path:
-    text = re.sub(r'"(\.\./[^"]+)"', lambda m: f'"{(LINKAGE.parent / m[1]).resolve()}"',
-                  LINKAGE.read_text())
+    text = absolute_text(LINKAGE)
     text = text.replace("\n[drive]\n", "\n" + subframe_text(**{**SOFT, **kw}) + "[drive]\n")
     path = tmp_path / name
     path.write_text(text)

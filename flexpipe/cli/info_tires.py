@@ -43,15 +43,17 @@ def pressure_lines(props) -> list[str]:
     """For an MF 6.x tyre with a pressure range: at FNOMIN and PRESMIN / NOMPRES / PRESMAX,
     the cornering and slip stiffnesses, mu_y and the vertical stiffness (each tyre built
     at that pressure, as a car's ``tire_pressure_Pa`` builds it)."""
+    import math
+
     import numpy as np
 
     from flexpipe.tires.model import tire_from_properties
 
-    if not props.is_mf6 or props.pressures is None or not props.has("INFLATION_PRESSURE_RANGE"):
+    if not props.is_mf6 or props.pressures is None or props.pressure_range is None:
         return []
     p0 = props.pressures[1]
-    ps = (props.number("INFLATION_PRESSURE_RANGE", "PRESMIN", p0), p0,
-          props.number("INFLATION_PRESSURE_RANGE", "PRESMAX", p0))
+    lo, hi = props.pressure_range
+    ps = (lo if lo > 0 else p0, p0, hi if math.isfinite(hi) else p0)
     rows = []
     for p in ps:
         t = tire_from_properties(props, pressure=p)

@@ -40,6 +40,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from flexpipe.tires import _keys
 from flexpipe.tires.pac2002 import MagicFormula, SlipForces, _mf, _weight
 
 _EPS_K = 1e-6  # MFeval's epsilon of the cornering stiffness in divisions
@@ -94,13 +95,15 @@ class MagicFormula61(MagicFormula):
                              "tyres; 2 is the MF 5.2 shape)", file=props.path, key="PKY4",
                              line=props.lines.get(("LATERAL_COEFFICIENTS", "PKY4")))
         # absent PKY4 / QSY7: the MF 5.2 shape of Ky over the load and My proportional to Fz
-        defaults = {k: v for k, v in (("PKY4", 2.0), ("QSY7", 1.0))
-                    if k not in lat and k not in props.coefficients("ROLLING_COEFFICIENTS")}
+        defaults = {k: v for sec, k, v in (("LATERAL_COEFFICIENTS", "PKY4", 2.0),
+                                           ("ROLLING_COEFFICIENTS", "QSY7", 1.0))
+                    if k not in props.coefficients(sec)}
         if defaults:
             base = replace(base, c=replace(base.c, **defaults))
         pressures = props.pressures
         if pressures is None:
-            if any(getattr(base.c, k) for k in _PRESSURE_KEYS) or pressure is not None:
+            if any(getattr(base.c, k) for _, k in _keys.PRESSURE_TERMS) or \
+                    pressure is not None:
                 raise InputError(
                     "an MF 6.x file with inflation-pressure terms (or a pressure given for "
                     "the run) needs [OPERATING_CONDITIONS] INFLPRES and NOMPRES (Pa)",
@@ -109,10 +112,7 @@ class MagicFormula61(MagicFormula):
         else:
             p, p0 = pressures
             p = p if pressure is None else float(pressure)
-            lo = props.number("INFLATION_PRESSURE_RANGE", "PRESMIN", 0.0) \
-                if props.has("INFLATION_PRESSURE_RANGE") else 0.0
-            hi = props.number("INFLATION_PRESSURE_RANGE", "PRESMAX", math.inf) \
-                if props.has("INFLATION_PRESSURE_RANGE") else math.inf
+            lo, hi = props.pressure_range or (0.0, math.inf)
             if not (p > 0.0 and lo <= p <= hi and p0 > 0.0):
                 raise InputError(
                     f"inflation pressure {p:g} Pa (NOMPRES {p0:g} Pa) is outside the fit's "
@@ -129,8 +129,7 @@ class MagicFormula61(MagicFormula):
 
         fields = {f: getattr(base, f) for f in base.__dataclass_fields__}
         return cls(**fields, version=int(props.fittyp), pressure=p, nominal_pressure=p0,
-                   fz_min=props.number("VERTICAL_FORCE_RANGE", "FZMIN", 0.0)
-                   if props.has("VERTICAL_FORCE_RANGE") else 0.0,
+                   fz_min=props.number("VERTICAL_FORCE_RANGE", "FZMIN", 0.0),
                    cx0=stiff("LONGITUDINAL_STIFFNESS"), cy0=stiff("LATERAL_STIFFNESS"),
                    pcfx=tuple(float(st.get(f"PCFX{i}", 0.0) or 0.0) for i in (1, 2, 3)),
                    pcfy=tuple(float(st.get(f"PCFY{i}", 0.0) or 0.0) for i in (1, 2, 3)))
@@ -320,7 +319,3 @@ class MagicFormula61(MagicFormula):
             * c.LS
         return -t * Fyg0 + Dr * np.cos(np.arctan(Br * ar)) + s * Fx
 
-
-#: coefficients that act only through the inflation pressure
-_PRESSURE_KEYS = ("PPX1", "PPX2", "PPX3", "PPX4", "PPY1", "PPY2", "PPY3", "PPY4", "PPY5",
-                  "PPZ1", "PPZ2", "PPMX1", "QSY8")

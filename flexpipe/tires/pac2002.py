@@ -143,20 +143,18 @@ class MagicFormula:
                 "NOT reduced under combined slip")
         fnom = props.fnomin
 
-        def num(sec, key, default):  # a number, or an error naming file, line and key
-            return props.number(sec, key, default) if props.has(sec) else float(default)
 
         def rng(sec, lo, hi, default):
-            return (num(sec, lo, default[0]), num(sec, hi, default[1]))
+            return (props.number(sec, lo, default[0]), props.number(sec, hi, default[1]))
 
         return cls(
             c=coeffs, fnomin=fnom, r0=props.unloaded_radius, use_mode=mode,
             kappa_range=rng("LONG_SLIP_RANGE", "KPUMIN", "KPUMAX", (-1.5, 1.5)),
             alpha_range=rng("SLIP_ANGLE_RANGE", "ALPMIN", "ALPMAX", (-1.5707, 1.5707)),
             gamma_range=rng("INCLINATION_ANGLE_RANGE", "CAMMIN", "CAMMAX", (-0.5, 0.5)),
-            fz_max=num("VERTICAL_FORCE_RANGE", "FZMAX", 3.0 * fnom),
-            longvl=num("MODEL", "LONGVL", 16.7),
-            vxlow=num("MODEL", "VXLOW", 1.0) or 1.0,
+            fz_max=props.number("VERTICAL_FORCE_RANGE", "FZMAX", 3.0 * fnom),
+            longvl=props.number("MODEL", "LONGVL", 16.7),
+            vxlow=props.number("MODEL", "VXLOW", 1.0) or 1.0,
         )
 
     # ------------------------------------------------------------------ building blocks

@@ -100,10 +100,11 @@ class TireProperties:
     def number(self, section: str, key: str, default: float | None = None) -> float:
         """Numeric value of ``key`` in ``[section]``.
 
-        Raises :class:`InputError` naming the file, section and key when the key is absent
-        and no ``default`` is given, or when the value is not a number.
+        Raises :class:`InputError` naming the file, section and key when the key (or its
+        section) is absent and no ``default`` is given, or when the value is not a number.
         """
-        sec = self.section(section)
+        sec = self.section(section) if default is None else self.sections.get(
+            section.upper(), {})
         value = sec.get(key.upper())
         if value is None:
             if default is not None:
@@ -145,6 +146,15 @@ class TireProperties:
         if self.get(sec, "INFLPRES") is None or self.get(sec, "NOMPRES") is None:
             return None
         return self.number(sec, "INFLPRES"), self.number(sec, "NOMPRES")
+
+    @property
+    def pressure_range(self) -> tuple[float, float] | None:
+        """``[INFLATION_PRESSURE_RANGE]`` ``(PRESMIN, PRESMAX)`` in Pa (0 and inf where a
+        bound is not given), or None without the section."""
+        if not self.has("INFLATION_PRESSURE_RANGE"):
+            return None
+        return (self.number("INFLATION_PRESSURE_RANGE", "PRESMIN", 0.0),
+                self.number("INFLATION_PRESSURE_RANGE", "PRESMAX", math.inf))
 
     @property
     def use_mode(self) -> int:
