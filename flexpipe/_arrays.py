@@ -54,3 +54,25 @@ def frozen_arrays(cls):
     __post_init__.__doc__ = own.__doc__ if own is not None else None
     cls.__post_init__ = __post_init__
     return cls
+
+
+def uniform_step(x) -> float:
+    """The spacing of ``x`` if its samples are uniform (within 1e-9 of its scale), else 0."""
+    step = np.diff(np.asarray(x, dtype=float))
+    if step.size and np.ptp(step) <= 1e-9 * max(1.0, float(np.max(np.abs(x)))):
+        return float(step.mean())
+    return 0.0
+
+
+def uniform_samples(x, z, *, most: int = 2**20):
+    """``(x, z, dx)`` on uniform samples: as given when uniform, else ``z`` resampled
+    linearly at the finest spacing of ``x`` (at least its range / ``most``), so that a
+    profile sampled at its corners only (an Adams 2D plank, a CSV with gaps) keeps the
+    spectrum of its shape."""
+    x = np.asarray(x, dtype=float)
+    dx = uniform_step(x)
+    if dx:
+        return x, np.asarray(z, dtype=float), dx
+    dx = max(float(np.diff(x).min()), float(x[-1] - x[0]) / most)
+    xu = np.arange(x[0], x[-1] + 0.5 * dx, dx)
+    return xu, np.interp(xu, x, z), dx

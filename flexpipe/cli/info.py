@@ -39,7 +39,7 @@ def add_arguments(p) -> None:
 
 #: what ``flexpipe info`` describes (for --help and errors)
 TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [car] "
-         "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg, .csv) or "
+         "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg, .rdf, .csv) or "
          "path (.toml with a [path] table, .csv) file, a speed profile (.toml with a "
          "[speed_profile] table, .csv), a tyre (.tir), or a mesh (.bdf, .inp, .msh, .vtu, ...)")
 
@@ -447,7 +447,7 @@ def run(args) -> int:
     if path.suffix.lower() == ".toml":
         print(toml_text(path))
         return 0
-    if path.suffix.lower() == ".crg":
+    if path.suffix.lower() in (".crg", ".rdf"):
         from flexpipe.roads import load_road
 
         print(road_text(load_road(path), file=path))

@@ -46,7 +46,7 @@ def add_arguments(parser) -> None:
     parser.formatter_class = argparse.RawDescriptionHelpFormatter
     parser.add_argument("car", help="car file (.toml), e.g. cars/sedan.toml")
     parser.add_argument("--road", default=None,
-                        help="road file (.toml spec, .crg, .csv); default: flat")
+                        help="road file (.toml spec, .crg, .rdf, .csv); default: flat")
     parser.add_argument("--path", default=None,
                         help="path file (.csv x,y or .toml [path], e.g. "
                              "paths/slalom_18m.toml) or a keyword: 'straight' (the default: "

@@ -1,8 +1,9 @@
 """Roads: heights under the wheel tracks as a function of distance along the path.
 
 Generators (:func:`flat`, :func:`harmonic`, :func:`irregularity`, :func:`iso8608`), readers
-(:func:`read_csv`, :func:`read_crg`), a writer (:func:`write_crg`) and :func:`load_road`,
-which dispatches on ``.crg`` / ``.csv`` / ``.toml``.  All return a frozen :class:`Road`
+(:func:`read_csv`, :func:`read_crg`, :func:`read_rdf` for Adams 2D road files), a writer
+(:func:`write_crg`) and :func:`load_road`, which dispatches on ``.crg`` / ``.csv`` /
+``.rdf`` / ``.toml``.  All return a frozen :class:`Road`
 whose :meth:`Road.height` is vectorized and cheap for scalars.
 """
 
@@ -17,6 +18,7 @@ from flexpipe.roads.generators import (
     iso8608,
     isotropic_coherence,
 )
+from flexpipe.roads.rdf import read_rdf
 from flexpipe.roads.road import Road, read_csv
 from flexpipe.roads.spec import ROAD_TYPES, load_road, road_from_spec
 
@@ -34,6 +36,7 @@ __all__ = [
     "load_road",
     "read_crg",
     "read_csv",
+    "read_rdf",
     "road_from_spec",
     "write_crg",
 ]

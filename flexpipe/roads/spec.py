@@ -106,14 +106,15 @@ def road_from_spec(table: dict, *, file=None, name: str = "road") -> Road:
 
 
 def load_road(spec, *, track_width: float | None = None) -> Road:
-    """Load a road from a file (``.crg``, ``.csv``, ``.toml``) or a specification table.
+    """Load a road from a file (``.crg``, ``.csv``, ``.rdf``, ``.toml``) or a specification
+    table.
 
     Parameters
     ----------
     spec : str, pathlib.Path or dict
         A file name, or a ``[road]``-style table (see :func:`road_from_spec`).
     track_width : float, optional
-        Wheel-track distance for ``.crg``/``.csv`` files (default 1.5 m); a TOML spec
+        Wheel-track distance for ``.crg``/``.csv``/``.rdf`` files (default 1.5 m); a TOML spec
         gives its own ``track_width_m``.
 
     Returns
@@ -125,13 +126,15 @@ def load_road(spec, *, track_width: float | None = None) -> Road:
     if isinstance(spec, dict):
         return road_from_spec(spec)
     if not isinstance(spec, (str, pathlib.Path)) and not hasattr(spec, "__fspath__"):
-        raise InputError("spec must be a road file (str or pathlib.Path: .crg, .csv, .toml) "
+        raise InputError("spec must be a road file (str or pathlib.Path: .crg, .csv, .rdf, "
+                         ".toml) "
                          f"or a [road] table (dict), got {type(spec).__name__} {spec!r:.60}",
                          key="spec")
     path = as_path(spec, "spec")
     suffix = path.suffix.lower()
-    if suffix not in (".crg", ".csv", ".toml"):
-        raise InputError(f"unknown road file type {path.suffix!r}; valid: .crg, .csv, .toml",
+    if suffix not in (".crg", ".csv", ".rdf", ".toml"):
+        raise InputError(f"unknown road file type {path.suffix!r}; valid: .crg (OpenCRG), "
+                         ".csv, .rdf (Adams 2D road), .toml",
                          file=path, key="file suffix")
     if not path.is_file():
         raise InputError("road file does not exist", file=path)
@@ -140,6 +143,10 @@ def load_road(spec, *, track_width: float | None = None) -> Road:
         return read_crg(path, track_width=tw)
     if suffix == ".csv":
         return read_csv(path, track_width=tw)
+    if suffix == ".rdf":
+        from flexpipe.roads.rdf import read_rdf
+
+        return read_rdf(path, track_width=tw)
     doc = read_toml(path)
     if set(doc) != {"road"}:
         extra = sorted(set(doc) - {"road"})

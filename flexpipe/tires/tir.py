@@ -37,12 +37,18 @@ Magic Formula coefficients are non-dimensional (radian-based) and are used as wr
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 from types import MappingProxyType
 
 import numpy as np
 
+from flexpipe._teimorbit import KEY_RE as _KEY_RE
+from flexpipe._teimorbit import NUMBER_RE as _NUMBER_RE
+from flexpipe._teimorbit import SECTION_RE as _SECTION_RE
+from flexpipe._teimorbit import SUBBLOCK_RE as _SUBBLOCK_RE
+from flexpipe._teimorbit import TABLE_RE as _TABLE_RE
+from flexpipe._teimorbit import parse_value as _parse_value
+from flexpipe._teimorbit import strip_comment as _strip_comment
 from flexpipe.errors import InputError
 from flexpipe.tires import _keys
 from flexpipe.tires.checks import (
@@ -56,12 +62,6 @@ from flexpipe.tires.checks import (
 )
 from flexpipe.tires.properties import TireProperties, TirTable, fittyp_of
 
-_SECTION_RE = re.compile(r"^\[\s*([A-Za-z0-9_\- ]+?)\s*\]$")
-_KEY_RE = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(.*)$")
-_TABLE_RE = re.compile(r"^\{(.*)\}$")
-_SUBBLOCK_RE = re.compile(r"^\(\s*([A-Za-z0-9_]+)\s*\)$")
-_NUMBER_RE = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?$")
-
 #: USE_MODE values honoured (sign = mirroring, tens = transient behaviour).
 VALID_USE_MODES = frozenset(s * (t + u) for s in (1, -1) for t in (0, 10, 20)
                             for u in range(5))
@@ -70,29 +70,6 @@ VALID_USE_MODES = frozenset(s * (t + u) for s in (1, -1) for t in (0, 10, 20)
 VALID_USE_MODES_MF6 = VALID_USE_MODES | frozenset(
     s * (100 * h + t + u) for s in (1, -1) for h in range(1, 10) for t in range(0, 60, 10)
     for u in range(5))
-
-
-def _strip_comment(text: str) -> str:
-    """Remove a ``$`` or ``!`` comment that is not inside quotes."""
-    quote = None
-    for i, ch in enumerate(text):
-        if quote:
-            if ch == quote:
-                quote = None
-        elif ch in "'\"":
-            quote = ch
-        elif ch in "$!":
-            return text[:i]
-    return text
-
-
-def _parse_value(raw: str):
-    raw = raw.strip()
-    if len(raw) >= 2 and raw[0] == raw[-1] and raw[0] in "'\"":
-        return raw[1:-1].strip()
-    if _NUMBER_RE.match(raw):
-        return float(raw.replace("d", "e").replace("D", "E"))
-    return raw
 
 
 #: Sections a PAC2002 / MF_05 file needs, by USE_MODE % 10.

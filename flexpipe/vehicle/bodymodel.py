@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from flexpipe._arrays import uniform_samples, uniform_step
 from flexpipe.errors import InputError
 from flexpipe.vehicle.spec import CORNERS, Car
 
@@ -407,9 +408,9 @@ def choose_band(speed: float, road=None, *, lo: float = 20.0, hi: float = BAND_C
     f_road = 0.0
     if road is not None:
         x = np.asarray(road.x)
-        if x.size > 16:
+        if x.size > 16 or not uniform_step(x):
             z = 0.5 * (np.asarray(road.left) + np.asarray(road.right))
-            dx = float(np.median(np.diff(x)))
+            x, z, dx = uniform_samples(x, z)
             slope = np.diff(z) / dx
             P = np.abs(np.fft.rfft(slope - slope.mean())) ** 2
             n = np.fft.rfftfreq(slope.size, dx)

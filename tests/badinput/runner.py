@@ -45,7 +45,7 @@ def kind_of(filename: str) -> str:
         return "tire"
     if suffix == ".npz":
         return "body"
-    if suffix == ".crg":
+    if suffix in (".crg", ".rdf"):
         return "road"
     for prefix, kind in (("road", "road"), ("path", "path"), ("driver", "driver"),
                          ("speed", "speed"),
