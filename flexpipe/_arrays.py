@@ -64,15 +64,16 @@ def uniform_step(x) -> float:
     return 0.0
 
 
-def uniform_samples(x, z, *, most: int = 2**20):
-    """``(x, z, dx)`` on uniform samples: as given when uniform, else ``z`` resampled
-    linearly at the finest spacing of ``x`` (at least its range / ``most``), so that a
-    profile sampled at its corners only (an Adams 2D plank, a CSV with gaps) keeps the
-    spectrum of its shape."""
+def uniform_samples(x, z, *, finest: float = 1e-3, most: int = 2**20):
+    """``(x, z, dx)`` on uniform samples: as given when uniform, else ``z`` (linear
+    between its samples) resampled at ``finest`` or the finest spacing of ``x`` if that is
+    coarser, but at least the range / ``most``, so that a profile sampled at its corners
+    only (an Adams 2D plank, a CSV with gaps) keeps the spectrum of its shape, corners
+    included."""
     x = np.asarray(x, dtype=float)
     dx = uniform_step(x)
     if dx:
         return x, np.asarray(z, dtype=float), dx
-    dx = max(float(np.diff(x).min()), float(x[-1] - x[0]) / most)
+    dx = max(min(float(np.diff(x).min()), finest), float(x[-1] - x[0]) / most)
     xu = np.arange(x[0], x[-1] + 0.5 * dx, dx)
     return xu, np.interp(xu, x, z), dx

@@ -247,3 +247,18 @@ def test_car_meets_the_plank_where_the_file_puts_it():
         i = int(np.argmax(fz))
         assert fz[i] - fz[0] > 2000.0
         assert 30.0 - row <= x_wheel[i] <= 30.05 + row, (corner, x_wheel[i])
+
+
+def test_body_band_of_a_corner_sampled_road_is_that_of_its_shape():
+    """The flexible body's band comes from the road's slope spectrum: the rdf roads,
+    sampled at their corners only, give the band of the same shape sampled every mm."""
+    from flexpipe.roads import Road
+    from flexpipe.vehicle.bodymodel import choose_band
+
+    for name in ("plank_15mm.rdf", "poly_line.rdf"):
+        road = load_road(ROOT / "roads" / name)
+        x = np.arange(road.x[0], road.x[-1], 1e-3)
+        dense = Road(x=x, left=road.left_height(x), right=road.right_height(x))
+        for v in (5.0, 12.0, 25.0):
+            assert choose_band(v, road, hi=1e4) == pytest.approx(
+                choose_band(v, dense, hi=1e4), rel=0.02)
