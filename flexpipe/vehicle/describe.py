@@ -188,9 +188,11 @@ def _axle_lines(car: Car, name: str, axle, load: float) -> list[str]:
     given = car.suspension.axles[name]
     spring = given.left.spring()
     if given.wheel_load is not None or spring.free_length is not None:
-        rig = rig_suspension(car.suspension).axles[name]
+        from flexpipe.vehicle.suspension.carrier import half_carrier, with_subframes
+
+        rig = rig_suspension(with_subframes(car.suspension, car.subframes)).axles[name]
         src = (f"wheel_load_N {given.wheel_load:.0f} N" if given.wheel_load is not None
                else "the spring's preload_N / free_length_m")
         out.append(at(f"on the K&C rig, {src} (flexpipe kc)",
-                      corner_figures(rig_corner(rig, rig.left))))
+                      corner_figures(rig_corner(rig, rig.left), carrier=half_carrier(rig))))
     return out

@@ -31,6 +31,14 @@ spring of half the rack stiffness (both wheels push it the same way) loaded only
 increment of the tie-rod force: the static tie-rod forces of the two corners are mirror
 images and cancel on the rack.
 
+A ``[subframe.<name>]`` carrying some of the axle's mounts (arms, spring seats, rack
+housing) rests on its bushings in the compliance analyses: parallel travel and the
+longitudinal forces move it in its symmetric motions (x, z, pitch), opposite travel and
+the lateral forces in its antisymmetric ones (y, roll, yaw), its half on the left of the
+centre plane carrying the left corner (:mod:`flexpipe.vehicle.suspension.carrier`); in
+the kinematic ones its bushings are rigid and it stays with the body.  The rig needs the
+subframe's bushings in mirror pairs and one subframe per axle.
+
 The summary (:attr:`KCResult.summary`) is evaluated at the design position itself
 (travel exactly 0; rates by central differences of :data:`H_DESIGN`), so it does not
 depend on the sweep's range or number of points.
@@ -44,6 +52,7 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
+from flexpipe.vehicle.suspension.carrier import half_carrier
 from flexpipe.vehicle.suspension.kinematics import (
     Linkage,
     solve_compliance,
@@ -110,7 +119,7 @@ def _arb_angle(lk: Linkage, pose, arb, phi0=0.0):
 def parallel_travel(axle: Axle, travel) -> Table:
     """Parallel wheel travel: geometry, motion ratios, wheel rate, roll centre, bump steer."""
     c = rig_corner(axle, axle.left)
-    lk, lkc = Linkage(c), Linkage(c)
+    lk, lkc = Linkage(c), Linkage(c, carrier=half_carrier(axle), mode="symmetric")
     rows, pose, cpose = [], None, None
     for s in tqdm(travel, desc=f"{axle.name} parallel travel", leave=False):
         pose = solve_kinematics(lk, s, pose=pose)
@@ -197,6 +206,14 @@ def opposite_travel(axle: Axle, travel, parallel: Table) -> Table:
     data = np.array(rows)
     s_m = data[:, 0] / 1e3
     s_par, k_par = parallel["wheel travel [mm]"] / 1e3, parallel["wheel rate [N/m]"]
+    carrier = half_carrier(axle)
+    if carrier is not None:   # a subframe rolls and yaws on its bushings here
+        lkc, pose, force = Linkage(rig_corner(axle, c), carrier=carrier,
+                                   mode="antisymmetric"), None, []
+        for s in s_par:
+            pose = solve_compliance(lkc, s, pose=pose)
+            force.append(pose.force)
+        k_par = np.gradient(np.array(force), s_par)
     k_l, k_r = np.interp(s_m, s_par, k_par), np.interp(-s_m, s_par, k_par)
     k_arb = np.gradient(data[:, -2] - data[:, -1], s_m) / 2 if len(s_m) > 1 else \
         np.zeros(len(s_m))
@@ -280,7 +297,8 @@ def force_compliance(axle: Axle, direction: int, forces) -> Table:
         static state in both directions.
     """
     c = rig_corner(axle, axle.left)
-    lk = _RackPreloadLinkage(c)
+    lk = _RackPreloadLinkage(c, carrier=half_carrier(axle),
+                             mode="symmetric" if direction == 0 else "antisymmetric")
     k_rack = None
     if direction == 1 and axle.rack is not None and axle.rack.axial_stiffness is not None:
         k_rack = axle.rack.axial_stiffness / 2
@@ -405,7 +423,8 @@ def design_figures(axle: Axle, *, h: float = H_DESIGN) -> dict:
     if axle.anti_roll_bar is not None:
         _, dphi = _arb_angle(lk, pose, axle.anti_roll_bar)
         k_bar = 2 * axle.anti_roll_bar.torsion_rate * dphi**2
-    k = wheel_rate(c, 0.0, h=h)
+    # the rate in opposite travel: with a subframe, it rolls on its bushings
+    k = wheel_rate(c, 0.0, h=h, carrier=half_carrier(axle), mode="antisymmetric")
     track = 2 * c.wheel_center[1]
     return {"camber [deg]": ch["camber"], "toe [deg]": ch["toe"], "caster [deg]": ch["caster"],
             "kpi [deg]": ch["kpi"], "scrub radius [mm]": ch["scrub_radius"] * 1e3,
@@ -431,7 +450,7 @@ def _summary(axle, lon, lat, *, wheel_mass: float = 0.0) -> dict:
     c = axle.left
     out = {"template": c.template, **design_figures(axle)}
     if c.spring() is not None:  # at the rig's preload (rig_corner), wheel on the knuckle
-        fig = corner_figures(rig_corner(axle, c))
+        fig = corner_figures(rig_corner(axle, c), carrier=half_carrier(axle))
         if axle.wheel_load is not None:
             out["wheel load [N]"] = axle.wheel_load
         out["wheel mass [kg]"] = wheel_mass

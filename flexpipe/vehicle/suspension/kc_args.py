@@ -21,8 +21,12 @@ RACK_TRAVEL_MAX_M = 0.5
 
 
 def _suspension(car):
-    """The ``Suspension`` of ``car``: a ``Suspension``, a ``Car`` or a car file."""
-    from flexpipe.vehicle.spec import Car
+    """The ``Suspension`` of ``car``: a ``Suspension``, a ``Car`` or a car file; the axles
+    of a car know their subframes (:func:`~flexpipe.vehicle.suspension.carrier.
+    with_subframes`)."""
+    from flexpipe.vehicle._toml import parse
+    from flexpipe.vehicle.spec import Car, load_car
+    from flexpipe.vehicle.suspension.carrier import with_subframes
     from flexpipe.vehicle.suspension.spec import Suspension, load_suspension
 
     if isinstance(car, Suspension):
@@ -32,12 +36,15 @@ def _suspension(car):
             raise InputError("this car has prismatic corners, no [suspension.*] tables; the "
                              "K&C rig needs a linkage car (e.g. cars/sedan_linkage.toml)",
                              file=car.file, key="car")
-        return car.suspension
+        return with_subframes(car.suspension, car.subframes)
     if not isinstance(car, (str, Path)) and not hasattr(car, "__fspath__"):
         raise InputError(f"car must be a Car (flexpipe.load_car), a car file (str or "
                          f"pathlib.Path) or a Suspension, got {type(car).__name__}",
                          key="car")
-    return load_suspension(as_path(car, "car"))
+    path = as_path(car, "car")
+    if path.suffix.lower() == ".toml" and path.is_file() and "subframe" in parse(path)[0]:
+        return _suspension(load_car(path))   # its subframes need the whole car file
+    return load_suspension(path)
 
 
 def _axle_names(axles, valid) -> set | None:

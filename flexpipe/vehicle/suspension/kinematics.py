@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flexpipe.errors import ModelError, SolverError
+from flexpipe.vehicle.suspension.carrier import CARRIER, FREE, carried_corner
 from flexpipe.vehicle.suspension.model import BODY, RACK, CornerLinkage
 
 G = 9.81
@@ -77,7 +78,11 @@ class Linkage:
         Rack travel is an unknown (compliance with a compliant column).
     """
 
-    def __init__(self, corner: CornerLinkage, *, rack_axis=(0.0, 1.0, 0.0)):
+    def __init__(self, corner: CornerLinkage, *, rack_axis=(0.0, 1.0, 0.0), carrier=None,
+                 mode: str | None = None):
+        if carrier is not None:
+            corner = carried_corner(corner, carrier)
+        self.carrier, self.mode = carrier, mode
         self.c = corner
         self.names = [p.name for p in corner.parts]
         self.idx = {n: i for i, n in enumerate(self.names)}
@@ -85,6 +90,9 @@ class Linkage:
         self.n = len(self.names)
         self.rack_axis = np.asarray(rack_axis, float)
         self.rack_free = False
+        # the subframe's index, and the rack's carrier when its housing is on it
+        self.k_carrier = self.idx[CARRIER] if carrier is not None else None
+        self.k_rack = self.k_carrier if carrier is not None and carrier.rack else None
 
     # ----------------------------------------------------------------- primitives
     @property
@@ -110,9 +118,14 @@ class Linkage:
         if o == BODY:
             return np.asarray(p0, float), J
         if o == RACK:
+            p = np.asarray(p0, float) + pose.rack * self.rack_axis
+            if self.k_rack is None:
+                if self.rack_free:
+                    J[:, -1] = self.rack_axis
+                return p, J
+            o, p0 = self.k_rack, p            # the housing moves with the subframe
             if self.rack_free:
-                J[:, -1] = self.rack_axis
-            return np.asarray(p0, float) + pose.rack * self.rack_axis, J
+                J[:, -1] = pose.R[o] @ self.rack_axis
         s = pose.R[o] @ (np.asarray(p0) - self.cm0[o])
         J[:, 6 * o:6 * o + 3] = np.eye(3)
         J[:, 6 * o + 3:6 * o + 6] = -skew(s)
@@ -122,6 +135,8 @@ class Linkage:
         """World direction of design vector ``v0`` fixed in ``owner`` and its Jacobian."""
         J = np.zeros((3, self.nx))
         o = self._owner(owner)
+        if o == RACK and self.k_rack is not None:
+            o = self.k_rack
         if o in (BODY, RACK):
             return np.asarray(v0, float), J
         v = pose.R[o] @ v0
@@ -179,9 +194,28 @@ class Linkage:
             d = pa - pb
             L = np.linalg.norm(d)
             add(f"link '{lk.name}'", L - lk.length, (d / L) @ (Ja - Jb))
+        if self.k_carrier is not None:
+            self._carrier_rows(pose, compliant, add)
         w, Jw = self.point(pose, self.c.knuckle, self.c.wheel_center)
         add("wheel travel", w[2], Jw[2])
         return np.concatenate(rows), np.vstack(jac), names
+
+    def _carrier_rows(self, pose: Pose, compliant: bool, add) -> None:
+        """The subframe held (kinematic analyses) or kept to the motions of the
+        analysis's symmetry (compliance: :data:`~flexpipe.vehicle.suspension.carrier.FREE`)."""
+        o = self.k_carrier
+        free = FREE[self.mode] if compliant and self.mode is not None else ()
+        label = f"subframe ({self.mode or 'held'})"
+        e = np.eye(3)
+        for k in range(3):
+            if k not in free:
+                J = np.zeros(self.nx)
+                J[6 * o + k] = 1.0
+                add(label, pose.r[o][k] - self.cm0[o][k], J)
+        for k, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):   # about x, y, z
+            if 3 + k not in free:
+                v, Jv = self.vector(pose, CARRIER, e[i])
+                add(label, v @ e[j], e[j] @ Jv)
 
     # ----------------------------------------------------------------- forces
     def forces(self, pose: Pose, *, patch_force=None, rack_stiffness=None,
@@ -192,16 +226,19 @@ class Linkage:
             b = j.bushing
             if b is None:
                 continue
-            part = j.b if j.a == BODY else j.a
-            o = self.idx[part]
-            if j.kind == "inline" and j.a != BODY:
-                Q += self._sliding_bushing(pose, j, o)
+            ground = j.a if j.a in (BODY, CARRIER) else j.b   # the body or the subframe
+            part = j.b if ground == j.a else j.a
+            if j.kind == "inline" and j.a == part:
+                Q += self._sliding_bushing(pose, j)
                 continue
             p, Jp = self.point(pose, part, j.point)
-            d = np.concatenate([b.frame.T @ (p - j.point), b.frame.T @ rotvec(pose.R[o])])
+            q, Jq = self.point(pose, ground, j.point)
+            d = np.concatenate([b.frame.T @ (p - q),
+                                b.frame.T @ rotvec(pose.R[self.idx[part]] @ self._R(pose,
+                                                                                    ground).T)])
             f = b.force(d)
-            Q += Jp.T @ (b.frame @ f[:3])
-            Q[6 * o + 3:6 * o + 6] += b.frame @ f[3:]
+            Q += (Jp - Jq).T @ (b.frame @ f[:3])
+            self._torque(Q, part, ground, b.frame @ f[3:])
         for lk in self.c.links:
             if lk.axial_stiffness is None:
                 continue
@@ -212,9 +249,12 @@ class Linkage:
             Q += (Ja - Jb).T @ (-lk.axial_stiffness * (L - lk.length) * d / L)
         for fe in self.c.forces:
             p, Jp = self.point(pose, fe.part, fe.point)
-            d = p - fe.body_point
+            q, Jq = self.point(pose, fe.body_part, fe.body_point)
+            d = p - q
             L = np.linalg.norm(d)
-            Q += Jp.T @ (fe.static_force(L) * d / L)
+            Q += (Jp - Jq).T @ (fe.static_force(L) * d / L)
+        if self.k_carrier is not None:
+            Q += self._carrier_bushings(pose)
         if patch_force is not None:
             p, Jp = self.point(pose, self.c.knuckle, self.contact_patch0())
             Q += Jp.T @ np.asarray(patch_force, float)
@@ -225,21 +265,48 @@ class Linkage:
             Q[-1] -= rack_stiffness * pose.rack
         return Q
 
-    def _sliding_bushing(self, pose: Pose, j, o: int) -> np.ndarray:
-        """Bushing of an in-line joint whose line is fixed in the part (strut top mount):
-        it resists the body point's offset from the line and the tilt of the line, not
-        the slide along it or the spin about it."""
-        b = j.bushing
+    def _R(self, pose: Pose, owner) -> np.ndarray:
+        """Rotation of ``owner`` (identity for the body)."""
+        return np.eye(3) if owner == BODY else pose.R[self.idx[owner]]
+
+    def _torque(self, Q, part, ground, T) -> None:
+        """Add the bushing torque ``T`` (world axes) on ``part``, its reaction on ``ground``."""
+        o = self.idx[part]
+        Q[6 * o + 3:6 * o + 6] += T
+        if ground != BODY:
+            g = self.idx[ground]
+            Q[6 * g + 3:6 * g + 6] -= T
+
+    def _sliding_bushing(self, pose: Pose, j) -> np.ndarray:
+        """Bushing of an in-line joint whose line is fixed in the part ``j.a`` (strut top
+        mount) on the body or the subframe ``j.b``: it resists the mount point's offset
+        from the line and the tilt of the line, not the slide along it or the spin about
+        it."""
+        b, o = j.bushing, self.idx[j.a]
         u, _ = self.vector(pose, j.a, j.axis)
+        m, Jm = self.point(pose, j.b, j.point)             # the mount point, where it is
         p0, _ = self.point(pose, j.a, j.point)
-        q_world = p0 + ((j.point - p0) @ u) * u       # point of the line nearest the mount
+        q_world = p0 + ((m - p0) @ u) * u              # point of the line nearest the mount
         q_design = pose.R[o].T @ (q_world - pose.r[o]) + self.cm0[o]
         q, Jq = self.point(pose, j.a, q_design)
         perp = np.eye(3) - np.outer(u, u)
-        f = b.force(np.concatenate([b.frame.T @ (perp @ (q - j.point)),
-                                    b.frame.T @ (perp @ rotvec(pose.R[o]))]))
-        Q = Jq.T @ (perp @ (b.frame @ f[:3]))
-        Q[6 * o + 3:6 * o + 6] += perp @ (b.frame @ f[3:])
+        rel = rotvec(pose.R[o] @ self._R(pose, j.b).T)
+        f = b.force(np.concatenate([b.frame.T @ (perp @ (q - m)), b.frame.T @ (perp @ rel)]))
+        F = perp @ (b.frame @ f[:3])
+        Q = (Jq - Jm).T @ F
+        self._torque(Q, j.a, j.b, perp @ (b.frame @ f[3:]))
+        return Q
+
+    def _carrier_bushings(self, pose: Pose) -> np.ndarray:
+        """Forces of the subframe's bushings (its half on the corner's side) on it."""
+        cr, o = self.carrier, self.k_carrier
+        Q = np.zeros(self.nx)
+        for p0, b, w in zip(cr.points, cr.bushings, cr.weights, strict=True):
+            p, Jp = self.point(pose, CARRIER, p0)
+            f = w * b.force(np.concatenate([b.frame.T @ (p - p0),
+                                            b.frame.T @ rotvec(pose.R[o])]))
+            Q += Jp.T @ (b.frame @ f[:3])
+            Q[6 * o + 3:6 * o + 6] += b.frame @ f[3:]
         return Q
 
     def contact_patch0(self) -> np.ndarray:

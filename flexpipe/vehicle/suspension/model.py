@@ -183,6 +183,9 @@ class ForceElement:
         rate); stops: force (N) vs deflection beyond the clearance (m).
     clearance : float
         Stops: travel from the design length before contact (m).
+    body_part : str
+        What carries the upper seat: the body, or the subframe part of the K&C rig's
+        half-axle model (:mod:`flexpipe.vehicle.suspension.carrier`).
     """
 
     name: str
@@ -195,6 +198,7 @@ class ForceElement:
     free_length: float | None = None
     table: tuple | None = None
     clearance: float = 0.0
+    body_part: str = BODY
 
     def __post_init__(self):
         if self.kind not in FORCE_KINDS:
@@ -345,7 +349,9 @@ class AntiRollBar:
 @dataclass(frozen=True)
 @frozen_arrays
 class Axle:
-    """Both corners of an axle with its optional rack and anti-roll bar."""
+    """Both corners of an axle with its optional rack and anti-roll bar; ``subframe`` is
+    the car's ``[subframe.<name>]`` (a ``MountedBody``) carrying some of its mounts, which
+    the K&C rig's compliance analyses include."""
 
     name: str
     left: CornerLinkage
@@ -353,6 +359,7 @@ class Axle:
     rack: Rack | None = None
     anti_roll_bar: AntiRollBar | None = None
     wheel_load: float | None = None
+    subframe: object | None = None
 
 
 def mirror_point(p) -> np.ndarray:

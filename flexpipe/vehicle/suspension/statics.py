@@ -64,11 +64,14 @@ def with_preload(corner: CornerLinkage, preload: float) -> CornerLinkage:
     return replace(corner, forces=tuple(forces))
 
 
-def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4) -> float:
+def wheel_rate(corner: CornerLinkage, travel: float = 0.0, *, h: float = 5e-4,
+               carrier=None, mode: str = "symmetric") -> float:
     """Vertical wheel-centre rate (N/m) at ``travel``, including compliance: central
     difference of the rig force from compliance solves (bushings, compliant links, spring
-    with its preload, stops)."""
-    lk = Linkage(corner)
+    with its preload, stops; the subframe ``carrier`` of
+    :func:`~flexpipe.vehicle.suspension.carrier.half_carrier` in parallel travel, or in
+    opposite travel with ``mode="antisymmetric"``)."""
+    lk = Linkage(corner, carrier=carrier, mode=mode)
     f = [solve_compliance(lk, s).force for s in (travel - h, travel + h)]
     return (f[1] - f[0]) / (2 * h)
 
@@ -80,7 +83,7 @@ def kinematic_corner(corner: CornerLinkage) -> CornerLinkage:
                    links=tuple(replace(k, axial_stiffness=None) for k in corner.links))
 
 
-def corner_figures(corner: CornerLinkage) -> dict:
+def corner_figures(corner: CornerLinkage, *, carrier=None) -> dict:
     """Spring figures of ``corner`` as preloaded, at the design position.
 
     Returns
@@ -103,7 +106,7 @@ def corner_figures(corner: CornerLinkage) -> dict:
     return {"spring preload [N]": sp.static_force(sp.design_length),
             "spring motion ratio [-]": float(mr),
             "kinematic wheel rate [N/m]": float(sp.rate * mr**2),
-            "wheel rate incl. compliance [N/m]": wheel_rate(corner),
+            "wheel rate incl. compliance [N/m]": wheel_rate(corner, carrier=carrier),
             "wheel rate, joints rigid [N/m]": wheel_rate(kinematic_corner(corner))}
 
 
