@@ -58,8 +58,8 @@ _OTHER_TOML = (
 def toml_kind(doc: dict) -> str:
     """What a parsed TOML file is, from its top-level tables: ``"car"``, ``"road"``,
     ``"path"``, ``"sweep"``, ``"half-car parameter"``, ``"driver"`` or ``""``
-    (unknown)."""
-    if "car" in doc:
+    (unknown); a car variant names its ``base`` car file."""
+    if "car" in doc or "base" in doc:
         return "car"
     for tables, kind, _ in _OTHER_TOML:
         if all(t in doc for t in tables):
@@ -88,6 +88,7 @@ def toml_text(path) -> str:
     doc = read_toml(path)
     kind = toml_kind(doc)
     if kind == "car":
+        from flexpipe.vehicle._car_base import car_files
         from flexpipe.vehicle.describe import car_text
         from flexpipe.vehicle.mounts import check_mount_node_ids
         from flexpipe.vehicle.spec import load_car
@@ -95,6 +96,10 @@ def toml_text(path) -> str:
         car = load_car(path)
         check_mount_node_ids(car)  # mount node ids of the mesh, as a flexible run checks
         text = car_text(car)
+        bases = car_files(path)[1:]
+        if bases:   # a variant: what it builds on
+            head, _, rest = text.partition("\n")
+            text = f"{head}\n  based on {' <- '.join(str(b) for b in bases)}\n{rest}"
         if car.suspension is None:  # what a run would refuse, as a warning under the text
             import warnings
 

@@ -93,7 +93,9 @@ def plot_title(spec, params) -> str:
     base = getattr(spec, "base", None) or {}
     swept = set(params)
     car = Path(spec.car).stem if getattr(spec, "car", None) else "car"
-    if any(p.startswith("car.") for p in swept):
+    if "car" in swept:
+        car = "car swept"
+    elif any(p.startswith("car.") for p in swept):
         car += " (overrides swept)"
     road = ("road swept" if "road" in swept else
             _road_text(getattr(spec, "road", None))

@@ -32,7 +32,8 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
 
 Parameter names: ``speed_kmh``, ``speed_profile`` (a speed-profile file used instead of
 ``speed_kmh``), ``driver`` (a driver file, or "default"), ``t_end_s``, ``h_s``, ``body``,
-``path`` (file or "straight"), ``road`` (a road file replacing the base road),
+``path`` (file or "straight"), ``car`` (a car file replacing the base car, e.g. a
+variant naming it as its ``base``), ``road`` (a road file replacing the base road),
 ``road.<key>`` (a key of the base road's ``[road]`` table, e.g. ``road.road_class``) and
 ``car.<dotted key>`` (any key of the car file, e.g. ``car.corners.fl.spring_rate_N_per_m``).
 """
@@ -52,7 +53,8 @@ from flexpipe.sweeps.metrics import MIN_SAMPLES
 from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX
 from flexpipe.vehicle.simulation import DEFAULT_STEP
 
-SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road", "driver", "speed_profile")
+SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road", "driver", "speed_profile",
+            "car")
 DESIGNS = ("grid", "list", "lhs")
 BODIES = ("rigid", "flexible", "full")
 _SWEEP_KEYS = ("car", "road", "path", "body", "speed_kmh", "t_end_s", "h_s", "output_step_s",
@@ -137,7 +139,14 @@ class SweepSpec:
         """Every run, resolved and keyed; each run's settings are checked here (ranges,
         the settle window), naming the spec file and key.  Duplicates (e.g. Latin
         hypercube samples of a small integer range) keep their first position."""
-        car_sha = _sha(self.car)
+        from flexpipe.vehicle._car_base import car_files
+
+        shas = {}
+
+        def car_sha(car):   # the car file with its base files (variants)
+            if car not in shas:
+                shas[car] = "".join(_sha(f) for f in car_files(car))
+            return shas[car]
         road_desc = _describe_road(self.road)
         out, seen = [], set()
         for i, point in enumerate(self.points()):
@@ -161,7 +170,7 @@ class SweepSpec:
             return self._key(name, point, index)
         s = dict(self.base)
         car_over, road_over = {}, {}
-        road = self.road
+        road, car = self.road, self.car
         for name, value in point.items():
             if name.startswith("car."):
                 car_over[name[4:]] = value
@@ -174,6 +183,8 @@ class SweepSpec:
                                  "road.<key of the [road] table>, car.<dotted key of the car "
                                  "file>", file=where, key=key(name))
         road_base = self.road_base
+        if "car" in point:   # a car file (e.g. a variant of the base car) for this run
+            car = _file(point["car"], self.file, key("car"))
         if "road" in point:
             road = _file(point["road"], self.file, key("road"))
             road_base = road
@@ -220,7 +231,7 @@ class SweepSpec:
         settle = _num(s["settle_s"], key("settle_s"), where, lo=0.0, unit="s")
         _check_window(settle, t_end, h, output_step, where=where,
                       keys=(key("settle_s"), key("t_end_s")))
-        ident = {"car": str(self.car), "car_sha": car_sha, "car_overrides": car_over,
+        ident = {"car": str(car), "car_sha": car_sha(car), "car_overrides": car_over,
                  "road": road_desc if road is self.road else _describe_road(road),
                  "path": path, "path_sha": _sha(Path(path)) if path != "straight" else "",
                  "body": body, "speed_kmh": None if profile else float(s["speed_kmh"]),
@@ -228,7 +239,7 @@ class SweepSpec:
         ident.update(extra)  # (nothing for a run without driver or profile: same keys)
         key = hashlib.sha256(json.dumps(ident, sort_keys=True, default=str).encode())
         return RunSpec(key=key.hexdigest()[:16], index=index, params=dict(point),
-                       car_file=self.car, car_overrides=car_over, road=road,
+                       car_file=car, car_overrides=car_over, road=road,
                        road_base=road_base, path=path, body=body, speed=speed, t_end=t_end,
                        h=h, output_step=output_step, settle=settle, driver=driver,
                        speed_profile=profile)

@@ -59,12 +59,17 @@ class Table:
         The car file.
     lines : list of str
         Its text, to report line numbers.
+    fallbacks : sequence of (Path, list of str)
+        The car files it is based on (``base``, :mod:`flexpipe.vehicle._car_base`), nearest
+        first: an error about a key the file itself does not write names the base file
+        and line that do.
     """
 
-    def __init__(self, data, name: str, file: Path, lines: list[str]):
+    def __init__(self, data, name: str, file: Path, lines: list[str], fallbacks=()):
         self.name = name
         self.file = file
         self.lines = lines
+        self.fallbacks = tuple(fallbacks)
         if not isinstance(data, dict):
             raise InputError(f"expected a table [{name}], got {type(data).__name__}",
                              file=file, key=name, line=self._line(None))
@@ -105,13 +110,32 @@ class Table:
             return None
         return None if header is None else header + 1
 
+    def _key_line(self, key: str) -> int | None:
+        """1-based line where this table (its own section) writes ``key``, or None."""
+        if self.name and self._line(None) is None:
+            return None
+        line = self._line(key)
+        pat = re.compile(rf"^\s*\"?{re.escape(key)}\"?\s*=")
+        return line if line is not None and pat.match(self.lines[line - 1]) else None
+
+    def where(self, key: str | None) -> tuple[Path, int | None]:
+        """File and line of ``key`` (or of the table): this file's, or a base file's when
+        only the base writes the key."""
+        if key is not None and self.fallbacks and self._key_line(key) is None:
+            for file, lines in self.fallbacks:
+                line = Table({}, self.name, file, lines)._key_line(key)
+                if line is not None:
+                    return file, line
+        return self.file, self._line(key)
+
     def key(self, key: str) -> str:
         """Dotted name of ``key``."""
         return f"{self.name}.{key}" if self.name else key
 
     def error(self, key: str | None, message: str) -> InputError:
         """An :class:`InputError` about ``key`` (or the table itself)."""
-        return InputError(message, file=self.file, line=self._line(key),
+        file, line = self.where(key)
+        return InputError(message, file=file, line=line,
                           key=self.key(key) if key else self.name)
 
     # ------------------------------------------------------------------ access
@@ -213,7 +237,7 @@ class Table:
         v = self.raw(key, default)
         if v is default and default is not _MISSING:
             return v
-        return Table(v, self.key(key), self.file, self.lines)
+        return Table(v, self.key(key), self.file, self.lines, self.fallbacks)
 
     def finish(self) -> None:
         """Raise for keys of this table that no reader asked for (misspellings)."""
@@ -222,6 +246,9 @@ class Table:
             k = unknown[0]
             close = difflib.get_close_matches(k, sorted(self._known), n=1)
             hint = f" (did you mean '{close[0]}'?)" if close else ""
+            if k == "base" and self.name:
+                hint = (" (a car variant names its base car file at the top of the file, "
+                        "before any [table])")
             raise self.error(k, f"unknown key{hint}; valid keys in [{self.name or 'top level'}]"
                                 f": {', '.join(sorted(self._known))}")
 

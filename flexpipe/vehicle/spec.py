@@ -59,7 +59,8 @@ from flexpipe._args import as_path, plain_value
 from flexpipe._arrays import frozen_arrays
 from flexpipe.errors import InputError
 from flexpipe.vehicle import limits as lim
-from flexpipe.vehicle._toml import Table, check_principal_moments, parse
+from flexpipe.vehicle._car_base import parse_car
+from flexpipe.vehicle._toml import Table, check_principal_moments
 from flexpipe.vehicle.body_spec import (  # noqa: F401  (re-exported)
     AddedMass,
     BodySpec,
@@ -386,16 +387,16 @@ def load_car(path, *, overrides=None) -> Car:
         overrides = {k: plain_value(v) for k, v in overrides.items()}
     if path.suffix.lower() != ".toml":
         raise InputError(f"expected a .toml car file, got '{path.suffix}'", file=path)
-    data, lines = parse(path)
+    data, lines, bases = parse_car(path)
     if not overrides:
-        return _read_car(Table(data, "", path, lines))
+        return _read_car(Table(data, "", path, lines, bases))
     # --- sweep (issue 12): dotted-key overrides before validation; every section, the
     # suspension included, is read from this one overridden document
     from flexpipe.sweeps.overrides import apply_overrides
 
     data = apply_overrides(data, overrides, file=path, origin="car override")
     try:
-        return _read_car(Table(data, "", path, lines))
+        return _read_car(Table(data, "", path, lines, bases))
     except InputError as exc:
         raise _from_override(exc, overrides) from None
 

@@ -142,6 +142,7 @@ def cases():
     yield from _powertrain()
     yield from _powertrain_body()
     yield from _subframe()
+    yield from _variants_of_base()
 
 
 def _bounds(text: str):
@@ -295,3 +296,23 @@ def _subframe():
         assert old in good, old
         yield (f"subframe-{label}", "car.toml", good.replace(old, new, 1).encode(),
                "ok" if label == "ok" else "error")
+
+
+def _variants_of_base():
+    """Car variants (``base = ...``): the valid variant, and one mistake each."""
+    base = f'base = "{LINKAGE}"\n'
+    for label, text, expect in (
+            ("ok", base + "[suspension.front.spring]\nrate_N_per_m = 95000.0\n", "ok"),
+            ("ok-no-change", base, "ok"),
+            ("number", "base = 3\n", "error"),
+            ("empty", 'base = ""\n', "error"),
+            ("missing", 'base = "nowhere.toml"\n', "error"),
+            ("not-toml", f'base = "{ROOT / "tires" / "sedan_205_55R16.tir"}"\n', "error"),
+            ("self", 'base = "car.toml"\n', "error"),
+            ("table-for-value", base + "[car.name]\nx = 1\n", "error"),
+            ("value-for-table", base + "corners = 3\n", "error"),
+            ("bad-value", base + "[suspension.front.spring]\nrate_N_per_m = -1.0\n", "error"),
+            ("unknown-key", base + "[suspension.front.spring]\nrate = 1.0\n", "error"),
+            ("after-table", "[car]\nname = \"x\"\n" + base, "error"),
+            ("tire-missing", base + '[corners.fl]\ntire = "nope.tir"\n', "error")):
+        yield f"variant-{label}", "car.toml", text.encode(), expect

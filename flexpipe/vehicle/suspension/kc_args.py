@@ -24,7 +24,7 @@ def _suspension(car):
     """The ``Suspension`` of ``car``: a ``Suspension``, a ``Car`` or a car file; the axles
     of a car know their subframes (:func:`~flexpipe.vehicle.suspension.carrier.
     with_subframes`)."""
-    from flexpipe.vehicle._toml import parse
+    from flexpipe.vehicle._car_base import parse_car
     from flexpipe.vehicle.spec import Car, load_car
     from flexpipe.vehicle.suspension.carrier import with_subframes
     from flexpipe.vehicle.suspension.spec import Suspension, load_suspension
@@ -42,7 +42,7 @@ def _suspension(car):
                          f"pathlib.Path) or a Suspension, got {type(car).__name__}",
                          key="car")
     path = as_path(car, "car")
-    if path.suffix.lower() == ".toml" and path.is_file() and "subframe" in parse(path)[0]:
+    if path.suffix.lower() == ".toml" and path.is_file() and "subframe" in parse_car(path)[0]:
         return _suspension(load_car(path))   # its subframes need the whole car file
     return load_suspension(path)
 

@@ -14,7 +14,7 @@ import numpy as np
 from flexpipe._arrays import frozen_arrays
 from flexpipe.errors import InputError, ModelError
 from flexpipe.vehicle import limits as lim
-from flexpipe.vehicle._toml import Table, check_principal_moments, parse
+from flexpipe.vehicle._toml import Table, check_principal_moments
 from flexpipe.vehicle.suspension.checks import check_bushing, check_hardpoints
 from flexpipe.vehicle.suspension.mobility import check_mobility
 from flexpipe.vehicle.suspension.model import (
@@ -340,13 +340,15 @@ def load_suspension(path, *, overrides=None) -> Suspension:
         one-degree-of-freedom wheel travel at the design position
         (:func:`~flexpipe.vehicle.suspension.mobility.check_mobility`).
     """
+    from flexpipe.vehicle._car_base import parse_car
+
     path = Path(path)
-    doc, lines = parse(path)
+    doc, lines, bases = parse_car(path)
     if overrides:
         from flexpipe.sweeps.overrides import apply_overrides
 
         doc = apply_overrides(doc, overrides, file=path, origin="car override")
-    return read_suspension(Table(doc, "", path, lines))
+    return read_suspension(Table(doc, "", path, lines, bases))
 
 
 def read_suspension(top: Table) -> Suspension:
