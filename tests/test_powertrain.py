@@ -143,6 +143,15 @@ def test_parked_powertrain_hangs_in_its_mounts(tmp_path, body, tol):
         if body == "rigid":
             assert np.abs(got[3:] - ref_d[3:]).max() <= 3e-3 * np.abs(ref_d[3:]).max(), n
     assert (channel_unit(f"bushing_{n}_dz"), channel_unit(f"bushing_{n}_ry")) == ("m", "rad")
+    # the powertrain's own motion (its centre of mass, body axes) from the bushings: the
+    # same statics u; on the flexible body relative to its mounts as a whole
+    got = np.array([r[f"powertrain_{a}"][sel].mean() for a in ("x", "y", "z", "rx", "ry",
+                                                                 "rz")])
+    assert np.abs(got[:3] - u[:3]).max() <= (2e-3 if body == "rigid" else 0.02) * \
+        np.abs(u[:3]).max()
+    if body == "rigid":
+        assert np.abs(got[3:] - u[3:]).max() <= 3e-3 * np.abs(u[3:]).max()
+    assert (channel_unit("powertrain_z"), channel_unit("powertrain_ry")) == ("m", "rad")
     # the tyres carry the whole car, the powertrain on its mounts included
     m = bodymodel.rigid_properties(car).mass + MASS + sum(
         mp for mp, _ in point_masses(with_wheels(car.suspension, car.suspension.wheels)))

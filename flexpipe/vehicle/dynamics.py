@@ -32,7 +32,7 @@ import numpy as np
 
 from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.tires.contact import _cross
-from flexpipe.vehicle import sensor_rows, watch
+from flexpipe.vehicle import mounted_motion, sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.corners import ackermann_angles, road_wheel_angles
 from flexpipe.vehicle.reaction_mounts import CoupleSplit
@@ -203,6 +203,7 @@ class CarController:
                 names += [f"mount_{m}_x", f"mount_{m}_y", f"mount_{m}_z"]
             self.bushings = sorted({m for m, _ in linkage.bushings})  # their deflections
             names += [f"bushing_{m}_{a}" for m in self.bushings for a in BUSHING_AXES]
+            names += mounted_motion.names(car, self.bushings)   # powertrain, subframes
         n_rows = int(round(t_end / h)) // self.output_every + 2
         self.rec = Recorder(names, n_rows)
         self._row = np.full(len(names), np.nan)  # one output row, filled by _record

@@ -55,6 +55,8 @@ _UNITS = (
     (r"^mount_\w+_[xyz]$", "N"),
     (r"^bushing_\w+_d[xyz]$", "m"),
     (r"^bushing_\w+_r[xyz]$", "rad"),
+    (r"^(powertrain|subframe_\w+)_[xyz]$", "m"),
+    (r"^(powertrain|subframe_\w+)_r[xyz]$", "rad"),
     (r"^tire_\w+_F[xyz]$", "N"),
     (r"^travel_\w+$", "m"),
     (r"^spin_\w+$", "rad/s"),

@@ -63,13 +63,17 @@ def record_mounts(ctrl, row, k: int, R) -> None:
 
 def fill(ctrl) -> None:
     """Fill the rows after the first of the controller ``ctrl``'s recorder (and its body
-    motion) from the sensors of its run; nothing to do with fewer than two rows."""
-    if ctrl.rec.rows < 2:
-        return
-    if ctrl.output_history is not None:
-        _points_and_motion(ctrl)
-    if ctrl.mounts and ctrl.mount_sensors:
-        _mounts_and_hubs(ctrl)
+    motion) from the sensors of its run, then the mounted bodies' motion
+    (:mod:`flexpipe.vehicle.mounted_motion`) of every row from the bushings'."""
+    from flexpipe.vehicle import mounted_motion
+
+    if ctrl.rec.rows >= 2:
+        if ctrl.output_history is not None:
+            _points_and_motion(ctrl)
+        if ctrl.mounts and ctrl.mount_sensors:
+            _mounts_and_hubs(ctrl)
+    if ctrl.bushings:   # the powertrain's and subframes' motion, every row
+        mounted_motion.fill(ctrl)
 
 
 def _points_and_motion(ctrl) -> None:
