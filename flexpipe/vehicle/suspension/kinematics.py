@@ -74,6 +74,18 @@ class Linkage:
     ----------
     corner : CornerLinkage
         The linkage.
+    rack_axis : array of 3
+        Direction of the rack's travel (body axes).
+    carrier : Carrier, optional
+        The subframe half the corner rests on in the K&C rig
+        (:func:`~flexpipe.vehicle.suspension.carrier.half_carrier`): one more part, on its
+        bushings, carrying the corner's carried mounts.
+    mode : {"symmetric", "antisymmetric"}, optional
+        The motions the subframe keeps in compliance solves
+        (:data:`~flexpipe.vehicle.suspension.carrier.FREE`); held otherwise.
+
+    Attributes
+    ----------
     rack_free : bool
         Rack travel is an unknown (compliance with a compliant column).
     """
