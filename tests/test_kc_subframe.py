@@ -150,6 +150,8 @@ def test_kc_of_a_car_file_includes_its_subframe(tmp_path, reference):
     on four 2e6 N/m bushings): its lateral and longitudinal compliance grow; a subframe
     carrying no front mount leaves the front axle as it was."""
     res = kc(car_file(tmp_path), axles=["front"], n=5)
+    assert res.subframes == {"front": "subframe.front"} and \
+        reference.subframes == {"front": None}
     ref, got = reference.summary["front"], res.summary["front"]
     assert got["longitudinal wheel centre compliance [mm/kN]"] > \
         ref["longitudinal wheel centre compliance [mm/kN]"] + 0.05

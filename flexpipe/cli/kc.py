@@ -97,7 +97,9 @@ def run(args) -> int:
              rack_travel=args.rack / 1e3, force=args.force,
              axles=None if axle == "both" else [axle])
     for name, s in res.summary.items():
-        print(f"{name} ({s['template']}), at the design position:")
+        sf = res.subframes.get(name)
+        on = f", on [{sf}] (its bushings in the compliance figures)" if sf else ""
+        print(f"{name} ({s['template']}{on}), at the design position:")
         for k, v in s.items():
             if k != "template":
                 print(f"  {k:<46} {v:10.4g}")

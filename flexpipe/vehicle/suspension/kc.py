@@ -89,10 +89,13 @@ class Table:
 
 @dataclass
 class KCResult:
-    """K&C results: ``tables[<axle>_<analysis>]`` and design-position ``summary``."""
+    """K&C results: ``tables[<axle>_<analysis>]``, design-position ``summary`` and per
+    axle the ``[subframe.<name>]`` its compliance analyses rest on (``subframes``, None
+    without)."""
 
     tables: dict = field(default_factory=dict)
     summary: dict = field(default_factory=dict)
+    subframes: dict = field(default_factory=dict)
 
 
 def _arb_angle(lk: Linkage, pose, arb, phi0=0.0):
@@ -383,6 +386,8 @@ def kc(car, *, out=None, travel: float = 0.08, n: int = 33, rack_travel: float =
         res.tables[f"{name}_lateral_force"] = lat = force_compliance(axle, 1, fs)
         res.summary[name] = _summary(
             axle, lon, lat, wheel_mass=given.wheels.get(axle.left.corner, (0.0,))[0])
+        carrier = half_carrier(axle)
+        res.subframes[name] = carrier.name if carrier is not None else None
     if out is not None:
         from flexpipe.vehicle.suspension.kc_output import write
 
