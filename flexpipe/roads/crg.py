@@ -40,8 +40,8 @@ section (OpenCRG ``GRID_NAN_MODE`` 2, "keep last"); NaNs between valid values, o
 sections without any valid value, are errors (other ``GRID_NAN_MODE`` s: below).
 ``$ROAD_CRG_MODS`` (scaling, NaN filling, placement; without that section OpenCRG's
 default modifiers, which put the start of the reference line at the origin) is applied
-as a simulator applies it (:mod:`flexpipe.roads.crg_mods`); ``$ROAD_CRG_OPTS`` is not (a
-warning says so).
+as a simulator applies it (:mod:`flexpipe.roads.crg_mods`), ``$ROAD_CRG_OPTS`` (border
+modes, smoothing zones) as :mod:`flexpipe.roads.crg_opts` says.
 """
 
 from __future__ import annotations
@@ -63,6 +63,8 @@ from flexpipe.roads.crg_data import (
     reject_text_as_binary,
 )
 from flexpipe.roads.crg_mods import key_values, moved, nan_rule, placement, read_mods, scale
+from flexpipe.roads.crg_opts import apply as apply_opts
+from flexpipe.roads.crg_opts import read_opts
 from flexpipe.roads.crg_write import write_crg  # noqa: F401 (re-exported)
 from flexpipe.roads.refline import ReferenceLine
 from flexpipe.roads.road import Road
@@ -238,9 +240,9 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
                     if close else f"; sections found: {', '.join(sections) or 'none'}")
             raise InputError(f"no ${missing} section{hint}", file=path)
     mods = read_mods(sections, path) if modifiers else {}
-    for ignored in ("ROAD_CRG_OPTS", "ROAD_CRG_FILE"):
-        if ignored in sections and sections[ignored]["_items"]:
-            warnings.warn(f"{path}: ${ignored} is not applied by flexpipe", stacklevel=2)
+    opts = read_opts(sections, path)
+    if "ROAD_CRG_FILE" in sections and sections["ROAD_CRG_FILE"]["_items"]:
+        warnings.warn(f"{path}: $ROAD_CRG_FILE is not applied by flexpipe", stacklevel=2)
     p = _road_params(sections["ROAD_CRG"], path)
 
     def get(key, default=None):
@@ -312,8 +314,14 @@ def read_crg(path, *, track_width: float = 1.5, name: str | None = None,
         heading = None
         if not plan.straight or plan.phi_start != 0.0:
             heading = np.concatenate([[plan.phi[0]], plan.phi])
-        return Road.from_grid(u, v, z + z_ref[:, None] + bank[:, None] * v[None, :],
-                              track_width=track_width, heading=heading, plan=plan,
+        # $ROAD_CRG_OPTS: smoothing zones and the heights beyond the lateral borders
+        try:
+            vo, Z = apply_opts(opts, u, v, z + z_ref[:, None] + bank[:, None] * v[None, :],
+                               z_ref[0], z_ref[-1])
+        except InputError as exc:
+            raise InputError(exc.message, file=path, line=opts["BORDER_MODE_V"][1],
+                             key=exc.key) from None
+        return Road.from_grid(u, vo, Z, track_width=track_width, heading=heading, plan=plan,
                               name=path.stem if name is None else name, source=str(path))
 
     road = build(plan, z_ref)

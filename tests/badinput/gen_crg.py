@@ -205,3 +205,18 @@ def cases():
         b"$ROAD_CRG\n", b"$ROAD_CRG\nREFERENCE_LINE_INCREMENT = 0.25\n"), "error"
     yield "key_without_equals", "noeq.crg", _build(*sk).replace(
         b"$ROAD_CRG\n", b"$ROAD_CRG\nREFERENCE_LINE_START_Z 1.0\n"), "error"
+    # $ROAD_CRG_OPTS (flexpipe/roads/crg_opts.py): a section before $KD_DEFINITION
+    for label, lines, expect in (
+            ("ok_opts_repeat", "BORDER_MODE_V = 3\nBORDER_SMOOTH_UBEG = 2.0", "ok"),
+            ("ok_opts_other_tools", "CHECK_TOL = 1e-3\nWARN_MSGS = 0", "ok"),
+            ("opts_mode_v_none", "BORDER_MODE_V = 0", "error"),
+            ("opts_mode_v_7", "BORDER_MODE_V = 7", "error"),
+            ("opts_mode_u_repeat", "BORDER_MODE_U = 3", "error"),
+            ("opts_closed_track", "REFLINE_CONTINUATION = 1", "error"),
+            ("opts_smooth_negative", "BORDER_SMOOTH_UEND = -2", "error"),
+            ("opts_typo", "BORDER_MODE_VV = 2", "error"),
+            ("opts_text", "BORDER_OFFSET_V = high", "error"),
+            ("opts_no_equals", "BORDER_MODE_V 2", "error")):
+        yield label, "opts.crg", _build(*sk).replace(
+            b"$KD_DEFINITION", f"$ROAD_CRG_OPTS\n{lines}\n$\n$KD_DEFINITION".encode(), 1), \
+            expect
