@@ -132,3 +132,33 @@ def test_sweep_key_follows_the_base(tmp_path):
     variant = tmp_path / "variant.toml"
     variant.write_text('base = "base.toml"\n')
     assert car_files(variant) == [variant, base.resolve()]
+
+
+def test_a_sweep_over_car_files_runs_each_variant(tmp_path):
+    """``car`` as a parameter: each run loads its own car file (here the linkage sample and
+    its variant cars/variants/sedan_linkage_mf61.toml), keys differ, ``car.<key>``
+    overrides apply to each, and a changed base file changes the variant's run key."""
+    from flexpipe.sweeps import load_sweep
+    from flexpipe.sweeps.execute import _cars
+
+    road = ROOT / "roads" / "iso_c_200m.toml"
+    spec = {"sweep": {"car": str(BASE), "road": str(road), "body": "rigid",
+                      "t_end_s": 0.4, "speed_kmh": 60.0},
+            "parameters": {"car": [str(BASE), str(VARIANT)],
+                           "car.suspension.rear.spring.rate_N_per_m": [40000.0]}}
+    runs = load_sweep(spec).runs()
+    assert [r.car_file for r in runs] == [BASE, VARIANT] and runs[0].key != runs[1].key
+    cars = _cars(runs)
+    assert [c.suspension.axles["front"].left.spring().rate for c in cars] == [111000.0,
+                                                                              95000.0]
+    assert all(c.suspension.axles["rear"].left.spring().rate == 40000.0 for c in cars)
+    assert cars[1].corners[0].tire.name == "sedan_205_55R16_mf61.tir"
+    base = tmp_path / "base.toml"
+    base.write_text(absolute_text(BASE))
+    mine = tmp_path / "variant.toml"
+    mine.write_text('base = "base.toml"\n')
+    spec["parameters"] = {"car": [str(mine)]}
+    before = load_sweep(spec).runs()[0].key
+    base.write_text(absolute_text(BASE).replace("rate_N_per_m = 111000.0",
+                                                   "rate_N_per_m = 100000.0"))
+    assert load_sweep(spec).runs()[0].key != before

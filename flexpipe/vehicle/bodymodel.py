@@ -405,9 +405,8 @@ def choose_band(speed: float, road=None, *, lo: float = 20.0, hi: float = BAND_C
     ``CB_RATIO`` x the band; the constraint modes keep the static flexibility of every
     higher mode at the hardpoints.
     """
-    f_road = 0.0
+    f_road, x = 0.0, None if road is None else np.asarray(road.x)
     if road is not None:
-        x = np.asarray(road.x)
         if x.size > 16 or not uniform_step(x):
             z = 0.5 * (np.asarray(road.left) + np.asarray(road.right))
             x, z, dx = uniform_samples(x, z)
