@@ -114,12 +114,6 @@ def apply(opts: dict, u, v, Z, zr_start: float, zr_end: float):
                        for i in (0, -1))
         return (np.r_[v[0] - EDGE_M, v, v[-1] + EDGE_M],
                 np.column_stack([right, Z, left]))
-    blocks = 2 * (int(np.ceil(PAD_M / (v[-1] - v[0]))) + 1) + 1
-    if blocks * v.size > MAX_COLUMNS:
-        raise InputError(f"BORDER_MODE_V = {mode:g}: the road is {v[-1] - v[0]:g} m wide, so "
-                         f"repeating it {PAD_M:g} m beyond each edge takes "
-                         f"{blocks * v.size} long sections (at most {MAX_COLUMNS}); give "
-                         "mode 2 (keep the border's height)", key="BORDER_MODE_V")
     return _wrapped(v, Z, reflect=mode == 4.0)
 
 
@@ -131,6 +125,11 @@ def _wrapped(v, Z, *, reflect: bool):
     lo, hi = float(v[0]), float(v[-1])
     period = hi - lo
     k = int(np.ceil(PAD_M / period)) + 1
+    if (2 * k + 1) * v.size > MAX_COLUMNS:
+        raise InputError(f"BORDER_MODE_V = {4 if reflect else 3}: the road is {period:g} m "
+                         f"wide, so repeating it {PAD_M:g} m beyond each edge takes "
+                         f"{(2 * k + 1) * v.size} long sections (at most {MAX_COLUMNS}); "
+                         "give mode 2 (keep the border's height)", key="BORDER_MODE_V")
     pos, val = [], []
     for j in range(-k, k + 1):
         if reflect and j % 2:

@@ -18,11 +18,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexpipe.vehicle.sensor_rows import BUSHING_AXES
 from flexpipe.vehicle.suspension.kinematics import skew
 
 #: suffixes of a mounted body's motion channels
 AXES = ("x", "y", "z", "rx", "ry", "rz")
-BUSHING_AXES = ("dx", "dy", "dz", "rx", "ry", "rz")
 
 
 def prefix(body) -> str:

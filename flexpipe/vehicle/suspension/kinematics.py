@@ -243,14 +243,7 @@ class Linkage:
             if j.kind == "inline" and j.a == part:
                 Q += self._sliding_bushing(pose, j)
                 continue
-            p, Jp = self.point(pose, part, j.point)
-            q, Jq = self.point(pose, ground, j.point)
-            d = np.concatenate([b.frame.T @ (p - q),
-                                b.frame.T @ rotvec(pose.R[self.idx[part]] @ self._R(pose,
-                                                                                    ground).T)])
-            f = b.force(d)
-            Q += (Jp - Jq).T @ (b.frame @ f[:3])
-            self._torque(Q, part, ground, b.frame @ f[3:])
+            self._bushing(Q, pose, b, part, ground, j.point)
         for lk in self.c.links:
             if lk.axial_stiffness is None:
                 continue
@@ -309,16 +302,23 @@ class Linkage:
         self._torque(Q, j.a, j.b, perp @ (b.frame @ f[3:]))
         return Q
 
+    def _bushing(self, Q, pose: Pose, b, part, ground, point, weight: float = 1.0) -> None:
+        """Add bushing ``b`` at ``point`` between ``part`` and ``ground`` (the body or the
+        subframe), its forces scaled by ``weight``: deflection in the bushing's frame,
+        the force on ``part`` and its reaction on ``ground``."""
+        p, Jp = self.point(pose, part, point)
+        q, Jq = self.point(pose, ground, point)
+        rot = rotvec(pose.R[self.idx[part]] @ self._R(pose, ground).T)
+        f = weight * b.force(np.concatenate([b.frame.T @ (p - q), b.frame.T @ rot]))
+        Q += (Jp - Jq).T @ (b.frame @ f[:3])
+        self._torque(Q, part, ground, b.frame @ f[3:])
+
     def _carrier_bushings(self, pose: Pose) -> np.ndarray:
         """Forces of the subframe's bushings (its half on the corner's side) on it."""
-        cr, o = self.carrier, self.k_carrier
+        cr = self.carrier
         Q = np.zeros(self.nx)
         for p0, b, w in zip(cr.points, cr.bushings, cr.weights, strict=True):
-            p, Jp = self.point(pose, CARRIER, p0)
-            f = w * b.force(np.concatenate([b.frame.T @ (p - p0),
-                                            b.frame.T @ rotvec(pose.R[o])]))
-            Q += Jp.T @ (b.frame @ f[:3])
-            Q[6 * o + 3:6 * o + 6] += b.frame @ f[3:]
+            self._bushing(Q, pose, b, CARRIER, BODY, p0, w)
         return Q
 
     def contact_patch0(self) -> np.ndarray:
