@@ -31,6 +31,8 @@ _EXPORTS = {
     "Result": "flexpipe.vehicle",
     "load_result": "flexpipe.vehicle",
     "kc": "flexpipe.vehicle.suspension.kc",
+    "linear_modes": "flexpipe.vehicle.linear",
+    "LinearModes": "flexpipe.vehicle.linear",
     "BodyMotion": "flexpipe.vehicle.result",
     "recover_stress": "flexpipe.durability",
     "FatigueMaterial": "flexpipe.durability",

@@ -193,6 +193,7 @@ PATH_FUNCTIONS = {
     "tire_from_file": (tire_from_file, "path"),
     "read_mesh": (fp.read_mesh, "path"),
     "kc": (fp.kc, "car"),
+    "linear_modes": (fp.linear_modes, "car"),
     "FlexBody.save": (None, "path"),
 }
 

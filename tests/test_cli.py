@@ -228,6 +228,8 @@ def _never(*a, **k):
      "flexpipe.mesh.read_mesh", ["'-o'", "is a file"]),
     (["kc", "{car}", "-o", "{file}"], "flexpipe.vehicle.suspension.kc.kc",
      ["'-o'", "takes a folder"]),
+    (["linear", "{car}", "-o", "{file}"], "flexpipe.vehicle.linear.linear_modes",
+     ["'-o'", "takes a folder"]),
     (["reduce", "{mesh}", "--interfaces", "x.toml", "-o", "{dir}.npz"],
      "flexpipe.mesh.read_mesh", ["'-o'", "takes a file name"]),
     (["reduce", "{mesh}", "--interfaces", "x.toml", "-o", "b.npz", "--vtu", "{file}/m.vtu"],

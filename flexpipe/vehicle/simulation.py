@@ -171,7 +171,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
              cache: bool = True, log=None, prepared=None, settle: bool = True,
              prewarp: bool = True, inertia_coupling: str = "auto",
-             profile: bool = False) -> Result:
+             profile: bool = False, probe=None) -> Result:
     """Simulate the car on a road following a path at a target speed or speed profile.
 
     Parameters
@@ -266,6 +266,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Receives progress messages (default: silent).
     prepared : dict, optional
         Output of :func:`prepare` to reuse between runs.
+    probe : callable, optional
+        ``probe(system, controller)`` is called with the assembled car in its start state
+        instead of the run, and its value returned (:func:`flexpipe.vehicle.linear
+        .linear_modes` linearizes the car this way).
 
     Returns
     -------
@@ -409,6 +413,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         if speed == 0.0:  # parked: the tyres keep the deflection they settled in
             ctrl.tires.state = start[1]
     speed_pi.reset()
+    if probe is not None:
+        return probe(system, ctrl)
     bar = None
     if progress:
         from tqdm import tqdm

@@ -1,0 +1,92 @@
+"""``flexpipe linear CAR.toml``: linear modes of the whole car (Adams/Linear).
+
+Assembles the car as ``flexpipe run`` does, settles it at rest (or runs it straight on a
+flat road at ``--speed`` until steady), linearizes body, suspension and tyres there and
+prints the modes: natural and damped frequency, damping ratio and the dominant motion by
+kinetic energy (:func:`flexpipe.vehicle.linear.linear_modes`).  Writes
+``linear_modes.csv`` / ``.json`` / ``.png`` into ``--out`` (default
+``out/linear/<car>-<body>-<speed>kmh``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+BODIES = ("rigid", "flexible", "full")
+
+_EPILOG = """\
+The linear model holds the controls fixed (no driver, no speed controller); a dual-rate
+damper enters with the mean of its two slopes at zero velocity; at rest no brake acts (the
+car may roll away: a free mode, counted and not listed).  Needs a car with linkage
+suspensions.  Check: tests/test_linear.py releases the car from a disturbed state and
+compares the nonlinear run with the linear model's response.
+"""
+
+
+def add_arguments(p) -> None:
+    """Options of ``flexpipe linear``."""
+    p.formatter_class = argparse.RawDescriptionHelpFormatter
+    p.epilog = _EPILOG
+    p.add_argument("car", help="car file with [suspension.front] / [suspension.rear]")
+    p.add_argument("--body", default="flexible", metavar="BODY",
+                   help="body model: rigid, flexible or full (default flexible)")
+    p.add_argument("--speed", type=float, default=0.0, metavar="KMH",
+                   help="0 (default): parked and settled; > 0: straight on a flat road at "
+                        "this speed, km/h, linearized after 2 s")
+    p.add_argument("--f-max", type=float, default=None, metavar="HZ",
+                   help="top of the flexible body's band, Hz (default as flexpipe run)")
+    p.add_argument("--show", type=float, default=60.0, metavar="HZ",
+                   help="print the modes up to this frequency, Hz (default 60; the files "
+                        "hold all)")
+    p.add_argument("-o", "--out", default=None,
+                   help="output folder (default out/linear/<car>-<body>-<speed>kmh)")
+
+
+def check_options(args) -> None:
+    """Refuse bad options in their own terms.
+
+    Raises
+    ------
+    InputError
+        Naming the option, the value given and what is valid.
+    """
+    from flexpipe.errors import InputError
+
+    if args.body.strip().lower() not in BODIES:
+        raise InputError(f"--body must be one of {', '.join(BODIES)}, got {args.body!r}")
+    if not (math.isfinite(args.speed) and 0.0 <= args.speed <= 300.0):
+        raise InputError(f"--speed must be in [0, 300] km/h, got {args.speed:g}")
+    if args.f_max is not None and not (math.isfinite(args.f_max) and args.f_max > 0):
+        raise InputError(f"--f-max must be a frequency > 0 Hz, got {args.f_max:g}")
+    if not (math.isfinite(args.show) and args.show > 0):
+        raise InputError(f"--show must be a frequency > 0 Hz, got {args.show:g}")
+
+
+def run(args) -> int:
+    """Run ``flexpipe linear``."""
+    from pathlib import Path
+
+    from flexpipe._io import check_output_folder
+    from flexpipe.vehicle import load_car
+    from flexpipe.vehicle.linear import linear_modes
+    from flexpipe.vehicle.linear_output import NOTES, table_text, write_modes
+
+    check_options(args)
+    body = args.body.strip().lower()
+    car = load_car(args.car)
+    out = args.out or Path("out") / "linear" / f"{car.name}-{body}-{args.speed:g}kmh"
+    out = check_output_folder(out, option="-o")
+    modes = linear_modes(car, body=body, speed=args.speed / 3.6, f_max=args.f_max,
+                         log=print)
+    info = modes.info
+    print(f"{car.name}, {body} body, {args.speed:g} km/h: {info['n_dof']} degrees of "
+          f"freedom, {info['n_slip_states']} tyre slip states; force out of balance at "
+          f"the linearization state {modes.residual_N:.3g} N; free motions: "
+          f"{info['free_modes']}")
+    print(table_text(modes, f_max=args.show))
+    for note in NOTES:
+        print(f"note: {note}")
+    paths = write_modes(modes, out)
+    print("written: " + ", ".join(str(p) for p in paths))
+    return 0

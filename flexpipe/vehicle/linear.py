@@ -1,0 +1,425 @@
+"""Linear modes of the whole car (Adams/Linear): frequencies, damping, energy by part.
+
+The car (rigid or flexible body, linkage suspensions, tyres) is assembled as for a run,
+settled at rest (:mod:`flexpipe.vehicle.settle`) or, at a speed, run straight on a flat
+road until it is steady, and linearized there:
+
+- the multibody part (body, its elastic modes, every link, bushing, spring, damper, stop,
+  anti-roll bar, rack, subframe and powertrain) by :func:`flexpipe.exu.linearize.linearize`:
+  central differences of Exudyn's equations, including the constraint forces' geometric
+  stiffness, reduced to the constraints' nullspace.  A dual-rate damper enters with the
+  mean of its two slopes at zero velocity (the central difference of its table); a bump
+  stop in contact with its slope;
+- the tyres by central differences of the tyre model the run uses: its force and own
+  moment on each wheel carrier and spin coordinate as functions of the carrier's position,
+  attitude, velocities and spin rate, and of the relaxed slips (kappa', tan alpha'), whose
+  first-order relaxation ``sigma s' ' + |Vx| s' = w`` adds two states per tyre.  At rest
+  the relaxation is the tyre's horizontal spring; no brake acts (the car may roll: one
+  free mode of body and wheels together).
+
+The driver and the speed controller are not part of the linear model (controls fixed).
+The state ``x = (y, y', s')`` (nullspace coordinates, their rates, relaxed slips) gives
+``x' = A x``; its eigenvalues are the car's modes.  Each mode's kinetic energy is split
+over the parts (body frame and its six motions, body elastic, each corner's parts, wheel
+spin, steering, the rest).  ``tests/test_linear.py`` checks the modes against the
+nonlinear run of the same car released from a disturbed state.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from flexpipe.errors import InputError
+
+#: step of the slip state's advance used for its rate (s), and the central differences of
+#: the tyre's inputs: coordinates (m, Euler parameters), velocities (m/s, rad/s), slips
+DT_SLIP, EPS_Q, EPS_V, EPS_S = 1e-6, 1e-7, 1e-6, 1e-7
+#: an eigenvalue below this (rad/s) is a free motion (the car rolling away, at rest the
+#: relaxed slips' anchors): counted in ``info["free_modes"]``, not listed
+FREE_RAD_S = 1e-3
+CORNERS = ("fl", "fr", "rl", "rr")
+BODY_MOTIONS = ("x", "y", "z", "roll", "pitch", "yaw")
+_BODY_LABEL = {"x": "body fore-aft", "y": "body lateral", "z": "body bounce",
+               "roll": "body roll", "pitch": "body pitch", "yaw": "body yaw"}
+#: seconds a car is run straight before it is linearized at a speed
+STEADY_S = 2.0
+
+
+@dataclass(frozen=True)
+class LinearModes:
+    """Modes of a linearized car, sorted by natural frequency.
+
+    Attributes
+    ----------
+    eigenvalues : ndarray, complex (k,)
+        One of each conjugate pair (imaginary part >= 0), 1/s; the free motions (zero
+        eigenvalues) are left out and counted in ``info["free_modes"]``.
+    frequency_hz, damped_frequency_hz, damping_ratio : ndarray (k,)
+        ``|lambda| / 2 pi``, ``Im(lambda) / 2 pi`` and ``-Re(lambda) / |lambda|`` (1 for a
+        real, overdamped eigenvalue).
+    energy : ndarray (k, len(groups))
+        Each mode's kinetic energy split over ``groups`` (rows sum to 1).
+    body_motion : ndarray (k, 6)
+        The body frame's share of kinetic energy split over its motions x, y, z, roll,
+        pitch, yaw (body axes, at its centre of mass; rows sum to 1 or are 0).
+    label : tuple of str
+        Dominant motion of each mode ("tyre relaxation" when the slip states take more
+        than half of its participation).
+    slip_participation : ndarray (k,)
+        Share of the tyre slip states in each mode's participation factors (left times
+        right eigenvector, summed over the states; 0: a purely mechanical mode).
+    shapes : ndarray, complex (k, n)
+        Mode shapes in Exudyn's coordinates (displacements).
+    A : ndarray
+        The state matrix of ``x = (y, y', s')``: ``x' = A x``.
+    N : ndarray (n, k)
+        Orthonormal basis of the constraints' nullspace: Exudyn's coordinates are
+        ``q + N y``, their rates ``N y'``.
+    q : ndarray (n,)
+        Exudyn's coordinates at the linearization state.
+    residual_N : float
+        Largest force out of balance at the linearization state (N or N m).
+    """
+
+    car: str
+    body: str
+    speed: float
+    eigenvalues: np.ndarray
+    frequency_hz: np.ndarray
+    damped_frequency_hz: np.ndarray
+    damping_ratio: np.ndarray
+    energy: np.ndarray
+    groups: tuple
+    body_motion: np.ndarray
+    label: tuple
+    slip_participation: np.ndarray
+    shapes: np.ndarray
+    A: np.ndarray
+    N: np.ndarray
+    q: np.ndarray
+    residual_N: float
+    info: dict = field(default_factory=dict)
+
+    def rows(self) -> list[dict]:
+        """One dict per mode (the CSV's columns, units in the keys)."""
+        out = []
+        for k, lam in enumerate(self.eigenvalues):
+            row = {"mode": k + 1, "frequency_Hz": float(self.frequency_hz[k]),
+                   "damped_frequency_Hz": float(self.damped_frequency_hz[k]),
+                   "damping_ratio": float(self.damping_ratio[k]),
+                   "real_1/s": float(lam.real), "imag_1/s": float(lam.imag),
+                   "label": self.label[k],
+                   "tyre_slip_participation": float(self.slip_participation[k])}
+            row.update({f"energy_{g.replace(' ', '_')}": float(e)
+                        for g, e in zip(self.groups, self.energy[k], strict=True)})
+            row.update({f"body_{m}": float(e)
+                        for m, e in zip(BODY_MOTIONS, self.body_motion[k], strict=True)})
+            out.append(row)
+        return out
+
+
+def linear_modes(car, *, body: str = "flexible", speed: float = 0.0, road=None,
+                 f_max=None, max_mode_hz=None, cache: bool = True, log=None) -> LinearModes:
+    """Linearize the car at rest (or in steady straight running) and return its modes.
+
+    Parameters
+    ----------
+    car : Car or str or Path
+        A car with linkage suspensions (:func:`flexpipe.load_car`).
+    body : {"flexible", "rigid", "full"}
+        Body model, as :func:`flexpipe.simulate`.
+    speed : float
+        0 (default): parked, settled; > 0: run straight at this speed (m/s) for
+        :data:`STEADY_S` on ``road`` and linearized there.
+    road : Road, str, Path or None
+        Flat when None (a linear analysis at speed needs a flat road: the modes of a
+        car on an uneven road are those of the flat road plus the forcing).
+    f_max, max_mode_hz, cache, log
+        As :func:`flexpipe.simulate`.
+
+    Raises
+    ------
+    InputError
+        A car without linkage suspensions, a speed outside 0-300 km/h, an unknown body.
+    """
+    from flexpipe._args import as_path, checked_choice, checked_number
+    from flexpipe.vehicle.simulation import simulate
+    from flexpipe.vehicle.spec import Car, load_car
+
+    speed = checked_number(speed, "speed", lo=0.0, hi=300 / 3.6, lo_closed=True,
+                           unit="m/s")
+    body = checked_choice(body, "body", ("flexible", "rigid", "full"))
+    if not isinstance(car, Car):
+        car = load_car(as_path(car, "car"))
+    if car.suspension is None:
+        raise InputError("this car has prismatic corners, no [suspension.*] tables; the "
+                         "linear analysis needs a linkage car (e.g. "
+                         "cars/sedan_linkage.toml): the prismatic corners' anti-roll bars "
+                         "act outside the implicit equations", file=car.file, key="car")
+    out = {}
+
+    def probe(system, ctrl):
+        out["modes"] = _analyse(system, ctrl, speed=speed)
+        return None
+
+    # the body's own modal masses and damping (a run fits them to its step: prewarp)
+    res = simulate(car, road=road, speed=speed, t_end=1.0, body=body, f_max=f_max,
+                   max_mode_hz=max_mode_hz, cache=cache, log=log, probe=probe,
+                   prewarp=False)
+    del res
+    modes = out["modes"]
+    return LinearModes(car=car.name, body=body, speed=float(speed), **modes)
+
+
+# ---------------------------------------------------------------------------- analysis
+def _analyse(system, ctrl, *, speed: float) -> dict:
+    from scipy.linalg import eig
+
+    from flexpipe.exu.linearize import hold_tires, linearize, node_slices, start_from_initial
+    from flexpipe.vehicle.simulation import SPECTRAL_RADIUS
+
+    start_from_initial(system.mbs)
+    if speed > 0.0:
+        ok, t, *_ = system.run(ctrl, t_end=STEADY_S, h=ctrl.h, spectral_radius=SPECTRAL_RADIUS)
+        if not ok or ctrl.status < 0:
+            raise RuntimeError(f"the run to a steady state at {speed:g} m/s stopped at "
+                               f"t = {t:.3f} s: {ctrl.message}")
+    st = system.state(0.0)
+    loads = ctrl(st)
+    if loads is None:
+        raise RuntimeError(f"the car's state cannot be linearized: {ctrl.message}")
+    system.apply(loads, st.mount_R, st)
+    slices = node_slices(system.mbs)
+    tires = _TireLinearization(system, ctrl, slices)
+    # the tyres' force at the state as a constant force in Exudyn's element: their
+    # derivatives come from tires.derivatives; at rest no brake holds the wheels
+    hold_tires(system, tires.generalized()[0], release_spin=speed == 0.0)
+    lin = linearize(system.mbs)
+    Kt, Dt, B, Eq, Ev, Az = tires.derivatives(lin.q.size)
+    K, D, N = lin.K + Kt, lin.D + Dt, lin.N
+    Mr, Kr, Dr = N.T @ lin.M @ N, N.T @ K @ N, N.T @ D @ N
+    k, ns = N.shape[1], Az.shape[0]
+    Minv = np.linalg.inv(Mr)
+    A = np.zeros((2 * k + ns, 2 * k + ns))
+    A[:k, k:2 * k] = np.eye(k)
+    A[k:2 * k, :k] = -Minv @ Kr
+    A[k:2 * k, k:2 * k] = -Minv @ Dr
+    A[k:2 * k, 2 * k:] = Minv @ (N.T @ B)
+    A[2 * k:, :k] = Eq @ N
+    A[2 * k:, k:2 * k] = Ev @ N
+    A[2 * k:, 2 * k:] = Az
+    lam, L, X = eig(A, left=True, right=True)
+    # participation of the tyre slip states in each mode (unit-free: left times right
+    # eigenvector, summed over the slip states, as a share of the sum over all states)
+    p = np.abs(np.real(np.conj(L) * X))
+    slip_part = p[2 * k:].sum(axis=0) / np.maximum(p.sum(axis=0), 1e-300)
+    tol = 1e-9 * np.maximum(1.0, np.abs(lam))
+    keep = lam.imag >= -tol
+    lam, X, slip_part = lam[keep], X[:, keep], slip_part[keep]
+    lam = np.where(np.abs(lam.imag) < tol[keep], lam.real + 0j, lam)
+    order = np.lexsort((np.abs(lam.imag), np.abs(lam)))
+    lam, X, slip_part = lam[order], X[:, order], slip_part[order]
+    # free: the car rolling away; at rest also each relaxed slip's anchor (a constant of
+    # the motion: s' integrates the slip velocity).  Counted, not listed
+    free = np.abs(lam) < FREE_RAD_S
+    n_free = int(np.count_nonzero(free))
+    lam, X, slip_part = lam[~free], X[:, ~free], slip_part[~free]
+    phi = (N @ X[:k]).T  # displacement shapes (modes, n)
+    u = (N @ X[k:2 * k]).T  # velocity shapes
+    groups, energy = _energy(system, slices, lin.M, u)
+    motion = _body_motion(system, slices, lin.q, u)
+    mag = np.abs(lam)
+    zeta = -lam.real / mag
+    labels = tuple(("tyre relaxation" if sp > 0.5 else _label(groups, e, m))
+                   + (" (overdamped)" if lam_k.imag == 0 else "")
+                   for e, m, lam_k, sp in zip(energy, motion, lam, slip_part, strict=True))
+    return dict(eigenvalues=lam, frequency_hz=mag / (2 * np.pi),
+                damped_frequency_hz=np.abs(lam.imag) / (2 * np.pi), damping_ratio=zeta,
+                energy=energy, groups=groups, body_motion=motion, label=labels,
+                slip_participation=slip_part,
+                shapes=phi, A=A, N=N, q=lin.q, residual_N=lin.residual_N,
+                info={"n_coordinates": int(lin.q.size), "n_dof": int(k),
+                      "n_slip_states": int(ns), "n_constraints": int(lin.C.shape[0]),
+                      "free_modes": n_free})
+
+
+class _TireLinearization:
+    """The tyres' generalized forces on the wheel coordinates and their slip states'
+    rates, as functions of the Exudyn state and the relaxed slips, and their derivatives."""
+
+    def __init__(self, system, ctrl, slices):
+        self.system, self.ctrl = system, ctrl
+        n = len(system.wheel_node)
+        self.kappa, self.tan_alpha = np.zeros(n), np.zeros(n)
+        relax = np.zeros(n, dtype=bool)
+        for tire, ix in ctrl.tires.groups:
+            st = ctrl.tires.state[id(tire)]
+            self.kappa[ix], self.tan_alpha[ix] = st.kappa, st.tan_alpha
+            relax[ix] = bool(tire.relaxation)
+        #: slip states: (wheel, 0 = kappa' / 1 = tan alpha') of the relaxing tyres
+        self.states = [(i, c) for i in range(n) if relax[i] for c in (0, 1)]
+        #: the 8 ODE2 indices of each wheel: carrier node (7), spin coordinate (1)
+        self.idx = [np.r_[np.arange(slices[int(w)].start, slices[int(w)].stop),
+                          slices[int(s)].start]
+                    for w, s in zip(system.wheel_node, system.spin_node, strict=True)]
+
+    def generalized(self, dt: float = 0.0):
+        """(Q (4, 8), slip rates (4, 2)) at the current Exudyn state and slips."""
+        from flexpipe.exu._tire_element import element_numpy
+        from flexpipe.tires.contact import SlipState
+        from flexpipe.vehicle.tire_coupling import _force_and_moment
+
+        sy, ctrl = self.system, self.ctrl
+        st = sy.state(0.0)
+        s_axis = st.wheel_R[:, :, 1]
+        omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
+        h_road, n_road = ctrl.road_contact(st.wheel_p)
+        w = st.wheel_w + st.spin_rate[:, None] * s_axis
+        n = len(omega)
+        Y, r, rate = np.zeros((n, 6)), np.zeros((n, 3)), np.zeros((n, 2))
+        for tire, ix in ctrl.tires.groups:
+            relax = bool(tire.relaxation)
+            args = (st.wheel_p[ix], s_axis[ix], omega[ix], st.wheel_v[ix])
+            kw = dict(road_height=h_road[ix], road_normal=n_road[ix],
+                      angular_velocity=w[ix], mirror=ctrl.tires.mirror[ix])
+            state = SlipState(self.kappa[ix].copy(), self.tan_alpha[ix].copy())
+            wf = tire.wheel_forces(*args, **kw, state=state if relax else None,
+                                   dt=0.0 if relax else None)
+            m = len(omega[ix])
+            Y[ix] = _force_and_moment(wf, st.wheel_p[ix], 1, m)[0]
+            r[ix] = wf.contact_point - st.wheel_p[ix]
+            if relax:
+                adv = tire.wheel_forces(*args, **kw, state=state, dt=DT_SLIP).state
+                rate[ix, 0] = (adv.kappa - self.kappa[ix]) / DT_SLIP
+                rate[ix, 1] = (adv.tan_alpha - self.tan_alpha[ix]) / DT_SLIP
+        ep = sy.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
+        qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
+        z6, z63 = np.zeros((n, 6)), np.zeros((n, 6, 3))
+        _, _, Q = element_numpy(ep, r, s_axis, qt, st.wheel_q, Y, z63, z6, z6, z63)
+        return Q, rate
+
+    def _flat(self, size: int):
+        """(Q over all ODE2 coordinates (size,), rates of the slip states)."""
+        Q, rate = self.generalized()
+        out = np.zeros(size)
+        for i, ix in enumerate(self.idx):
+            out[ix] += Q[i]
+        return out, np.array([rate[i, c] for i, c in self.states])
+
+    def derivatives(self, size: int):
+        """``K_t, D_t`` (size, size): minus the tyre force's derivatives by coordinates and
+        velocities; ``B`` (size, s): by the slips; ``E_q, E_v`` (s, size) and ``A_s``
+        (s, s): the slips' rates by coordinates, velocities and slips."""
+        from flexpipe.exu.linearize import coordinate_derivatives
+
+        cols = np.concatenate(self.idx)
+        ns = len(self.states)
+
+        def both():
+            Q, rate = self._flat(size)
+            return np.concatenate([Q, rate])
+
+        dq, dv = coordinate_derivatives(self.system.mbs, cols, both, eps_q=EPS_Q,
+                                        eps_v=EPS_V)
+        Kt, Dt = np.zeros((size, size)), np.zeros((size, size))
+        Eq, Ev = np.zeros((ns, size)), np.zeros((ns, size))
+        Kt[:, cols], Dt[:, cols] = -dq[:size], -dv[:size]
+        Eq[:, cols], Ev[:, cols] = dq[size:], dv[size:]
+        B, As = np.zeros((size, ns)), np.zeros((ns, ns))
+        for k, (i, c) in enumerate(self.states):
+            slip = (self.kappa, self.tan_alpha)[c]
+            vals = []
+            for sgn in (1.0, -1.0):
+                slip[i] += sgn * EPS_S
+                vals.append(both())
+                slip[i] -= sgn * EPS_S
+            d = (vals[0] - vals[1]) / (2.0 * EPS_S)
+            B[:, k], As[:, k] = d[:size], d[size:]
+        return Kt, Dt, B, Eq, Ev, As
+
+
+# ---------------------------------------------------------------------------- energy
+def _groups(system, slices):
+    """``[(name, ODE2 indices)]``: body frame, body elastic, corners, spin, steering, rest."""
+    from flexpipe.exu.linearize import object_node
+
+    mbs = system.mbs
+    named = {}
+
+    def put(name, node):
+        if node is not None and int(node) in slices:
+            named.setdefault(name, []).append(int(node))
+
+    put("body frame", system.body_node)
+    put("body elastic", getattr(system, "modal_node", None))
+    lk = system.linkage
+    for cn, parts in zip(CORNERS, lk.part_nodes, strict=True):
+        for obj, *_ in parts:
+            put(f"corner {cn}", object_node(mbs, obj))
+    for node in system.spin_node:
+        put("wheel spin", node)
+    if lk.rack is not None:
+        put("steering", lk.rack["node"])
+    used = {n for nodes in named.values() for n in nodes}
+    for node in slices:
+        if node not in used:
+            put("other parts", node)
+    return [(name, np.concatenate([np.arange(slices[n].start, slices[n].stop)
+                                   for n in nodes])) for name, nodes in named.items()]
+
+
+def _energy(system, slices, M, u):
+    """Each mode's kinetic energy share per group (rows sum to 1)."""
+    groups = _groups(system, slices)
+    Mu = u @ M.T  # (modes, n): M u for each mode
+    total = np.real(np.einsum("kn,kn->k", u.conj(), Mu))
+    total = np.where(total > 0, total, 1.0)
+    E = np.array([np.real(np.einsum("kn,kn->k", u[:, ix].conj(), Mu[:, ix]))
+                  for _, ix in groups]).T / total[:, None]
+    return tuple(name for name, _ in groups), E
+
+
+def _body_motion(system, slices, q, u):
+    """The body frame's kinetic energy per motion (x, y, z, roll, pitch, yaw; body axes,
+    at its centre of mass), normalized per mode."""
+    from flexpipe.exu._tire_element import _g_matrix
+    from flexpipe.exu.linearize import node_reference
+
+    spec = system.spec
+    sl = slices[int(system.body_node)]
+    ref = node_reference(system.mbs, system.body_node)
+    e = ref[3:7] + q[sl][3:7]
+    e = e / np.linalg.norm(e)
+    G = _g_matrix(e)
+    R = system.state(0.0).body_R
+    m = float(spec.mass)
+    c = np.asarray(spec.center_of_mass, float)
+    J_o = np.asarray(spec.inertia_origin, float)
+    J = J_o - m * (c @ c * np.eye(3) - np.outer(c, c))
+    ub = u[:, sl]
+    w = (R.T @ (G @ ub[:, 3:7].T)).T  # body-axes angular velocity shapes
+    v = (R.T @ ub[:, :3].T).T + np.cross(w, c)
+    out = np.column_stack([m * np.abs(v) ** 2, np.real(w.conj() * (w @ J.T))])
+    tot = out.sum(axis=1)
+    return np.where(tot[:, None] > 0, out / np.where(tot > 0, tot, 1.0)[:, None], 0.0)
+
+
+def _label(groups, energy, motion) -> str:
+    """Dominant motion of a mode."""
+    share = dict(zip(groups, energy, strict=True))
+    body = share.get("body frame", 0.0)
+    elastic = share.get("body elastic", 0.0)
+    front = share.get("corner fl", 0.0) + share.get("corner fr", 0.0)
+    rear = share.get("corner rl", 0.0) + share.get("corner rr", 0.0)
+    cands = {"body": body, "body elastic": elastic, "front axle": front,
+             "rear axle": rear, "wheel spin": share.get("wheel spin", 0.0),
+             "steering": share.get("steering", 0.0),
+             "other parts": share.get("other parts", 0.0)}
+    top = max(cands, key=cands.get)
+    if cands[top] <= 0.0:
+        return "tyre relaxation"
+    if top == "body":
+        return _BODY_LABEL[BODY_MOTIONS[int(np.argmax(motion))]]
+    return top

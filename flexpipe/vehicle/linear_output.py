@@ -1,0 +1,89 @@
+"""Files of a linear analysis (:func:`flexpipe.vehicle.linear.linear_modes`): the modes as
+CSV (units in the headers) and JSON, and a PNG of damping against frequency; each file is
+written to a temporary name and renamed into place."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+
+import numpy as np
+
+from flexpipe._io import atomic_path, write_text_atomic
+
+#: what the modes are (the JSON's and the printout's notes)
+NOTES = (
+    "controls fixed: the driver and speed controller are not part of the linear model",
+    "a dual-rate damper enters with the mean of its two slopes at zero velocity",
+    "at rest no brake acts: the car may roll (a free mode); each tyre's relaxed slips are "
+    "its horizontal springs",
+    "free motions (zero eigenvalues) are counted, not listed",
+)
+
+
+def table_text(modes, *, f_max: float | None = None) -> str:
+    """The modes as a text table (up to ``f_max`` Hz)."""
+    lines = [f"{'mode':>4}  {'f (Hz)':>9}  {'fd (Hz)':>9}  {'zeta':>6}  dominant motion "
+             "(share of kinetic energy)"]
+    for k, row in enumerate(modes.rows()):
+        if f_max is not None and row["frequency_Hz"] > f_max:
+            break
+        if row["label"].startswith("tyre relaxation"):
+            share = f"slip states {modes.slip_participation[k]:.0%} of the participation"
+        else:
+            share = f"{float(np.max(modes.energy[k])):.0%}"
+        lines.append(f"{row['mode']:>4}  {row['frequency_Hz']:9.3f}  "
+                     f"{row['damped_frequency_Hz']:9.3f}  {row['damping_ratio']:6.3f}  "
+                     f"{row['label']} ({share})")
+    return "\n".join(lines)
+
+
+def write_modes(modes, out) -> list[Path]:
+    """Write ``linear_modes.csv``, ``linear_modes.json`` and ``linear_modes.png`` into
+    ``out`` (created if needed); returns their paths."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = modes.rows()
+    buf = io.StringIO()
+    if rows:
+        w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.9g}" if isinstance(v, float) else v) for k, v in r.items()})
+    paths = [out / "linear_modes.csv", out / "linear_modes.json", out / "linear_modes.png"]
+    write_text_atomic(paths[0], buf.getvalue())
+    doc = {"car": modes.car, "body": modes.body, "speed_m_per_s": modes.speed,
+           "residual_N": modes.residual_N, **modes.info, "groups": list(modes.groups),
+           "notes": list(NOTES), "modes": rows}
+    write_text_atomic(paths[1], json.dumps(doc, indent=1) + "\n")
+    _plot(modes, paths[2])
+    return paths
+
+
+def _plot(modes, path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(8, 5))
+    f, z = modes.frequency_hz, modes.damping_ratio
+    kinds = sorted(set(modes.label))
+    cmap = plt.get_cmap("tab10")
+    for i, kind in enumerate(kinds):
+        sel = np.array([lab == kind for lab in modes.label])
+        ax.scatter(f[sel], z[sel], s=28, color=cmap(i % 10), label=kind)
+    ax.set_xscale("log")
+    ax.set_xlabel("natural frequency |lambda| / 2 pi (Hz)")
+    ax.set_ylabel("damping ratio (-)")
+    ax.set_ylim(-0.05, 1.05)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.set_title(f"{modes.car}: linear modes, {modes.body} body, "
+                 f"{modes.speed * 3.6:g} km/h")
+    ax.legend(fontsize=7, loc="upper right", ncol=2)
+    fig.tight_layout()
+    with atomic_path(path, suffix=".png") as tmp:
+        fig.savefig(tmp, dpi=120)
+    plt.close(fig)
