@@ -171,3 +171,42 @@ def test_bad_input():
         fp.linear_modes(LINKAGE, body="rigid", speed=-1.0)
     with pytest.raises(InputError, match="linkage"):
         fp.linear_modes(ROOT / "cars" / "sedan.toml", body="rigid")
+
+
+def test_mode_shapes_of_the_flexible_body(tmp_path):
+    """The ride modes move the body as a rigid body (a rigid motion fits the field), roll
+    and pitch turn it about the body's x and y axes; the .vtu holds them."""
+    import meshio
+
+    from flexpipe.vehicle.linear_output import shape_fields, write_shapes
+
+    m = fp.linear_modes(LINKAGE, body="flexible")
+    pick = {lab: k for k, lab in reversed(list(enumerate(m.label)))}
+    idx = [pick["body bounce"], pick["body pitch"], pick["body roll"]]
+    X, U = shape_fields(m, idx)
+    R, p = m.body_state["rotation"], m.body_state["position"]
+    xb = (X - p) @ R  # body coordinates
+    for j, lab in enumerate(("bounce", "pitch", "roll")):
+        u = U[:, :, j]
+        u = (u * np.exp(-0.5j * np.angle(np.sum(u * u)))).real @ R  # real, body axes
+        # a rigid motion a + theta x x fits the field (its elastic part is small)
+        A = np.zeros((3 * len(xb), 6))
+        for i in range(3):
+            A[i::3, i] = 1.0
+        x, y, z = xb.T
+        A[0::3, 4], A[0::3, 5] = z, -y
+        A[1::3, 3], A[1::3, 5] = -z, x
+        A[2::3, 3], A[2::3, 4] = y, -x
+        sol, *_ = np.linalg.lstsq(A, u.ravel(), rcond=None)
+        rest = np.linalg.norm(A @ sol - u.ravel()) / np.linalg.norm(u)
+        assert rest < 0.01, f"{lab}: {rest:.4f} of the field is not a rigid motion"
+        theta = sol[3:]
+        if lab == "roll":
+            assert abs(theta[0]) > 3 * np.abs(theta[1:]).max()
+        if lab == "pitch":
+            assert abs(theta[1]) > 3 * max(abs(theta[0]), abs(theta[2]))
+    path = write_shapes(m, tmp_path / "linear_modes.vtu", f_max=25.0)
+    mesh = meshio.read(path)
+    k = pick["body roll"] + 1
+    assert np.allclose(mesh.point_data[f"mode_{k:03d}_re"], U[:, :, 2].real, atol=1e-6)
+    assert len(mesh.points) == len(m.body_state["flexbody"].nodes)

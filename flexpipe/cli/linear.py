@@ -5,7 +5,8 @@ flat road at ``--speed`` until steady), linearizes body, suspension and tyres th
 prints the modes: natural and damped frequency, damping ratio and the dominant motion by
 kinetic energy (:func:`flexpipe.vehicle.linear.linear_modes`).  Writes
 ``linear_modes.csv`` / ``.json`` / ``.png`` into ``--out`` (default
-``out/linear/<car>-<body>-<speed>kmh``).
+``out/linear/<car>-<body>-<speed>kmh``), and for a flexible body ``linear_modes.vtu``:
+the body's mesh with the modes up to ``--show`` as displacement fields for ParaView.
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ def run(args) -> int:
     from flexpipe._io import check_output_folder
     from flexpipe.vehicle import load_car
     from flexpipe.vehicle.linear import linear_modes
-    from flexpipe.vehicle.linear_output import NOTES, table_text, write_modes
+    from flexpipe.vehicle.linear_output import NOTES, table_text, write_modes, write_shapes
 
     check_options(args)
     body = args.body.strip().lower()
@@ -88,5 +89,8 @@ def run(args) -> int:
     for note in NOTES:
         print(f"note: {note}")
     paths = write_modes(modes, out)
+    vtu = write_shapes(modes, Path(out) / "linear_modes.vtu", f_max=args.show)
+    if vtu is not None:
+        paths.append(vtu)
     print("written: " + ", ".join(str(p) for p in paths))
     return 0

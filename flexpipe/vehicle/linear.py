@@ -101,6 +101,10 @@ class LinearModes:
     q: np.ndarray
     residual_N: float
     info: dict = field(default_factory=dict)
+    #: the body at the linearization state (for :func:`~flexpipe.vehicle.linear_output.
+    #: write_shapes`): its frame's and modal node's coordinate slices, frame position,
+    #: rotation and Euler parameters, modal coordinates, and the FlexBody (None if rigid)
+    body_state: dict | None = None
 
     def rows(self) -> list[dict]:
         """One dict per mode (the CSV's columns, units in the keys)."""
@@ -240,9 +244,24 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
                 energy=energy, groups=groups, body_motion=motion, label=labels,
                 slip_participation=slip_part,
                 shapes=phi, A=A, N=N, q=lin.q, residual_N=lin.residual_N,
+                body_state=_body_state(system, slices, lin.q),
                 info={"n_coordinates": int(lin.q.size), "n_dof": int(k),
                       "n_slip_states": int(ns), "n_constraints": int(lin.C.shape[0]),
                       "free_modes": n_free})
+
+
+def _body_state(system, slices, q) -> dict:
+    from flexpipe.exu.linearize import node_reference
+
+    sl = slices[int(system.body_node)]
+    modal = getattr(system, "modal_node", None)
+    ms = slices[int(modal)] if modal is not None else None
+    st = system.state(0.0)
+    e = node_reference(system.mbs, system.body_node)[3:7] + q[sl][3:7]
+    return {"frame": sl, "modal": ms, "position": st.body_p.copy(),
+            "rotation": st.body_R.copy(), "euler": e / np.linalg.norm(e),
+            "modal_q": q[ms].copy() if ms is not None else None,
+            "flexbody": system.spec.flexbody if ms is not None else None}
 
 
 class _TireLinearization:

@@ -87,3 +87,55 @@ def _plot(modes, path) -> None:
     with atomic_path(path, suffix=".png") as tmp:
         fig.savefig(tmp, dpi=120)
     plt.close(fig)
+
+
+def shape_fields(modes, index) -> tuple:
+    """Mesh nodes of the flexible body at the linearization state (global, m) and the
+    complex displacement field (n, 3, len(index)) of the modes ``index`` (global axes;
+    frame motion plus elastic deformation, each mode scaled to a largest node
+    displacement of 1)."""
+    from flexpipe.exu._tire_element import _g_matrix
+
+    b = modes.body_state
+    fb = b["flexbody"]
+    R, p = b["rotation"], b["position"]
+    cols = fb.n_rigid + np.arange(b["modal"].stop - b["modal"].start)
+    phi = fb.modes[:, :, cols]  # (n, 3, m) in body axes
+    x_body = fb.nodes + phi @ b["modal_q"]
+    X = x_body @ R.T + p
+    G = _g_matrix(b["euler"])
+    U = np.empty((len(X), 3, len(index)), dtype=complex)
+    for j, k in enumerate(index):
+        sh = modes.shapes[k]
+        dp, de = sh[b["frame"]][:3], sh[b["frame"]][3:7]
+        dth = G @ de
+        u = dp + np.cross(dth, x_body @ R.T) + (phi @ sh[b["modal"]]) @ R.T
+        U[:, :, j] = u / max(np.max(np.linalg.norm(u, axis=1)), 1e-300)
+    return X, U
+
+
+def write_shapes(modes, path, *, f_max: float) -> Path | None:
+    """``linear_modes.vtu``: the flexible body's mesh at the linearization state with the
+    modes up to ``f_max`` as point data ``mode_NN_re`` / ``mode_NN_im`` (complex
+    displacement, global axes, largest node displacement 1; ParaView: Warp By Vector)
+    and field data ``frequency_Hz`` / ``damping_ratio``.  None for a rigid body."""
+    import meshio
+    from meshio.vtu import write as write_vtu
+
+    from flexpipe.durability.animate import body_cells
+
+    if modes.body_state is None or modes.body_state["flexbody"] is None:
+        return None
+    index = [k for k, f in enumerate(modes.frequency_hz) if f <= f_max]
+    X, U = shape_fields(modes, index)
+    data = {}
+    for j, k in enumerate(index):
+        data[f"mode_{k + 1:03d}_re"] = U[:, :, j].real
+        data[f"mode_{k + 1:03d}_im"] = U[:, :, j].imag
+    mesh = meshio.Mesh(X, body_cells(modes.body_state["flexbody"]), point_data=data,
+                       field_data={"frequency_Hz": modes.frequency_hz[index],
+                                   "damping_ratio": modes.damping_ratio[index]})
+    path = Path(path)
+    with atomic_path(path, suffix=".vtu") as tmp:
+        write_vtu(tmp, mesh, binary=True, compression=None)
+    return path
