@@ -5,8 +5,11 @@ flat road at ``--speed`` until steady), linearizes body, suspension and tyres th
 prints the modes: natural and damped frequency, damping ratio and the dominant motion by
 kinetic energy (:func:`flexpipe.vehicle.linear.linear_modes`).  Writes
 ``linear_modes.csv`` / ``.json`` / ``.png`` into ``--out`` (default
-``out/linear/<car>-<body>-<speed>kmh``), and for a flexible body ``linear_modes.vtu``:
-the body's mesh with the modes up to ``--show`` as displacement fields for ParaView.
+``out/linear/<car>-<body>-<speed>kmh``); ``linear_frf.csv`` / ``.png``: the vertical
+tyre forces and floor accelerations per metre of a road whose two tracks carry the same
+profile (at rest: all four wheels in phase); and for a flexible body
+``linear_modes.vtu``: the body's mesh with the modes up to ``--show`` as displacement
+fields for ParaView.
 """
 
 from __future__ import annotations
@@ -71,7 +74,13 @@ def run(args) -> int:
     from flexpipe._io import check_output_folder
     from flexpipe.vehicle import load_car
     from flexpipe.vehicle.linear import linear_modes
-    from flexpipe.vehicle.linear_output import NOTES, table_text, write_modes, write_shapes
+    from flexpipe.vehicle.linear_output import (
+        NOTES,
+        table_text,
+        write_modes,
+        write_shapes,
+        write_track_response,
+    )
 
     check_options(args)
     body = args.body.strip().lower()
@@ -88,7 +97,7 @@ def run(args) -> int:
     print(table_text(modes, f_max=args.show))
     for note in NOTES:
         print(f"note: {note}")
-    paths = write_modes(modes, out)
+    paths = write_modes(modes, out) + write_track_response(modes, out)
     vtu = write_shapes(modes, Path(out) / "linear_modes.vtu", f_max=args.show)
     if vtu is not None:
         paths.append(vtu)

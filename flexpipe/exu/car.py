@@ -344,16 +344,24 @@ class CarSystem:
         """Global accelerations (4, 3) of the wheel carriers' centres of mass."""
         return np.array([self.mbs.GetNodeOutput(n, OV.Acceleration) for n in self.wheel_node])
 
-    def point_accelerations(self) -> dict:
-        """Global acceleration (3,) of every named body point."""
+    def _point_output(self, variable) -> dict:
+        """Exudyn's output ``variable`` (global, (3,)) of every named body point."""
         out = {}
         for name, (kind, where) in self.points.items():
             if kind == "node":
-                a = self.mbs.GetObjectOutputSuperElement(self.body_obj, OV.Acceleration, where)
+                a = self.mbs.GetObjectOutputSuperElement(self.body_obj, variable, where)
             else:
-                a = self.mbs.GetObjectOutputBody(self.body_obj, OV.Acceleration, where)
+                a = self.mbs.GetObjectOutputBody(self.body_obj, variable, where)
             out[name] = np.asarray(a, dtype=float)
         return out
+
+    def point_accelerations(self) -> dict:
+        """Global acceleration (3,) of every named body point."""
+        return self._point_output(OV.Acceleration)
+
+    def point_velocities(self) -> dict:
+        """Global velocity (3,) of every named body point."""
+        return self._point_output(OV.Velocity)
 
     def apply(self, loads: CarLoads, mount_R: np.ndarray, st: CarState) -> None:
         """Set the loads for the coming step (``mount_R``: hardpoint frames, for the

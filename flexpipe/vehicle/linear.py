@@ -33,9 +33,6 @@ import numpy as np
 
 from flexpipe.errors import InputError
 
-#: step of the slip state's advance used for its rate (s), and the central differences of
-#: the tyre's inputs: coordinates (m, Euler parameters), velocities (m/s, rad/s), slips
-DT_SLIP, EPS_Q, EPS_V, EPS_S = 1e-6, 1e-7, 1e-6, 1e-7
 #: an eigenvalue below this (rad/s) is a free motion (the car rolling away, at rest the
 #: relaxed slips' anchors): counted in ``info["free_modes"]``, not listed
 FREE_RAD_S = 1e-3
@@ -81,6 +78,12 @@ class LinearModes:
         Exudyn's coordinates at the linearization state.
     residual_N : float
         Largest force out of balance at the linearization state (N or N m).
+    B, C, D : ndarray
+        ``x' = A x + B u``, ``y = C x + D u``: ``inputs`` ``u`` are the road height (m)
+        and its longitudinal slope dh/dx (rad) under each wheel (``road_<corner>_z``,
+        ``road_<corner>_slope``); ``outputs`` ``y`` the vertical tyre forces
+        (``tire_<corner>_Fz``, N) and the accelerations of the car's named body points in
+        body axes (``acc_<point>_<x|y|z>``, m/s^2), as a run's channels name them.
     """
 
     car: str
@@ -100,11 +103,44 @@ class LinearModes:
     N: np.ndarray
     q: np.ndarray
     residual_N: float
+    B: np.ndarray
+    C: np.ndarray
+    D: np.ndarray
+    inputs: tuple
+    outputs: tuple
     info: dict = field(default_factory=dict)
     #: the body at the linearization state (for :func:`~flexpipe.vehicle.linear_output.
     #: write_shapes`): its frame's and modal node's coordinate slices, frame position,
     #: rotation and Euler parameters, modal coordinates, and the FlexBody (None if rigid)
     body_state: dict | None = None
+
+    def frequency_response(self, f_hz) -> np.ndarray:
+        """``H`` (len(f_hz), outputs, inputs), complex: the steady response ``y = H u`` to
+        harmonic inputs at the frequencies ``f_hz`` (Hz)."""
+        f = np.atleast_1d(np.asarray(f_hz, dtype=float))
+        eye = np.eye(self.A.shape[0])
+        return np.array([self.C @ np.linalg.solve(2j * np.pi * fk * eye - self.A, self.B)
+                         + self.D for fk in f])
+
+    def track_response(self, f_hz) -> np.ndarray:
+        """``H`` (len(f_hz), outputs), complex: the response to a road whose two tracks
+        carry the same profile, per unit of its height.  At a speed each wheel meets it
+        at its own place (the rear ``wheelbase / V`` later) with its slope
+        ``j omega / V`` times the height; at rest all four wheels move in phase (a
+        four-post rig's heave)."""
+        f = np.atleast_1d(np.asarray(f_hz, dtype=float))
+        H = self.frequency_response(f)
+        n_w = len(self.inputs) // 2
+        w = 2 * np.pi * f[:, None]
+        if self.speed > 0.0:
+            x = np.asarray(self.info["wheel_x_m"], dtype=float)
+            delay = (x.max() - x) / self.speed
+            gain = np.exp(-1j * w * delay[None, :])
+            slope = 1j * w / self.speed * gain
+        else:
+            gain, slope = np.ones((len(f), n_w)), np.zeros((len(f), n_w))
+        return (np.einsum("fow,fw->fo", H[:, :, :n_w], gain)
+                + np.einsum("fow,fw->fo", H[:, :, n_w:], slope))
 
     def rows(self) -> list[dict]:
         """One dict per mode (the CSV's columns, units in the keys)."""
@@ -182,6 +218,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     from scipy.linalg import eig
 
     from flexpipe.exu.linearize import hold_tires, linearize, node_slices, start_from_initial
+    from flexpipe.vehicle.linear_tires import TireLinearization
     from flexpipe.vehicle.simulation import SPECTRAL_RADIUS
 
     start_from_initial(system.mbs)
@@ -196,12 +233,12 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
         raise RuntimeError(f"the car's state cannot be linearized: {ctrl.message}")
     system.apply(loads, st.mount_R, st)
     slices = node_slices(system.mbs)
-    tires = _TireLinearization(system, ctrl, slices)
+    tires = TireLinearization(system, ctrl, slices)
     # the tyres' force at the state as a constant force in Exudyn's element: their
     # derivatives come from tires.derivatives; at rest no brake holds the wheels
     hold_tires(system, tires.generalized()[0], release_spin=speed == 0.0)
     lin = linearize(system.mbs)
-    Kt, Dt, B, Eq, Ev, Az = tires.derivatives(lin.q.size)
+    Kt, Dt, B, Eq, Ev, Az, Ur, Fz_d = tires.derivatives(lin.q.size)
     K, D, N = lin.K + Kt, lin.D + Dt, lin.N
     Mr, Kr, Dr = N.T @ lin.M @ N, N.T @ K @ N, N.T @ D @ N
     k, ns = N.shape[1], Az.shape[0]
@@ -214,6 +251,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     A[2 * k:, :k] = Eq @ N
     A[2 * k:, k:2 * k] = Ev @ N
     A[2 * k:, 2 * k:] = Az
+    io = _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k)
     lam, L, X = eig(A, left=True, right=True)
     # participation of the tyre slip states in each mode (unit-free: left times right
     # eigenvector, summed over the slip states, as a share of the sum over all states)
@@ -244,10 +282,49 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
                 energy=energy, groups=groups, body_motion=motion, label=labels,
                 slip_participation=slip_part,
                 shapes=phi, A=A, N=N, q=lin.q, residual_N=lin.residual_N,
-                body_state=_body_state(system, slices, lin.q),
+                body_state=_body_state(system, slices, lin.q), **io,
                 info={"n_coordinates": int(lin.q.size), "n_dof": int(k),
                       "n_slip_states": int(ns), "n_constraints": int(lin.C.shape[0]),
-                      "free_modes": n_free})
+                      "free_modes": n_free,
+                      "wheel_x_m": _wheel_x(system)})
+
+
+def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
+    """Road inputs (height, slope under each wheel) and outputs (vertical tyre forces,
+    body-point accelerations in body axes) of ``x' = A x + B u``, ``y = C x + D u``."""
+    from flexpipe.exu.linearize import coordinate_derivatives
+
+    size = lin.q.size
+    ns = A.shape[0] - 2 * k
+    n_w = Ur.shape[1] // 2
+    Bx = np.zeros((A.shape[0], 2 * n_w))
+    Bx[k:2 * k] = Minv @ (N.T @ Ur[:size])
+    Bx[2 * k:] = Ur[size:]
+    Fq, Fv, Fs, Fu = Fz_d
+    C = [np.hstack([Fq @ N, Fv @ N, Fs])]
+    D = [Fu]
+    names = [f"tire_{c}_Fz" for c in CORNERS[:n_w]]
+    points = list(system.points)
+    if points:
+        R = system.state(0.0).body_R
+        _, Jv = coordinate_derivatives(system.mbs, np.arange(size),
+                                       lambda: np.concatenate(
+                                           [v @ R for v in system.point_velocities().values()]))
+        acc = Jv @ N  # (3 points, k): body-axes acceleration per nullspace acceleration
+        C.append(acc @ A[k:2 * k])
+        D.append(acc @ Bx[k:2 * k])
+        names += [f"acc_{p}_{ax}" for p in points for ax in "xyz"]
+    del ns
+    inputs = tuple(f"road_{c}_z" for c in CORNERS[:n_w]) + tuple(
+        f"road_{c}_slope" for c in CORNERS[:n_w])
+    return {"B": Bx, "C": np.vstack(C), "D": np.vstack(D), "inputs": inputs,
+            "outputs": tuple(names)}
+
+
+def _wheel_x(system) -> list:
+    """Wheel centres' positions along the body's x axis (m, from the body origin)."""
+    st = system.state(0.0)
+    return ((st.wheel_p - st.body_p) @ st.body_R[:, 0]).tolist()
 
 
 def _body_state(system, slices, q) -> dict:
@@ -262,101 +339,6 @@ def _body_state(system, slices, q) -> dict:
             "rotation": st.body_R.copy(), "euler": e / np.linalg.norm(e),
             "modal_q": q[ms].copy() if ms is not None else None,
             "flexbody": system.spec.flexbody if ms is not None else None}
-
-
-class _TireLinearization:
-    """The tyres' generalized forces on the wheel coordinates and their slip states'
-    rates, as functions of the Exudyn state and the relaxed slips, and their derivatives."""
-
-    def __init__(self, system, ctrl, slices):
-        self.system, self.ctrl = system, ctrl
-        n = len(system.wheel_node)
-        self.kappa, self.tan_alpha = np.zeros(n), np.zeros(n)
-        relax = np.zeros(n, dtype=bool)
-        for tire, ix in ctrl.tires.groups:
-            st = ctrl.tires.state[id(tire)]
-            self.kappa[ix], self.tan_alpha[ix] = st.kappa, st.tan_alpha
-            relax[ix] = bool(tire.relaxation)
-        #: slip states: (wheel, 0 = kappa' / 1 = tan alpha') of the relaxing tyres
-        self.states = [(i, c) for i in range(n) if relax[i] for c in (0, 1)]
-        #: the 8 ODE2 indices of each wheel: carrier node (7), spin coordinate (1)
-        self.idx = [np.r_[np.arange(slices[int(w)].start, slices[int(w)].stop),
-                          slices[int(s)].start]
-                    for w, s in zip(system.wheel_node, system.spin_node, strict=True)]
-
-    def generalized(self, dt: float = 0.0):
-        """(Q (4, 8), slip rates (4, 2)) at the current Exudyn state and slips."""
-        from flexpipe.exu._tire_element import element_numpy
-        from flexpipe.tires.contact import SlipState
-        from flexpipe.vehicle.tire_coupling import _force_and_moment
-
-        sy, ctrl = self.system, self.ctrl
-        st = sy.state(0.0)
-        s_axis = st.wheel_R[:, :, 1]
-        omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
-        h_road, n_road = ctrl.road_contact(st.wheel_p)
-        w = st.wheel_w + st.spin_rate[:, None] * s_axis
-        n = len(omega)
-        Y, r, rate = np.zeros((n, 6)), np.zeros((n, 3)), np.zeros((n, 2))
-        for tire, ix in ctrl.tires.groups:
-            relax = bool(tire.relaxation)
-            args = (st.wheel_p[ix], s_axis[ix], omega[ix], st.wheel_v[ix])
-            kw = dict(road_height=h_road[ix], road_normal=n_road[ix],
-                      angular_velocity=w[ix], mirror=ctrl.tires.mirror[ix])
-            state = SlipState(self.kappa[ix].copy(), self.tan_alpha[ix].copy())
-            wf = tire.wheel_forces(*args, **kw, state=state if relax else None,
-                                   dt=0.0 if relax else None)
-            m = len(omega[ix])
-            Y[ix] = _force_and_moment(wf, st.wheel_p[ix], 1, m)[0]
-            r[ix] = wf.contact_point - st.wheel_p[ix]
-            if relax:
-                adv = tire.wheel_forces(*args, **kw, state=state, dt=DT_SLIP).state
-                rate[ix, 0] = (adv.kappa - self.kappa[ix]) / DT_SLIP
-                rate[ix, 1] = (adv.tan_alpha - self.tan_alpha[ix]) / DT_SLIP
-        ep = sy.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
-        qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
-        z6, z63 = np.zeros((n, 6)), np.zeros((n, 6, 3))
-        _, _, Q = element_numpy(ep, r, s_axis, qt, st.wheel_q, Y, z63, z6, z6, z63)
-        return Q, rate
-
-    def _flat(self, size: int):
-        """(Q over all ODE2 coordinates (size,), rates of the slip states)."""
-        Q, rate = self.generalized()
-        out = np.zeros(size)
-        for i, ix in enumerate(self.idx):
-            out[ix] += Q[i]
-        return out, np.array([rate[i, c] for i, c in self.states])
-
-    def derivatives(self, size: int):
-        """``K_t, D_t`` (size, size): minus the tyre force's derivatives by coordinates and
-        velocities; ``B`` (size, s): by the slips; ``E_q, E_v`` (s, size) and ``A_s``
-        (s, s): the slips' rates by coordinates, velocities and slips."""
-        from flexpipe.exu.linearize import coordinate_derivatives
-
-        cols = np.concatenate(self.idx)
-        ns = len(self.states)
-
-        def both():
-            Q, rate = self._flat(size)
-            return np.concatenate([Q, rate])
-
-        dq, dv = coordinate_derivatives(self.system.mbs, cols, both, eps_q=EPS_Q,
-                                        eps_v=EPS_V)
-        Kt, Dt = np.zeros((size, size)), np.zeros((size, size))
-        Eq, Ev = np.zeros((ns, size)), np.zeros((ns, size))
-        Kt[:, cols], Dt[:, cols] = -dq[:size], -dv[:size]
-        Eq[:, cols], Ev[:, cols] = dq[size:], dv[size:]
-        B, As = np.zeros((size, ns)), np.zeros((ns, ns))
-        for k, (i, c) in enumerate(self.states):
-            slip = (self.kappa, self.tan_alpha)[c]
-            vals = []
-            for sgn in (1.0, -1.0):
-                slip[i] += sgn * EPS_S
-                vals.append(both())
-                slip[i] -= sgn * EPS_S
-            d = (vals[0] - vals[1]) / (2.0 * EPS_S)
-            B[:, k], As[:, k] = d[:size], d[size:]
-        return Kt, Dt, B, Eq, Ev, As
 
 
 # ---------------------------------------------------------------------------- energy

@@ -62,6 +62,54 @@ def write_modes(modes, out) -> list[Path]:
     return paths
 
 
+#: frequencies of the written track response (Hz)
+FRF_HZ = np.geomspace(0.3, 50.0, 240)
+
+
+def write_track_response(modes, out, *, f_hz=FRF_HZ) -> list[Path]:
+    """``linear_frf.csv`` and ``linear_frf.png``: the response to a road whose two tracks
+    carry the same profile (:meth:`~flexpipe.vehicle.linear.LinearModes.track_response`)
+    per metre of its height: magnitude (output unit per m) and phase (deg) of every
+    output."""
+    out = Path(out)
+    H = modes.track_response(f_hz)
+    units = {name: ("N/m" if name.endswith("_Fz") else "m/s^2/m") for name in modes.outputs}
+    head = ["f_Hz"] + [c for name in modes.outputs
+                       for c in (f"{name}_gain_{units[name]}", f"{name}_phase_deg")]
+    lines = [",".join(head)]
+    for i, f in enumerate(f_hz):
+        vals = [f"{f:.6g}"]
+        for j in range(len(modes.outputs)):
+            vals += [f"{abs(H[i, j]):.7g}", f"{np.degrees(np.angle(H[i, j])):.3f}"]
+        lines.append(",".join(vals))
+    paths = [out / "linear_frf.csv", out / "linear_frf.png"]
+    write_text_atomic(paths[0], "\n".join(lines) + "\n")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    for j, name in enumerate(modes.outputs):
+        ax = axes[0] if name.endswith("_Fz") else axes[1]
+        if name.endswith("_Fz") or name.endswith("_z"):
+            ax.loglog(f_hz, np.abs(H[:, j]), label=name)
+    axes[0].set_ylabel("vertical tyre force per road height (N/m)")
+    axes[1].set_ylabel("vertical floor acceleration\nper road height (m/s^2 / m)")
+    axes[1].set_xlabel("frequency (Hz)")
+    where = (f"both tracks the same profile, {modes.speed * 3.6:g} km/h"
+             if modes.speed > 0 else "four-post heave (all wheels in phase), at rest")
+    axes[0].set_title(f"{modes.car}, {modes.body} body: {where}")
+    for ax in axes:
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    with atomic_path(paths[1], suffix=".png") as tmp:
+        fig.savefig(tmp, dpi=120)
+    plt.close(fig)
+    return paths
+
+
 def _plot(modes, path) -> None:
     import matplotlib
 
