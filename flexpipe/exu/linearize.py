@@ -172,16 +172,18 @@ def hold_tires(system, Q0, *, release_spin: bool) -> None:
 
 
 def coordinate_derivatives(mbs, columns, fn, *, eps_q: float = EPS_Q,
-                           eps_v: float = EPS_V):
+                           eps_v: float = EPS_V, rates_only: bool = False):
     """Central differences of ``fn() -> (p,)`` with respect to the current coordinates and
-    velocities at the ODE2 indices ``columns``: ``(dfn/dq, dfn/dv)``, each (p, len).
-    The state is restored afterwards."""
+    velocities at the ODE2 indices ``columns``: ``(dfn/dq, dfn/dv)``, each (p, len);
+    ``rates_only``: by the velocities only (``dfn/dq`` is None).  The state is restored
+    afterwards."""
     sd = mbs.systemData
     q0 = np.array(sd.GetODE2Coordinates(), dtype=float)
     v0 = np.array(sd.GetODE2Coordinates_t(), dtype=float)
     dq, dv = [], []
+    kinds = ((eps_v, dv, 1),) if rates_only else ((eps_q, dq, 0), (eps_v, dv, 1))
     for j in columns:
-        for eps, out, which in ((eps_q, dq, 0), (eps_v, dv, 1)):
+        for eps, out, which in kinds:
             vals = []
             for sgn in (1.0, -1.0):
                 q, v = q0.copy(), v0.copy()
@@ -192,7 +194,7 @@ def coordinate_derivatives(mbs, columns, fn, *, eps_q: float = EPS_Q,
             out.append((vals[0] - vals[1]) / (2.0 * eps))
     sd.SetODE2Coordinates(list(q0))
     sd.SetODE2Coordinates_t(list(v0))
-    return np.array(dq).T, np.array(dv).T
+    return (None if rates_only else np.array(dq).T), np.array(dv).T
 
 
 def object_node(mbs, obj) -> int:

@@ -174,8 +174,8 @@ def linear_modes(car, *, body: str = "flexible", speed: float = 0.0, road=None,
         0 (default): parked, settled; > 0: run straight at this speed (m/s) for
         :data:`STEADY_S` on ``road`` and linearized there.
     road : Road, str, Path or None
-        Flat when None (a linear analysis at speed needs a flat road: the modes of a
-        car on an uneven road are those of the flat road plus the forcing).
+        The road the car settles or runs on before it is linearized (default flat; the
+        linear model holds at the state reached there).
     f_max, max_mode_hz, cache, log
         As :func:`flexpipe.simulate`.
 
@@ -198,18 +198,11 @@ def linear_modes(car, *, body: str = "flexible", speed: float = 0.0, road=None,
                          "linear analysis needs a linkage car (e.g. "
                          "cars/sedan_linkage.toml): the prismatic corners' anti-roll bars "
                          "act outside the implicit equations", file=car.file, key="car")
-    out = {}
-
-    def probe(system, ctrl):
-        out["modes"] = _analyse(system, ctrl, speed=speed)
-        return None
-
-    # the body's own modal masses and damping (a run fits them to its step: prewarp)
-    res = simulate(car, road=road, speed=speed, t_end=1.0, body=body, f_max=f_max,
-                   max_mode_hz=max_mode_hz, cache=cache, log=log, probe=probe,
-                   prewarp=False)
-    del res
-    modes = out["modes"]
+    # the run's assembly, settled, handed to the analysis instead of the run; the body
+    # with its own modal masses and damping (a run fits them to its step: prewarp)
+    modes = simulate(car, road=road, speed=speed, t_end=1.0, body=body, f_max=f_max,
+                     max_mode_hz=max_mode_hz, cache=cache, log=log, prewarp=False,
+                     probe=lambda system, ctrl: _analyse(system, ctrl, speed=speed))
     return LinearModes(car=car.name, body=body, speed=float(speed), **modes)
 
 
@@ -295,7 +288,6 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
     from flexpipe.exu.linearize import coordinate_derivatives
 
     size = lin.q.size
-    ns = A.shape[0] - 2 * k
     n_w = Ur.shape[1] // 2
     Bx = np.zeros((A.shape[0], 2 * n_w))
     Bx[k:2 * k] = Minv @ (N.T @ Ur[:size])
@@ -309,12 +301,12 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
         R = system.state(0.0).body_R
         _, Jv = coordinate_derivatives(system.mbs, np.arange(size),
                                        lambda: np.concatenate(
-                                           [v @ R for v in system.point_velocities().values()]))
+                                           [v @ R for v in system.point_velocities().values()]),
+                                       rates_only=True)
         acc = Jv @ N  # (3 points, k): body-axes acceleration per nullspace acceleration
         C.append(acc @ A[k:2 * k])
         D.append(acc @ Bx[k:2 * k])
         names += [f"acc_{p}_{ax}" for p in points for ax in "xyz"]
-    del ns
     inputs = tuple(f"road_{c}_z" for c in CORNERS[:n_w]) + tuple(
         f"road_{c}_slope" for c in CORNERS[:n_w])
     return {"B": Bx, "C": np.vstack(C), "D": np.vstack(D), "inputs": inputs,
