@@ -7,7 +7,8 @@ kinetic energy (:func:`flexpipe.vehicle.linear.linear_modes`).  Writes
 ``linear_modes.csv`` / ``.json`` / ``.png`` into ``--out`` (default
 ``out/linear/<car>-<body>-<speed>kmh``); ``linear_frf.csv`` / ``.png``: the vertical
 tyre forces and floor accelerations per metre of a road whose two tracks carry the same
-profile (at rest: all four wheels in phase); and for a flexible body
+profile (at rest: all four wheels in phase), ``linear_frf_opposite.*`` the same for the
+right track carrying the left one's negative (roll input); and for a flexible body
 ``linear_modes.vtu``: the body's mesh with the modes up to ``--show`` as displacement
 fields for ParaView.
 """
@@ -97,7 +98,8 @@ def run(args) -> int:
     print(table_text(modes, f_max=args.show))
     for note in NOTES:
         print(f"note: {note}")
-    paths = write_modes(modes, out) + write_track_response(modes, out)
+    paths = (write_modes(modes, out) + write_track_response(modes, out)
+             + write_track_response(modes, out, tracks="opposite"))
     vtu = write_shapes(modes, Path(out) / "linear_modes.vtu", f_max=args.show)
     if vtu is not None:
         paths.append(vtu)

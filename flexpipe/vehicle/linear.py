@@ -80,8 +80,9 @@ class LinearModes:
         Largest force out of balance at the linearization state (N or N m).
     B, C, D : ndarray
         ``x' = A x + B u``, ``y = C x + D u``: ``inputs`` ``u`` are the road height (m)
-        and its longitudinal slope dh/dx (rad) under each wheel (``road_<corner>_z``,
-        ``road_<corner>_slope``); ``outputs`` ``y`` the vertical tyre forces
+        and its longitudinal and lateral slopes dh/dx, dh/dy (rad, body axes, y to the
+        left) under each wheel (``road_<corner>_z``, ``road_<corner>_slope_x``,
+        ``road_<corner>_slope_y``); ``outputs`` ``y`` the vertical tyre forces
         (``tire_<corner>_Fz``, N) and the accelerations of the car's named body points in
         body axes (``acc_<point>_<x|y|z>``, m/s^2), as a run's channels name them.
     """
@@ -122,25 +123,40 @@ class LinearModes:
         return np.array([self.C @ np.linalg.solve(2j * np.pi * fk * eye - self.A, self.B)
                          + self.D for fk in f])
 
-    def track_response(self, f_hz) -> np.ndarray:
-        """``H`` (len(f_hz), outputs), complex: the response to a road whose two tracks
-        carry the same profile, per unit of its height.  At a speed each wheel meets it
-        at its own place (the rear ``wheelbase / V`` later) with its slope
+    def track_response(self, f_hz, *, tracks: str = "same") -> np.ndarray:
+        """``H`` (len(f_hz), outputs), complex: the response to a road profile per unit of
+        its height: on both tracks (``tracks="same"``), or on the left track and its
+        negative on the right (``"opposite"``: a roll and warp input; the road's
+        cross-section straight between the wheels, so each axle also meets the lateral
+        slope ``2 / track`` times the height).  At a speed each wheel meets the profile
+        at its own place (the rear ``wheelbase / V`` later) with its longitudinal slope
         ``j omega / V`` times the height; at rest all four wheels move in phase (a
-        four-post rig's heave)."""
+        four-post rig's heave, or its roll with ``"opposite"``)."""
+        from flexpipe._args import checked_choice
+
+        checked_choice(tracks, "tracks", ("same", "opposite"))
         f = np.atleast_1d(np.asarray(f_hz, dtype=float))
         H = self.frequency_response(f)
-        n_w = len(self.inputs) // 2
+        n_w = len(self.inputs) // 3
         w = 2 * np.pi * f[:, None]
         if self.speed > 0.0:
             x = np.asarray(self.info["wheel_x_m"], dtype=float)
-            delay = (x.max() - x) / self.speed
-            gain = np.exp(-1j * w * delay[None, :])
-            slope = 1j * w / self.speed * gain
+            gain = np.exp(-1j * w * ((x.max() - x) / self.speed)[None, :])
+            slope_x = 1j * w / self.speed * gain
         else:
-            gain, slope = np.ones((len(f), n_w)), np.zeros((len(f), n_w))
+            gain, slope_x = np.ones((len(f), n_w)), np.zeros((len(f), n_w))
+        slope_y = np.zeros_like(gain)
+        if tracks == "opposite":
+            y = np.asarray(self.info["wheel_y_m"], dtype=float)
+            side = np.where(y > 0.0, 1.0, -1.0)
+            track = np.empty(n_w)
+            for i in range(0, n_w, 2):  # the axles: (fl, fr), (rl, rr)
+                track[i:i + 2] = abs(y[i] - y[i + 1])
+            gain, slope_x = gain * side, slope_x * side
+            slope_y = (2.0 / track)[None, :] * gain * side
         return (np.einsum("fow,fw->fo", H[:, :, :n_w], gain)
-                + np.einsum("fow,fw->fo", H[:, :, n_w:], slope))
+                + np.einsum("fow,fw->fo", H[:, :, n_w:2 * n_w], slope_x)
+                + np.einsum("fow,fw->fo", H[:, :, 2 * n_w:], slope_y))
 
     def rows(self) -> list[dict]:
         """One dict per mode (the CSV's columns, units in the keys)."""
@@ -279,7 +295,8 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
                 info={"n_coordinates": int(lin.q.size), "n_dof": int(k),
                       "n_slip_states": int(ns), "n_constraints": int(lin.C.shape[0]),
                       "free_modes": n_free,
-                      "wheel_x_m": _wheel_x(system)})
+                      "drive_torque_Nm": float(getattr(ctrl, "torque", 0.0)),
+                      **_wheel_xy(system)})
 
 
 def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
@@ -288,8 +305,8 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
     from flexpipe.exu.linearize import coordinate_derivatives
 
     size = lin.q.size
-    n_w = Ur.shape[1] // 2
-    Bx = np.zeros((A.shape[0], 2 * n_w))
+    n_w = Ur.shape[1] // 3
+    Bx = np.zeros((A.shape[0], 3 * n_w))
     Bx[k:2 * k] = Minv @ (N.T @ Ur[:size])
     Bx[2 * k:] = Ur[size:]
     Fq, Fv, Fs, Fu = Fz_d
@@ -307,16 +324,17 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
         C.append(acc @ A[k:2 * k])
         D.append(acc @ Bx[k:2 * k])
         names += [f"acc_{p}_{ax}" for p in points for ax in "xyz"]
-    inputs = tuple(f"road_{c}_z" for c in CORNERS[:n_w]) + tuple(
-        f"road_{c}_slope" for c in CORNERS[:n_w])
+    inputs = tuple(f"road_{c}_{kind}" for kind in ("z", "slope_x", "slope_y")
+                   for c in CORNERS[:n_w])
     return {"B": Bx, "C": np.vstack(C), "D": np.vstack(D), "inputs": inputs,
             "outputs": tuple(names)}
 
 
-def _wheel_x(system) -> list:
-    """Wheel centres' positions along the body's x axis (m, from the body origin)."""
+def _wheel_xy(system) -> dict:
+    """Wheel centres' positions along the body's x and y axes (m, from the body origin)."""
     st = system.state(0.0)
-    return ((st.wheel_p - st.body_p) @ st.body_R[:, 0]).tolist()
+    r = (st.wheel_p - st.body_p) @ st.body_R
+    return {"wheel_x_m": r[:, 0].tolist(), "wheel_y_m": r[:, 1].tolist()}
 
 
 def _body_state(system, slices, q) -> dict:

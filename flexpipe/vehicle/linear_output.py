@@ -66,13 +66,14 @@ def write_modes(modes, out) -> list[Path]:
 FRF_HZ = np.geomspace(0.3, 50.0, 240)
 
 
-def write_track_response(modes, out, *, f_hz=FRF_HZ) -> list[Path]:
-    """``linear_frf.csv`` and ``linear_frf.png``: the response to a road whose two tracks
-    carry the same profile (:meth:`~flexpipe.vehicle.linear.LinearModes.track_response`)
-    per metre of its height: magnitude (output unit per m) and phase (deg) of every
-    output."""
+def write_track_response(modes, out, *, f_hz=FRF_HZ, tracks: str = "same") -> list[Path]:
+    """``linear_frf.csv`` and ``linear_frf.png`` (``tracks="same"``) or
+    ``linear_frf_opposite.*``: the response to a road profile on both tracks, or on the
+    left one and its negative on the right
+    (:meth:`~flexpipe.vehicle.linear.LinearModes.track_response`), per metre of its
+    height: magnitude (output unit per m) and phase (deg) of every output."""
     out = Path(out)
-    H = modes.track_response(f_hz)
+    H = modes.track_response(f_hz, tracks=tracks)
     units = {name: ("N/m" if name.endswith("_Fz") else "m/s^2/m") for name in modes.outputs}
     head = ["f_Hz"] + [c for name in modes.outputs
                        for c in (f"{name}_gain_{units[name]}", f"{name}_phase_deg")]
@@ -82,7 +83,8 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ) -> list[Path]:
         for j in range(len(modes.outputs)):
             vals += [f"{abs(H[i, j]):.7g}", f"{np.degrees(np.angle(H[i, j])):.3f}"]
         lines.append(",".join(vals))
-    paths = [out / "linear_frf.csv", out / "linear_frf.png"]
+    stem = "linear_frf" if tracks == "same" else "linear_frf_opposite"
+    paths = [out / f"{stem}.csv", out / f"{stem}.png"]
     write_text_atomic(paths[0], "\n".join(lines) + "\n")
     import matplotlib
 
@@ -97,8 +99,11 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ) -> list[Path]:
     axes[0].set_ylabel("vertical tyre force per road height (N/m)")
     axes[1].set_ylabel("vertical floor acceleration\nper road height (m/s^2 / m)")
     axes[1].set_xlabel("frequency (Hz)")
-    where = (f"both tracks the same profile, {modes.speed * 3.6:g} km/h"
-             if modes.speed > 0 else "four-post heave (all wheels in phase), at rest")
+    if modes.speed > 0:
+        where = (f"{'both tracks' if tracks == 'same' else 'opposite tracks'}, "
+                 f"{modes.speed * 3.6:g} km/h")
+    else:
+        where = f"four-post {'heave' if tracks == 'same' else 'roll'}, at rest"
     axes[0].set_title(f"{modes.car}, {modes.body} body: {where}")
     for ax in axes:
         ax.grid(True, which="both", alpha=0.3)

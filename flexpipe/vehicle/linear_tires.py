@@ -42,8 +42,9 @@ class TireLinearization:
 
     def generalized(self, road=None):
         """(Q (4, 8), slip rates (4, 2), Fz (4,)) at the current Exudyn state and slips;
-        ``road``: (4, 2) offsets of the road height (m) and of its longitudinal slope
-        dh/dx (rad, along the body's x axis) under each wheel."""
+        ``road``: (4, 3) offsets of the road height (m) and of its longitudinal and
+        lateral slopes (rad: dh/dx along the body's x axis, dh/dy along its y axis, to
+        the left) under each wheel."""
         from flexpipe.exu._tire_element import element_numpy
         from flexpipe.tires.contact import SlipState
         from flexpipe.vehicle.tire_coupling import _force_and_moment
@@ -54,10 +55,12 @@ class TireLinearization:
         omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
         h_road, n_road = ctrl.road_contact(st.wheel_p)
         if road is not None:  # the road raised and tilted under each wheel
-            fwd = st.body_R[:, 0] - st.body_R[2, 0] * np.array([0.0, 0.0, 1.0])
+            up = np.array([0.0, 0.0, 1.0])
+            fwd = st.body_R[:, 0] - st.body_R[2, 0] * up
             fwd /= np.linalg.norm(fwd)
+            left = np.cross(up, fwd)
             h_road = h_road + road[:, 0]
-            n_road = n_road - road[:, 1:2] * fwd[None, :]
+            n_road = n_road - road[:, 1:2] * fwd[None, :] - road[:, 2:3] * left[None, :]
             n_road /= np.linalg.norm(n_road, axis=1)[:, None]
         w = st.wheel_w + st.spin_rate[:, None] * s_axis
         n = len(omega)
@@ -98,7 +101,7 @@ class TireLinearization:
         """``K_t, D_t`` (size, size): minus the tyre force's derivatives by coordinates and
         velocities; ``B`` (size, s): by the slips; ``E_q, E_v`` (s, size) and ``A_s``
         (s, s): the slips' rates by coordinates, velocities and slips; ``U`` (size + s, 8):
-        force and slip rates by the road inputs (height, slope under each wheel); ``F``:
+        force and slip rates by the road inputs (height, slopes under each wheel); ``F``:
         the vertical tyre forces' derivatives (``q``, ``v``, slips, road inputs)."""
         from flexpipe.exu.linearize import coordinate_derivatives
 
@@ -122,11 +125,11 @@ class TireLinearization:
                 vals.append(self._flat(size))
                 slip[i] -= sgn * EPS_S
             d_slip[:, k] = (vals[0] - vals[1]) / (2.0 * EPS_S)
-        d_road = np.zeros((size + ns + n_w, 2 * n_w))
-        for j in range(2 * n_w):
+        d_road = np.zeros((size + ns + n_w, 3 * n_w))
+        for j in range(3 * n_w):
             vals = []
             for sgn in (1.0, -1.0):
-                road = np.zeros((n_w, 2))
+                road = np.zeros((n_w, 3))
                 road[j % n_w, j // n_w] = sgn * EPS_ROAD
                 vals.append(self._flat(size, road))
             d_road[:, j] = (vals[0] - vals[1]) / (2.0 * EPS_ROAD)
