@@ -152,8 +152,8 @@ class LinearModes:
             track = np.empty(n_w)
             for i in range(0, n_w, 2):  # the axles: (fl, fr), (rl, rr)
                 track[i:i + 2] = abs(y[i] - y[i + 1])
+            slope_y = (2.0 / track)[None, :] * gain  # the same under both wheels
             gain, slope_x = gain * side, slope_x * side
-            slope_y = (2.0 / track)[None, :] * gain * side
         return (np.einsum("fow,fw->fo", H[:, :, :n_w], gain)
                 + np.einsum("fow,fw->fo", H[:, :, n_w:2 * n_w], slope_x)
                 + np.einsum("fow,fw->fo", H[:, :, 2 * n_w:], slope_y))
@@ -260,7 +260,8 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     A[2 * k:, :k] = Eq @ N
     A[2 * k:, k:2 * k] = Ev @ N
     A[2 * k:, 2 * k:] = Az
-    io = _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k)
+    body = _body_state(system, slices, lin.q)
+    io = _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, R=body["rotation"])
     lam, L, X = eig(A, left=True, right=True)
     # participation of the tyre slip states in each mode (unit-free: left times right
     # eigenvector, summed over the slip states, as a share of the sum over all states)
@@ -280,7 +281,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     phi = (N @ X[:k]).T  # displacement shapes (modes, n)
     u = (N @ X[k:2 * k]).T  # velocity shapes
     groups, energy = _energy(system, slices, lin.M, u)
-    motion = _body_motion(system, slices, lin.q, u)
+    motion = _body_motion(system.spec, body, u)
     mag = np.abs(lam)
     zeta = -lam.real / mag
     labels = tuple(("tyre relaxation" if sp > 0.5 else _label(groups, e, m))
@@ -291,17 +292,18 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
                 energy=energy, groups=groups, body_motion=motion, label=labels,
                 slip_participation=slip_part,
                 shapes=phi, A=A, N=N, q=lin.q, residual_N=lin.residual_N,
-                body_state=_body_state(system, slices, lin.q), **io,
+                body_state=body, **io,
                 info={"n_coordinates": int(lin.q.size), "n_dof": int(k),
                       "n_slip_states": int(ns), "n_constraints": int(lin.C.shape[0]),
                       "free_modes": n_free,
                       "drive_torque_Nm": float(getattr(ctrl, "torque", 0.0)),
-                      **_wheel_xy(system)})
+                      **_wheel_xy(system, body)})
 
 
-def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
-    """Road inputs (height, slope under each wheel) and outputs (vertical tyre forces,
-    body-point accelerations in body axes) of ``x' = A x + B u``, ``y = C x + D u``."""
+def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, *, R) -> dict:
+    """Road inputs (height, slopes under each wheel) and outputs (vertical tyre forces,
+    body-point accelerations in the axes of the body rotated by ``R``) of
+    ``x' = A x + B u``, ``y = C x + D u``."""
     from flexpipe.exu.linearize import coordinate_derivatives
 
     size = lin.q.size
@@ -315,7 +317,6 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
     names = [f"tire_{c}_Fz" for c in CORNERS[:n_w]]
     points = list(system.points)
     if points:
-        R = system.state(0.0).body_R
         _, Jv = coordinate_derivatives(system.mbs, np.arange(size),
                                        lambda: np.concatenate(
                                            [v @ R for v in system.point_velocities().values()]),
@@ -330,10 +331,9 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k) -> dict:
             "outputs": tuple(names)}
 
 
-def _wheel_xy(system) -> dict:
+def _wheel_xy(system, body) -> dict:
     """Wheel centres' positions along the body's x and y axes (m, from the body origin)."""
-    st = system.state(0.0)
-    r = (st.wheel_p - st.body_p) @ st.body_R
+    r = (system.state(0.0).wheel_p - body["position"]) @ body["rotation"]
     return {"wheel_x_m": r[:, 0].tolist(), "wheel_y_m": r[:, 1].tolist()}
 
 
@@ -392,19 +392,13 @@ def _energy(system, slices, M, u):
     return tuple(name for name, _ in groups), E
 
 
-def _body_motion(system, slices, q, u):
+def _body_motion(spec, body, u):
     """The body frame's kinetic energy per motion (x, y, z, roll, pitch, yaw; body axes,
-    at its centre of mass), normalized per mode."""
+    at its centre of mass), normalized per mode (``body``: :func:`_body_state`)."""
     from flexpipe.exu._tire_element import _g_matrix
-    from flexpipe.exu.linearize import node_reference
 
-    spec = system.spec
-    sl = slices[int(system.body_node)]
-    ref = node_reference(system.mbs, system.body_node)
-    e = ref[3:7] + q[sl][3:7]
-    e = e / np.linalg.norm(e)
-    G = _g_matrix(e)
-    R = system.state(0.0).body_R
+    sl, R = body["frame"], body["rotation"]
+    G = _g_matrix(body["euler"])
     m = float(spec.mass)
     c = np.asarray(spec.center_of_mass, float)
     J_o = np.asarray(spec.inertia_origin, float)

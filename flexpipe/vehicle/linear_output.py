@@ -86,12 +86,7 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ, tracks: str = "same") -> li
     stem = "linear_frf" if tracks == "same" else "linear_frf_opposite"
     paths = [out / f"{stem}.csv", out / f"{stem}.png"]
     write_text_atomic(paths[0], "\n".join(lines) + "\n")
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(2, 1, figsize=(8, 7), sharex=True)
+    fig, axes = _figure(2, 1, figsize=(8, 7), sharex=True)
     for j, name in enumerate(modes.outputs):
         ax = axes[0] if name.endswith("_Fz") else axes[1]
         if name.endswith("_Fz") or name.endswith("_z"):
@@ -108,20 +103,14 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ, tracks: str = "same") -> li
     for ax in axes:
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    with atomic_path(paths[1], suffix=".png") as tmp:
-        fig.savefig(tmp, dpi=120)
-    plt.close(fig)
+    _save(fig, paths[1])
     return paths
 
 
 def _plot(modes, path) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig, ax = _figure(figsize=(8, 5))
     f, z = modes.frequency_hz, modes.damping_ratio
     kinds = sorted(set(modes.label))
     cmap = plt.get_cmap("tab10")
@@ -136,6 +125,23 @@ def _plot(modes, path) -> None:
     ax.set_title(f"{modes.car}: linear modes, {modes.body} body, "
                  f"{modes.speed * 3.6:g} km/h")
     ax.legend(fontsize=7, loc="upper right", ncol=2)
+    _save(fig, path)
+
+
+def _figure(*args, **kwargs):
+    """A matplotlib figure on the Agg backend (no display needed)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt.subplots(*args, **kwargs)
+
+
+def _save(fig, path) -> None:
+    """Write ``fig`` as a PNG (temporary name, renamed into place) and close it."""
+    import matplotlib.pyplot as plt
+
     fig.tight_layout()
     with atomic_path(path, suffix=".png") as tmp:
         fig.savefig(tmp, dpi=120)
