@@ -33,6 +33,8 @@ _EXPORTS = {
     "kc": "flexpipe.vehicle.suspension.kc",
     "linear_modes": "flexpipe.vehicle.linear",
     "LinearModes": "flexpipe.vehicle.linear",
+    "ride_response": "flexpipe.vehicle.linear_ride",
+    "RideResponse": "flexpipe.vehicle.linear_ride",
     "BodyMotion": "flexpipe.vehicle.result",
     "recover_stress": "flexpipe.durability",
     "FatigueMaterial": "flexpipe.durability",

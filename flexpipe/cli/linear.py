@@ -10,7 +10,10 @@ tyre forces and floor accelerations per metre of a road whose two tracks carry t
 profile (at rest: all four wheels in phase), ``linear_frf_opposite.*`` the same for the
 right track carrying the left one's negative (roll input); and for a flexible body
 ``linear_modes.vtu``: the body's mesh with the modes up to ``--show`` as displacement
-fields for ParaView.
+fields for ParaView.  With ``--road-class`` (and ``--speed``) also the ride on an ISO 8608
+road from the linear model (:func:`flexpipe.vehicle.linear_ride.ride_response`): RMS of
+the tyre forces and floor accelerations, ISO 2631-1 weighted RMS and comfort values,
+``ride.csv`` / ``.json`` and ``ride_psd.csv`` / ``.png``.
 """
 
 from __future__ import annotations
@@ -44,6 +47,13 @@ def add_arguments(p) -> None:
     p.add_argument("--show", type=float, default=60.0, metavar="HZ",
                    help="print the modes up to this frequency, Hz (default 60; the files "
                         "hold all)")
+    p.add_argument("--road-class", default=None, metavar="CLASS",
+                   help="with --speed: the ride on an ISO 8608 road of this class (A..H) "
+                        "from the linear model: RMS, ISO 2631-1 weighted RMS and spectra "
+                        "(ride.csv/.json, ride_psd.csv/.png)")
+    p.add_argument("--coherence", default="isotropic", metavar="GAMMA",
+                   help="with --road-class: the tracks' coherence, 'isotropic' (default) "
+                        "or a number in [0, 1] (1: both tracks the same)")
     p.add_argument("-o", "--out", default=None,
                    help="output folder (default out/linear/<car>-<body>-<speed>kmh)")
 
@@ -66,6 +76,32 @@ def check_options(args) -> None:
         raise InputError(f"--f-max must be a frequency > 0 Hz, got {args.f_max:g}")
     if not (math.isfinite(args.show) and args.show > 0):
         raise InputError(f"--show must be a frequency > 0 Hz, got {args.show:g}")
+    if args.road_class is not None:
+        from flexpipe.roads import ISO8608_GD0
+
+        if args.road_class.strip().upper() not in ISO8608_GD0:
+            raise InputError(f"--road-class must be one of {', '.join(ISO8608_GD0)}, got "
+                             f"{args.road_class!r}")
+        if args.speed <= 0.0:
+            raise InputError("--road-class needs --speed > 0 km/h: at rest the road does "
+                             "not move under the wheels")
+    args.coherence = _coherence(args.coherence)
+
+
+def _coherence(text):
+    """``--coherence``: 'isotropic' or a number in [0, 1]."""
+    from flexpipe.errors import InputError
+
+    if isinstance(text, str) and text.strip().lower() == "isotropic":
+        return "isotropic"
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        value = math.nan
+    if not 0.0 <= value <= 1.0:
+        raise InputError(f"--coherence must be 'isotropic' or a number in [0, 1], got "
+                         f"{text!r}")
+    return value
 
 
 def run(args) -> int:
@@ -103,5 +139,16 @@ def run(args) -> int:
     vtu = write_shapes(modes, Path(out) / "linear_modes.vtu", f_max=args.show)
     if vtu is not None:
         paths.append(vtu)
+    if args.road_class is not None:
+        from flexpipe.vehicle.linear_ride import ride_response
+        from flexpipe.vehicle.linear_ride_output import NOTES as RIDE_NOTES
+        from flexpipe.vehicle.linear_ride_output import ride_text, write_ride
+
+        ride = ride_response(modes, args.road_class.strip().upper(),
+                             coherence=args.coherence)
+        print(ride_text(ride))
+        for note in RIDE_NOTES:
+            print(f"note: {note}")
+        paths += write_ride(ride, out)
     print("written: " + ", ".join(str(p) for p in paths))
     return 0

@@ -120,8 +120,11 @@ class LinearModes:
         harmonic inputs at the frequencies ``f_hz`` (Hz)."""
         f = np.atleast_1d(np.asarray(f_hz, dtype=float))
         eye = np.eye(self.A.shape[0])
-        return np.array([self.C @ np.linalg.solve(2j * np.pi * fk * eye - self.A, self.B)
-                         + self.D for fk in f])
+        out = np.empty((f.size, *self.D.shape), dtype=complex)
+        for i in range(0, f.size, 256):  # batched solves, 256 frequencies at a time
+            s = 2j * np.pi * f[i:i + 256, None, None]
+            out[i:i + 256] = self.C @ np.linalg.solve(s * eye - self.A, self.B) + self.D
+        return out
 
     def track_response(self, f_hz, *, tracks: str = "same") -> np.ndarray:
         """``H`` (len(f_hz), outputs), complex: the response to a road profile per unit of
@@ -245,7 +248,8 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     tires = TireLinearization(system, ctrl, slices)
     # the tyres' force at the state as a constant force in Exudyn's element: their
     # derivatives come from tires.derivatives; at rest no brake holds the wheels
-    hold_tires(system, tires.generalized()[0], release_spin=speed == 0.0)
+    Q, _, Fz = tires.generalized()
+    hold_tires(system, Q, release_spin=speed == 0.0)
     lin = linearize(system.mbs)
     Kt, Dt, B, Eq, Ev, Az, Ur, Fz_d = tires.derivatives(lin.q.size)
     K, D, N = lin.K + Kt, lin.D + Dt, lin.N
@@ -297,6 +301,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
                       "n_slip_states": int(ns), "n_constraints": int(lin.C.shape[0]),
                       "free_modes": n_free,
                       "drive_torque_Nm": float(getattr(ctrl, "torque", 0.0)),
+                      "tire_Fz_N": [float(x) for x in Fz],
                       **_wheel_xy(system, body)})
 
 

@@ -1,0 +1,249 @@
+"""Ride on a random road from the linear model: output spectra, RMS values and ISO 2631-1
+weighted accelerations without a time run.
+
+The road is an ISO 8608 class (displacement PSD ``Gd(n) = Gd(n0) (n / n0)^-2`` over the
+classification band of spatial frequencies ``n``, as :func:`flexpipe.roads.iso8608`
+synthesises it).  At speed ``V`` one track's height has the one-sided temporal PSD
+``G(f) = Gd(f / V) / V`` (m^2/Hz).  The two tracks, a distance ``B`` apart, share the PSD
+and have the coherence ``gamma(n)`` (the cross-spectrum ``gamma G`` is real): the
+isotropic-surface model ``gamma = x K1(x)``, ``x = 2 pi n B``, or a constant.  Their
+mean ``(L + R) / 2`` and half difference ``(L - R) / 2`` are then uncorrelated with the
+PSDs ``G (1 + gamma) / 2`` and ``G (1 - gamma) / 2``, and they are what
+:meth:`~flexpipe.vehicle.linear.LinearModes.track_response` answers with ``"same"`` and
+``"opposite"`` tracks (each wheel meeting the profile at its place, the rear ones a
+wheelbase later).  So every output has the PSD
+
+    S(f) = G(f) [ |H_same(f)|^2 (1 + gamma) / 2 + |H_opposite(f)|^2 (1 - gamma) / 2 ]
+
+and its RMS is ``sqrt(int S df)``.  The accelerations' ISO 2631-1 weighted RMS
+``a_w = sqrt(int |W(f)|^2 S df)`` uses Wk vertically and Wd fore-aft and laterally
+(:mod:`flexpipe.sweeps.iso2631`); each body point's total value
+``a_v = sqrt(a_wx^2 + a_wy^2 + a_wz^2)`` (comfort, multiplying factors 1, ISO 2631-1
+8.2.3) with the standard's comfort reaction (Annex C).  The vertical tyre forces' RMS over
+their static value is the dynamic load coefficient (road holding, road damage).
+
+Checks (``tests/test_linear_ride.py``): a quarter car against the covariance of its state
+equations (Lyapunov), and the sample car's linear model run in time over roads
+synthesised with the same spectrum.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from flexpipe.errors import InputError
+
+#: frequency samples of the spectra (log spaced over the road's band at the speed): a
+#: step of 0.2 % resolves a resonance of damping ratio 0.01 with 10 samples per
+#: half-power band
+N_FREQ = 4000
+#: ISO 2631-1:1997 Annex C: comfort reactions to the total vibration value a_v (m/s^2),
+#: (from, to, reaction); the standard's ranges overlap
+COMFORT_REACTIONS = ((0.0, 0.315, "not uncomfortable"), (0.315, 0.63, "a little uncomfortable"),
+                     (0.5, 1.0, "fairly uncomfortable"), (0.8, 1.6, "uncomfortable"),
+                     (1.25, 2.5, "very uncomfortable"), (2.0, np.inf, "extremely uncomfortable"))
+
+
+def comfort_reaction(a_v: float) -> str:
+    """ISO 2631-1 Annex C reaction to the total vibration value ``a_v`` (m/s^2); where the
+    standard's ranges overlap both are named ("a little uncomfortable / fairly
+    uncomfortable")."""
+    return " / ".join(name for lo, hi, name in COMFORT_REACTIONS if lo <= a_v < hi)
+
+
+def road_psd(f_hz, *, road_class: str, speed: float, n_band=None) -> np.ndarray:
+    """One-sided temporal PSD ``G(f) = Gd(f / V) / V`` (m^2/Hz) of one track of an ISO 8608
+    class-``road_class`` road met at ``speed`` (m/s), zero outside ``n_band`` (cycles/m;
+    default the classification band, as :func:`flexpipe.roads.iso8608`)."""
+    from flexpipe.roads import ISO8608_BAND, ISO8608_GD0, ISO8608_N0
+
+    key = str(road_class).upper()
+    if key not in ISO8608_GD0:
+        raise InputError(f"road class {road_class!r} is not one of "
+                         f"{', '.join(ISO8608_GD0)}", key="road_class")
+    if not (np.isfinite(speed) and speed > 0.0):
+        raise InputError(f"a road spectrum needs a speed > 0 m/s, got {speed!r}: at rest "
+                         "the road does not move under the wheels", key="speed")
+    n_lo, n_hi = ISO8608_BAND if n_band is None else n_band
+    n = np.asarray(f_hz, dtype=float) / speed
+    inside = (n >= n_lo) & (n <= n_hi)
+    with np.errstate(divide="ignore"):
+        gd = ISO8608_GD0[key] * (np.where(inside, n, 1.0) / ISO8608_N0) ** -2.0
+    return np.where(inside, gd / speed, 0.0)
+
+
+def output_psd(road, H_same, H_opposite, gamma) -> np.ndarray:
+    """PSD of every output, ``road (|H_same|^2 (1 + gamma) + |H_opposite|^2 (1 - gamma))
+    / 2`` (module notes).
+
+    Parameters
+    ----------
+    road : array_like (f,)
+        One track's PSD (m^2/Hz).
+    H_same, H_opposite : array_like (f, outputs), complex
+        Responses per metre of road height on both tracks, and on the left with its
+        negative on the right.
+    gamma : array_like (f,) or float
+        Coherence of the two tracks (cross-spectrum over PSD), in [-1, 1].
+    """
+    g = np.asarray(gamma, dtype=float)
+    if np.any(np.abs(g) > 1.0):
+        raise InputError("track coherence must be in [-1, 1]", key="coherence")
+    g = np.broadcast_to(g, np.shape(road))[:, None]
+    return np.asarray(road, dtype=float)[:, None] * 0.5 * (
+        np.abs(H_same) ** 2 * (1.0 + g) + np.abs(H_opposite) ** 2 * (1.0 - g))
+
+
+@dataclass(frozen=True)
+class RideResponse:
+    """Response of a linearized car to an ISO 8608 road.
+
+    Attributes
+    ----------
+    f_hz : ndarray (f,)
+        Frequencies (Hz) of the spectra, log spaced over the road's band at the speed.
+    road_psd : ndarray (f,)
+        One track's height PSD (m^2/Hz).
+    coherence : ndarray (f,)
+        The tracks' coherence.
+    psd : ndarray (f, outputs)
+        Output PSDs, (unit)^2/Hz, ``outputs`` as the linear model's.
+    rms : ndarray (outputs,)
+        RMS of each output about its value at the linearization state (N, m/s^2).
+    weighted_rms : ndarray (outputs,)
+        ISO 2631-1 weighted RMS of the accelerations (Wk for z, Wd for x and y; NaN for
+        the tyre forces), m/s^2.
+    points : dict
+        Per body point: ``"a_v_m/s^2"``, the total comfort value, and its ``"reaction"``
+        (ISO 2631-1 Annex C).
+    dynamic_load : dict
+        Per tyre: RMS of the vertical force over its static value (-).
+    """
+
+    car: str
+    body: str
+    speed: float
+    road_class: str
+    track_width: float
+    f_hz: np.ndarray
+    road_psd: np.ndarray
+    coherence: np.ndarray
+    outputs: tuple
+    psd: np.ndarray
+    rms: np.ndarray
+    weighted_rms: np.ndarray
+    points: dict
+    dynamic_load: dict
+    info: dict = field(default_factory=dict)
+
+    def rows(self) -> list[dict]:
+        """One dict per output (the CSV's columns, units in the keys)."""
+        out = []
+        for j, name in enumerate(self.outputs):
+            unit = "N" if name.endswith("_Fz") else "m/s^2"
+            row = {"output": name, "unit": unit, "rms": float(self.rms[j])}
+            row["iso2631_weighting"] = _weighting(name) or ""
+            row["weighted_rms"] = float(self.weighted_rms[j])
+            out.append(row)
+        return out
+
+
+def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
+                  track_width: float | None = None, n_band=None,
+                  n_freq: int = N_FREQ) -> RideResponse:
+    """Spectra, RMS and ISO 2631-1 values of a linearized car on an ISO 8608 road.
+
+    Parameters
+    ----------
+    modes : LinearModes
+        The car linearized at a speed > 0 (:func:`flexpipe.linear_modes`).
+    road_class : str
+        ISO 8608 class, ``"A"`` .. ``"H"``.
+    coherence : "isotropic" or float
+        The tracks' coherence: the isotropic-surface model, or a constant in [0, 1]
+        (1: both tracks the same; 0: independent), as :func:`flexpipe.roads.iso8608`.
+    track_width : float, optional
+        Distance between the tracks (m); default the car's mean track.
+    n_band : (float, float), optional
+        Spatial-frequency band (cycles/m); default the ISO 8608 classification band.
+    n_freq : int
+        Frequency samples (default :data:`N_FREQ`).
+
+    Raises
+    ------
+    InputError
+        A model linearized at rest, an unknown road class, a coherence outside [0, 1], a
+        band that is not ``0 < n_lo < n_hi``, fewer than 100 samples.
+    """
+    from flexpipe.roads import ISO8608_BAND, isotropic_coherence
+    from flexpipe.sweeps.iso2631 import response
+
+    if modes.speed <= 0.0:
+        raise InputError("the ride response needs the car linearized at a speed > 0 "
+                         "(linear_modes(..., speed=...), flexpipe linear --speed): at rest "
+                         "the road does not move under the wheels", key="speed")
+    n_lo, n_hi = ISO8608_BAND if n_band is None else (float(n_band[0]), float(n_band[1]))
+    if not (0.0 < n_lo < n_hi < np.inf):
+        raise InputError(f"n_band must be 0 < n_lo < n_hi cycles/m, got {n_band!r}",
+                         key="n_band")
+    if not (isinstance(n_freq, int) and n_freq >= 100):
+        raise InputError(f"n_freq must be an integer >= 100, got {n_freq!r}", key="n_freq")
+    if track_width is None:
+        y = np.asarray(modes.info["wheel_y_m"], dtype=float)
+        track_width = float(np.mean(np.abs(y[0::2] - y[1::2])))
+    elif not (np.isfinite(track_width) and track_width > 0.0):
+        raise InputError(f"track_width must be > 0 m, got {track_width!r}",
+                         key="track_width")
+    v = modes.speed
+    f = np.geomspace(v * n_lo, v * n_hi, n_freq)
+    if isinstance(coherence, str):
+        if coherence != "isotropic":
+            raise InputError(f"coherence must be 'isotropic' or a number in [0, 1], got "
+                             f"{coherence!r}", key="coherence")
+        gamma = isotropic_coherence(f / v, track_width)
+    elif isinstance(coherence, int | float) and 0.0 <= coherence <= 1.0:
+        gamma = np.full(f.size, float(coherence))
+    else:
+        raise InputError(f"coherence must be 'isotropic' or a number in [0, 1], got "
+                         f"{coherence!r}", key="coherence")
+    G = road_psd(f, road_class=road_class, speed=v, n_band=(n_lo, n_hi))
+    S = output_psd(G, modes.track_response(f, tracks="same"),
+                   modes.track_response(f, tracks="opposite"), gamma)
+    rms = np.sqrt(np.trapezoid(S, f, axis=0))
+    w_rms = np.full(rms.shape, np.nan)
+    for j, name in enumerate(modes.outputs):
+        if (wk := _weighting(name)) is not None:
+            w_rms[j] = np.sqrt(np.trapezoid(np.abs(response(f, wk)) ** 2 * S[:, j], f))
+    points = {}
+    for name in modes.outputs:
+        if name.startswith("acc_") and name.endswith("_z"):
+            point = name[4:-2]
+            idx = [modes.outputs.index(f"acc_{point}_{ax}") for ax in "xyz"]
+            a_v = float(np.sqrt(np.sum(w_rms[idx] ** 2)))
+            points[point] = {"a_v_m/s^2": a_v, "reaction": comfort_reaction(a_v)}
+    # the tyres' static loads are in the outputs' order (tire_<corner>_Fz, corners fl..rr)
+    static = modes.info.get("tire_Fz_N")
+    tyres = [j for j, name in enumerate(modes.outputs) if name.endswith("_Fz")]
+    dynamic = {} if static is None else {
+        modes.outputs[j][5:-3]: float(rms[j] / load)
+        for j, load in zip(tyres, static, strict=True)}
+    return RideResponse(car=modes.car, body=modes.body, speed=v,
+                        road_class=str(road_class).upper(), track_width=track_width,
+                        f_hz=f, road_psd=G, coherence=np.asarray(gamma), outputs=modes.outputs,
+                        psd=S, rms=rms, weighted_rms=w_rms, points=points,
+                        dynamic_load=dynamic,
+                        info={"n_band_cycles/m": [n_lo, n_hi],
+                              "coherence_model": coherence if isinstance(coherence, str)
+                              else float(coherence),
+                              "road_rms_m": float(np.sqrt(np.trapezoid(G, f)))})
+
+
+def _weighting(name: str) -> str | None:
+    """ISO 2631-1 weighting of an acceleration output (None for other outputs)."""
+    from flexpipe.sweeps.iso2631 import AXIS_WEIGHTING
+
+    if name.startswith("acc_") and name[-2:] in ("_x", "_y", "_z"):
+        return AXIS_WEIGHTING[name[-1]]
+    return None
