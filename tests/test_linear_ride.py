@@ -237,7 +237,8 @@ def test_cli_refuses_bad_ride_options_before_the_analysis(tmp_path, capsys, monk
 
 
 def test_cli_writes_the_ride_files(tmp_path, capsys, modes, monkeypatch):
-    """``flexpipe linear --speed 70 --road-class C``: the files hold what the API gives."""
+    """``flexpipe linear --speed 70 --road-class C``: the files hold what the API gives,
+    and ``linear_state_space.mat`` the linear model itself."""
     import json
 
     from flexpipe import cli
@@ -259,3 +260,15 @@ def test_cli_writes_the_ride_files(tmp_path, capsys, modes, monkeypatch):
     head = (out / "ride.csv").read_text().splitlines()[0]
     assert head == "output,rms,unit,iso2631_weighting,weighted_rms_m/s^2"
     assert (out / "ride_psd.png").stat().st_size > 10_000
+    # the state matrices for MATLAB: the loaded system answers as the model does
+    from scipy.io import loadmat
+
+    mat = loadmat(out / "linear_state_space.mat")
+    m = modes["rigid"]
+    assert [str(c[0]) for c in mat["inputs"][:, 0]] == list(m.inputs)
+    assert [str(c[0]) for c in mat["outputs"][:, 0]] == list(m.outputs)
+    assert len(mat["states"]) == m.A.shape[0]
+    s = 2j * np.pi * 7.0
+    H = mat["C"] @ np.linalg.solve(s * np.eye(len(mat["A"])) - mat["A"], mat["B"]) + mat["D"]
+    np.testing.assert_allclose(H, m.frequency_response([7.0])[0], rtol=1e-12, atol=1e-12)
+    assert float(mat["speed_m_per_s"][0, 0]) == m.speed

@@ -8,7 +8,9 @@ kinetic energy (:func:`flexpipe.vehicle.linear.linear_modes`).  Writes
 ``out/linear/<car>-<body>-<speed>kmh``); ``linear_frf.csv`` / ``.png``: the vertical
 tyre forces and floor accelerations per metre of a road whose two tracks carry the same
 profile (at rest: all four wheels in phase), ``linear_frf_opposite.*`` the same for the
-right track carrying the left one's negative (roll input); and for a flexible body
+right track carrying the left one's negative (roll input); ``linear_state_space.mat``:
+the state matrices A, B, C, D with the input, output and state names (MATLAB
+``ss(A, B, C, D)``); and for a flexible body
 ``linear_modes.vtu``: the body's mesh with the modes up to ``--show`` as displacement
 fields for ParaView.  With ``--road-class`` (and ``--speed``) also the ride on an ISO 8608
 road from the linear model (:func:`flexpipe.vehicle.linear_ride.ride_response`): RMS of
@@ -116,6 +118,7 @@ def run(args) -> int:
         table_text,
         write_modes,
         write_shapes,
+        write_state_space,
         write_track_response,
     )
 
@@ -136,6 +139,7 @@ def run(args) -> int:
         print(f"note: {note}")
     paths = (write_modes(modes, out) + write_track_response(modes, out)
              + write_track_response(modes, out, tracks="opposite"))
+    paths.append(write_state_space(modes, Path(out) / "linear_state_space.mat"))
     vtu = write_shapes(modes, Path(out) / "linear_modes.vtu", f_max=args.show)
     if vtu is not None:
         paths.append(vtu)

@@ -107,6 +107,37 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ, tracks: str = "same") -> li
     return paths
 
 
+def write_state_space(modes, path) -> Path:
+    """``linear_state_space.mat`` (MATLAB level 5, :func:`scipy.io.savemat`): the state
+    matrices ``A``, ``B``, ``C``, ``D`` of ``x' = A x + B u``, ``y = C x + D u`` (SI units;
+    ``ss(A, B, C, D)`` in MATLAB), ``inputs``, ``outputs`` and ``states`` as cell arrays of
+    names, the eigenvalues and the linearization's ``speed_m_per_s``, ``car``, ``body``
+    and ``info`` (JSON text).  States: the constraints' nullspace coordinates ``y_k`` (m
+    or rad along :attr:`~flexpipe.vehicle.linear.LinearModes.N`), their rates ``ydot_k``
+    and the tyres' relaxed slips ``slip_<k>``."""
+    from scipy.io import savemat
+
+    k = modes.N.shape[1]
+    n_slip = modes.A.shape[0] - 2 * k
+    states = ([f"y_{i + 1}" for i in range(k)] + [f"ydot_{i + 1}" for i in range(k)]
+              + [f"slip_{i + 1}" for i in range(n_slip)])
+
+    def cells(names):
+        out = np.empty((len(names), 1), dtype=object)
+        out[:, 0] = list(names)
+        return out
+
+    data = {"A": modes.A, "B": modes.B, "C": modes.C, "D": modes.D,
+            "inputs": cells(modes.inputs), "outputs": cells(modes.outputs),
+            "states": cells(states), "eigenvalues": modes.eigenvalues[:, None],
+            "speed_m_per_s": float(modes.speed), "car": modes.car, "body": modes.body,
+            "info": json.dumps(modes.info, default=str)}
+    path = Path(path)
+    with atomic_path(path, suffix=".mat") as tmp:
+        savemat(tmp, data, do_compression=True)
+    return path
+
+
 def _plot(modes, path) -> None:
     import matplotlib.pyplot as plt
 
