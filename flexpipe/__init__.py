@@ -35,6 +35,7 @@ _EXPORTS = {
     "LinearModes": "flexpipe.vehicle.linear",
     "ride_response": "flexpipe.vehicle.linear_ride",
     "RideResponse": "flexpipe.vehicle.linear_ride",
+    "ride_vs_speed": "flexpipe.vehicle.linear_ride",
     "BodyMotion": "flexpipe.vehicle.result",
     "recover_stress": "flexpipe.durability",
     "FatigueMaterial": "flexpipe.durability",

@@ -215,27 +215,6 @@ def test_ride_refuses_a_parked_car_and_bad_options(modes):
         ride_response(m, "C", n_band=(1.0, 0.5))
 
 
-@pytest.mark.parametrize(("args", "expect"), [
-    (["--road-class", "C"], "--road-class needs --speed > 0"),
-    (["--speed", "70", "--road-class", "K"], "--road-class must be one of A, B"),
-    (["--speed", "70", "--road-class", "C", "--coherence", "2"],
-     "--coherence must be 'isotropic' or a number in [0, 1], got '2'"),
-    (["--speed", "70", "--road-class", "C", "--coherence", "some"], "got 'some'"),
-])
-def test_cli_refuses_bad_ride_options_before_the_analysis(tmp_path, capsys, monkeypatch,
-                                                          args, expect):
-    from flexpipe import cli
-    from flexpipe.vehicle import linear
-
-    def never(*a, **k):
-        raise AssertionError("the analysis ran before the options were checked")
-
-    monkeypatch.setattr(linear, "linear_modes", never)
-    assert cli.main(["linear", str(LINKAGE), "-o", str(tmp_path / "o"), *args]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and expect in err[0]
-
-
 def test_cli_writes_the_ride_files(tmp_path, capsys, modes, monkeypatch):
     """``flexpipe linear --speed 70 --road-class C``: the files hold what the API gives,
     and ``linear_state_space.mat`` the linear model itself."""
@@ -272,3 +251,75 @@ def test_cli_writes_the_ride_files(tmp_path, capsys, modes, monkeypatch):
     H = mat["C"] @ np.linalg.solve(s * np.eye(len(mat["A"])) - mat["A"], mat["B"]) + mat["D"]
     np.testing.assert_allclose(H, m.frequency_response([7.0])[0], rtol=1e-12, atol=1e-12)
     assert float(mat["speed_m_per_s"][0, 0]) == m.speed
+
+
+def test_ride_vs_speed_and_its_command(tmp_path, capsys, modes):
+    """``flexpipe ride``: at each speed the car linearized there and answered by
+    ride_response (the 70 km/h entry equals the fixture's model's), written as a table
+    with units in the headers."""
+    import json
+
+    from flexpipe import cli
+
+    out = tmp_path / "r"
+    assert cli.main(["ride", str(LINKAGE), "--body", "rigid", "--speeds", "70,35",
+                     "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "driver_floor_a_v" in text and "tire_fl_dynamic_load" in text
+    import csv
+
+    with open(out / "ride_vs_speed.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    table = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    np.testing.assert_allclose(table["speed_km/h"], [70.0, 35.0], rtol=1e-6)
+    r70 = ride_response(modes["rigid"], "C")
+    np.testing.assert_allclose(table["driver_floor_a_v_m/s^2"][0],
+                               r70.points["driver_floor"]["a_v_m/s^2"], rtol=1e-6)
+    np.testing.assert_allclose(table["tire_rl_dynamic_load"][0], r70.dynamic_load["rl"],
+                               rtol=1e-6)
+    doc = json.loads((out / "ride_vs_speed.json").read_text())
+    assert [s["speed_km/h"] for s in doc["speeds"]] == pytest.approx([70.0, 35.0])
+    # a slower car on the same road: less of everything (the road's velocity PSD ~ V)
+    assert table["driver_floor_a_v_m/s^2"][1] < table["driver_floor_a_v_m/s^2"][0]
+    assert table["tire_fl_Fz_rms_N"][1] < table["tire_fl_Fz_rms_N"][0]
+    assert (out / "ride_vs_speed.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize(("command", "args", "expect"), [
+    ("linear", ["--road-class", "C"], "--road-class needs --speed > 0"),
+    ("linear", ["--speed", "70", "--road-class", "K"], "--road-class must be one of A, B"),
+    ("linear", ["--speed", "70", "--road-class", "C", "--coherence", "2"],
+     "--coherence must be 'isotropic' or a number in [0, 1], got '2'"),
+    ("linear", ["--speed", "70", "--road-class", "C", "--coherence", "some"], "got 'some'"),
+    ("ride", ["--speeds", "70,70"], "--speeds must be distinct speeds in (0, 300] km/h"),
+    ("ride", ["--speeds", "0,50"], "got '0,50'"),
+    ("ride", ["--speeds", "fast"], "got 'fast'"),
+    ("ride", ["--road-class", "Q"], "--road-class must be one of A"),
+    ("ride", ["--body", "soft"], "--body must be one of rigid, flexible, full"),
+    ("ride", ["--coherence", "-0.1"], "--coherence must be"),
+])
+def test_commands_refuse_bad_ride_options_before_any_work(tmp_path, capsys, monkeypatch,
+                                                          command, args, expect):
+    from flexpipe import cli
+    from flexpipe.vehicle import linear, linear_ride
+
+    def never(*a, **k):
+        raise AssertionError("the analysis ran before the options were checked")
+
+    monkeypatch.setattr(linear, "linear_modes", never)
+    monkeypatch.setattr(linear_ride, "ride_vs_speed", never)
+    assert cli.main([command, str(LINKAGE), "-o", str(tmp_path / "o"), *args]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and expect in err[0]
+
+
+def test_ride_vs_speed_refuses_bad_arguments():
+    from flexpipe.vehicle.linear_ride import ride_vs_speed
+
+    for speeds in ([], [10.0, 10.0], [-1.0], [200.0], "fast"):
+        with pytest.raises(InputError, match="speeds"):
+            ride_vs_speed(LINKAGE, speeds)
+    with pytest.raises(InputError, match="road class"):
+        ride_vs_speed(LINKAGE, [20.0], "Z")
+    with pytest.raises(InputError, match="coherence"):
+        ride_vs_speed(LINKAGE, [20.0], coherence="flat")

@@ -34,6 +34,7 @@ COMMANDS = (
     ("run", "flexpipe.cli.run", "simulate a car scenario"),
     ("kc", "flexpipe.cli.kc", "kinematics and compliance rig of a car's suspension"),
     ("linear", "flexpipe.cli.linear", "linear modes of the whole car (frequencies, damping)"),
+    ("ride", "flexpipe.cli.ride", "ride comfort and tyre load on an ISO 8608 road vs speed"),
     ("stress", "flexpipe.cli.stress", "stress recovery, hot spots and fatigue of a run"),
     ("animate", "flexpipe.cli.animate", "ParaView animation (.pvd) of a run's flexible body"),
     ("sweep", "flexpipe.cli.sweep", "many runs from one spec on Dask (table, channels, plots)"),

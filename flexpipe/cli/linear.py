@@ -39,13 +39,9 @@ def add_arguments(p) -> None:
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.epilog = _EPILOG
     p.add_argument("car", help="car file with [suspension.front] / [suspension.rear]")
-    p.add_argument("--body", default="flexible", metavar="BODY",
-                   help="body model: rigid, flexible or full (default flexible)")
     p.add_argument("--speed", type=float, default=0.0, metavar="KMH",
                    help="0 (default): parked and settled; > 0: straight on a flat road at "
                         "this speed, km/h, linearized after 2 s")
-    p.add_argument("--f-max", type=float, default=None, metavar="HZ",
-                   help="top of the flexible body's band, Hz (default as flexpipe run)")
     p.add_argument("--show", type=float, default=60.0, metavar="HZ",
                    help="print the modes up to this frequency, Hz (default 60; the files "
                         "hold all)")
@@ -53,11 +49,20 @@ def add_arguments(p) -> None:
                    help="with --speed: the ride on an ISO 8608 road of this class (A..H) "
                         "from the linear model: RMS, ISO 2631-1 weighted RMS and spectra "
                         "(ride.csv/.json, ride_psd.csv/.png)")
-    p.add_argument("--coherence", default="isotropic", metavar="GAMMA",
-                   help="with --road-class: the tracks' coherence, 'isotropic' (default) "
-                        "or a number in [0, 1] (1: both tracks the same)")
+    add_model_arguments(p, what="with --road-class: ")
     p.add_argument("-o", "--out", default=None,
                    help="output folder (default out/linear/<car>-<body>-<speed>kmh)")
+
+
+def add_model_arguments(p, *, what: str = "") -> None:
+    """``--body``, ``--f-max`` and ``--coherence`` of ``flexpipe linear`` and ``ride``."""
+    p.add_argument("--body", default="flexible", metavar="BODY",
+                   help="body model: rigid, flexible or full (default flexible)")
+    p.add_argument("--f-max", type=float, default=None, metavar="HZ",
+                   help="top of the flexible body's band, Hz (default as flexpipe run)")
+    p.add_argument("--coherence", default="isotropic", metavar="GAMMA",
+                   help=f"{what}the tracks' coherence, 'isotropic' (default) or a number "
+                        "in [0, 1] (1: both tracks the same)")
 
 
 def check_options(args) -> None:
@@ -70,24 +75,39 @@ def check_options(args) -> None:
     """
     from flexpipe.errors import InputError
 
-    if args.body.strip().lower() not in BODIES:
-        raise InputError(f"--body must be one of {', '.join(BODIES)}, got {args.body!r}")
+    check_model_options(args)
     if not (math.isfinite(args.speed) and 0.0 <= args.speed <= 300.0):
         raise InputError(f"--speed must be in [0, 300] km/h, got {args.speed:g}")
-    if args.f_max is not None and not (math.isfinite(args.f_max) and args.f_max > 0):
-        raise InputError(f"--f-max must be a frequency > 0 Hz, got {args.f_max:g}")
     if not (math.isfinite(args.show) and args.show > 0):
         raise InputError(f"--show must be a frequency > 0 Hz, got {args.show:g}")
     if args.road_class is not None:
-        from flexpipe.roads import ISO8608_GD0
-
-        if args.road_class.strip().upper() not in ISO8608_GD0:
-            raise InputError(f"--road-class must be one of {', '.join(ISO8608_GD0)}, got "
-                             f"{args.road_class!r}")
+        check_road_class(args.road_class)
         if args.speed <= 0.0:
             raise InputError("--road-class needs --speed > 0 km/h: at rest the road does "
                              "not move under the wheels")
+
+
+def check_model_options(args) -> None:
+    """``--body``, ``--f-max`` and ``--coherence`` (made ``'isotropic'`` or a float), as
+    ``flexpipe linear`` and ``flexpipe ride`` take them."""
+    from flexpipe.errors import InputError
+
+    if args.body.strip().lower() not in BODIES:
+        raise InputError(f"--body must be one of {', '.join(BODIES)}, got {args.body!r}")
+    if args.f_max is not None and not (math.isfinite(args.f_max) and args.f_max > 0):
+        raise InputError(f"--f-max must be a frequency > 0 Hz, got {args.f_max:g}")
     args.coherence = _coherence(args.coherence)
+
+
+def check_road_class(text: str) -> str:
+    """``--road-class``: an ISO 8608 class A..H (any case), returned in capitals."""
+    from flexpipe.errors import InputError
+    from flexpipe.roads import ISO8608_GD0
+
+    if text.strip().upper() not in ISO8608_GD0:
+        raise InputError(f"--road-class must be one of {', '.join(ISO8608_GD0)}, got "
+                         f"{text!r}")
+    return text.strip().upper()
 
 
 def _coherence(text):

@@ -247,3 +247,63 @@ def _weighting(name: str) -> str | None:
     if name.startswith("acc_") and name[-2:] in ("_x", "_y", "_z"):
         return AXIS_WEIGHTING[name[-1]]
     return None
+
+
+def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
+                  coherence="isotropic", f_max=None, progress: bool = True) -> list:
+    """The ride on one ISO 8608 road at several speeds: the car linearized at each
+    (:func:`flexpipe.linear_modes`) and answered by :func:`ride_response`.
+
+    Parameters
+    ----------
+    car : Car or str or Path
+        A car with linkage suspensions.
+    speeds : sequence of float
+        Speeds, m/s, each in (0, 300 km/h]; at least one, no repeats.
+    road_class, coherence
+        As :func:`ride_response`.
+    body, f_max
+        As :func:`flexpipe.linear_modes`.
+    progress : bool
+        Show a progress bar (tqdm) over the speeds.
+
+    Returns
+    -------
+    list of RideResponse
+        One per speed, in the order given.
+
+    Raises
+    ------
+    InputError
+        No speeds, a repeated or non-positive speed, or anything
+        :func:`~flexpipe.vehicle.linear.linear_modes` or :func:`ride_response` refuses
+        (checked for the road before the first linearization).
+    """
+    from tqdm import tqdm
+
+    from flexpipe.vehicle.linear import linear_modes
+    from flexpipe.vehicle.spec import Car, load_car
+
+    try:
+        v = [float(s) for s in speeds]
+    except (TypeError, ValueError) as err:
+        raise InputError(f"speeds must be numbers (m/s), got {speeds!r}", key="speeds") \
+            from err
+    if not v or any(not (np.isfinite(s) and 0.0 < s <= 300 / 3.6) for s in v) \
+            or len(set(v)) != len(v):
+        raise InputError(f"speeds must be distinct, in (0, {300 / 3.6:.2f}] m/s, at least "
+                         f"one; got {speeds!r}", key="speeds")
+    road_psd([1.0], road_class=road_class, speed=v[0])  # the class, before any work
+    if not (coherence == "isotropic" or (isinstance(coherence, int | float)
+                                         and 0.0 <= coherence <= 1.0)):
+        raise InputError(f"coherence must be 'isotropic' or a number in [0, 1], got "
+                         f"{coherence!r}", key="coherence")
+    if not isinstance(car, Car):
+        from flexpipe._args import as_path
+
+        car = load_car(as_path(car, "car"))
+    out = []
+    for s in tqdm(v, desc="ride: speeds", unit="speed", disable=not progress):
+        modes = linear_modes(car, body=body, speed=s, f_max=f_max)
+        out.append(ride_response(modes, road_class, coherence=coherence))
+    return out

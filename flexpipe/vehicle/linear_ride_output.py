@@ -97,3 +97,78 @@ def _plot(ride, path) -> None:
         top = max((ln.get_ydata().max() for ln in ax.get_lines()), default=1.0)
         ax.set_ylim(top * 1e-4, top * 3)
     _save(fig, path)
+
+
+def speed_table(rides) -> tuple[list, list]:
+    """Header (units in the names) and rows of ``ride_vs_speed.csv``: per speed, every
+    output's RMS and weighted RMS, each body point's ``a_v`` and each tyre's dynamic load
+    coefficient."""
+    first = rides[0]
+    head = ["speed_km/h"]
+    for name in first.outputs:
+        head.append(f"{name}_rms_{'N' if name.endswith('_Fz') else 'm/s^2'}")
+    head += [f"{n}_weighted_rms_m/s^2" for n in first.outputs if n.startswith("acc_")]
+    head += [f"{p}_a_v_m/s^2" for p in first.points]
+    head += [f"tire_{c}_dynamic_load" for c in first.dynamic_load]
+    rows = []
+    for r in rides:
+        acc = [j for j, n in enumerate(r.outputs) if n.startswith("acc_")]
+        rows.append([r.speed * 3.6, *r.rms, *r.weighted_rms[acc],
+                     *(p["a_v_m/s^2"] for p in r.points.values()),
+                     *r.dynamic_load.values()])
+    return head, rows
+
+
+def write_ride_vs_speed(rides, out) -> list[Path]:
+    """``ride_vs_speed.csv``, ``.json`` and ``.png`` into ``out``: the ride at each speed
+    (:func:`~flexpipe.vehicle.linear_ride.ride_vs_speed`); returns their paths."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = [out / "ride_vs_speed.csv", out / "ride_vs_speed.json", out / "ride_vs_speed.png"]
+    head, rows = speed_table(rides)
+    write_text_atomic(paths[0], "\n".join([",".join(head)] + [
+        ",".join(f"{v:.7g}" for v in row) for row in rows]) + "\n")
+    first = rides[0]
+    doc = {"car": first.car, "body": first.body, "road_class": first.road_class,
+           "track_width_m": first.track_width,
+           "coherence_model": first.info["coherence_model"], "notes": list(NOTES),
+           "speeds": [{"speed_km/h": r.speed * 3.6, "points": r.points,
+                       "dynamic_load_coefficient": r.dynamic_load,
+                       "road_rms_m": r.info["road_rms_m"],
+                       "outputs": [{k: (None if isinstance(v, float) and np.isnan(v) else v)
+                                    for k, v in row.items()} for row in r.rows()]}
+                      for r in rides]}
+    write_text_atomic(paths[1], json.dumps(doc, indent=1) + "\n")
+    _plot_speeds(rides, paths[2])
+    return paths
+
+
+def _plot_speeds(rides, path) -> None:
+    from flexpipe.vehicle.linear_output import _figure, _save
+    from flexpipe.vehicle.linear_ride import COMFORT_REACTIONS
+
+    kmh = [r.speed * 3.6 for r in rides]
+    fig, axes = _figure(2, 1, figsize=(8, 7), sharex=True)
+    for point in rides[0].points:
+        axes[0].plot(kmh, [r.points[point]["a_v_m/s^2"] for r in rides], "o-", label=point)
+    top = max(r.points[p]["a_v_m/s^2"] for r in rides for p in r.points) * 1.15
+    bands = [(lo, name) for lo, _, name in COMFORT_REACTIONS[1:] if lo < top]
+    for lo, _ in bands:
+        axes[0].axhline(lo, color="0.6", lw=0.8, ls=":")
+    axes[0].set_ylim(0.0, top)
+    right = axes[0].twinx()  # ISO 2631-1 Annex C: where each reaction starts
+    right.set_ylim(0.0, top)
+    right.set_yticks([lo for lo, _ in bands], [name for _, name in bands], fontsize=7)
+    axes[0].set_ylabel("ISO 2631-1 comfort value a_v (m/s^2)")
+    for corner in rides[0].dynamic_load:
+        axes[1].plot(kmh, [r.dynamic_load[corner] for r in rides], "o-",
+                     label=f"tyre {corner}")
+    axes[1].set_ylabel("dynamic load coefficient\nRMS(Fz) / static Fz (-)")
+    axes[1].set_xlabel("speed (km/h)")
+    first = rides[0]
+    axes[0].set_title(f"{first.car}, {first.body} body: ISO 8608 class {first.road_class} "
+                      "(linear model)")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    _save(fig, path)
