@@ -12,11 +12,14 @@ from flexpipe.roads.generators import (
     ISO8608_BAND,
     ISO8608_GD0,
     ISO8608_N0,
+    checked_coherence,
     flat,
     harmonic,
     irregularity,
     iso8608,
+    iso8608_psd,
     isotropic_coherence,
+    track_coherence,
 )
 from flexpipe.roads.rdf import read_rdf
 from flexpipe.roads.road import Road, read_csv
@@ -28,15 +31,18 @@ __all__ = [
     "ISO8608_N0",
     "ROAD_TYPES",
     "Road",
+    "checked_coherence",
     "flat",
     "harmonic",
     "irregularity",
     "iso8608",
+    "iso8608_psd",
     "isotropic_coherence",
     "load_road",
     "read_crg",
     "read_csv",
     "read_rdf",
     "road_from_spec",
+    "track_coherence",
     "write_crg",
 ]

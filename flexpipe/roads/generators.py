@@ -208,6 +208,47 @@ def isotropic_coherence(n, track_width: float):
     return g[()] if g.ndim == 0 else g
 
 
+def iso8608_psd(road_class: str, n, *, n_band=ISO8608_BAND,
+                what: str = "ISO 8608 road") -> np.ndarray:
+    """One-sided displacement PSD ``Gd(n) = Gd(n0) (n / n0)^-2`` (m^3) of class
+    ``road_class`` at the spatial frequencies ``n`` (cycles/m); zero outside ``n_band``.
+
+    Raises
+    ------
+    InputError
+        A class that is not one of A..H (the message starts with ``what``).
+    """
+    key = str(road_class).upper()
+    if key not in ISO8608_GD0:
+        raise InputError(f"{what}: road class {road_class!r} is not one of A..H")
+    n = np.asarray(n, dtype=float)
+    inside = (n >= n_band[0]) & (n <= n_band[1]) & (n > 0.0)
+    gd = np.zeros(n.shape)
+    gd[inside] = ISO8608_GD0[key] * (n[inside] / ISO8608_N0) ** -2.0
+    return gd
+
+
+def checked_coherence(coherence, *, what: str):
+    """``coherence`` if it is ``"isotropic"`` or a number in [0, 1] (as a float), else an
+    InputError starting with ``what``."""
+    if isinstance(coherence, str):
+        if coherence == "isotropic":
+            return coherence
+    elif isinstance(coherence, int | float) and 0.0 <= coherence <= 1.0:
+        return float(coherence)
+    raise InputError(f"{what}: coherence must be 'isotropic' or a number in [0, 1], got "
+                     f"{coherence!r}")
+
+
+def track_coherence(coherence, n, track_width: float) -> np.ndarray:
+    """Coherence ``gamma`` of two tracks ``track_width`` apart at the spatial frequencies
+    ``n``: the isotropic model or the constant ``coherence`` (see the module notes)."""
+    n = np.asarray(n, dtype=float)
+    if coherence == "isotropic":
+        return np.asarray(isotropic_coherence(n, track_width), dtype=float)
+    return np.full(n.shape, float(coherence))
+
+
 def iso8608(road_class: str, length: float, dx: float, seed: int, *,
             track_width: float = 1.5, coherence="isotropic",
             n_min: float = ISO8608_BAND[0], n_max: float = ISO8608_BAND[1],
@@ -242,21 +283,14 @@ def iso8608(road_class: str, length: float, dx: float, seed: int, *,
     what = "ISO 8608 road"
     track_width = checked_number(track_width, "track_width", lo=0.0, unit="m")
     key = str(road_class).upper()
-    if key not in ISO8608_GD0:
-        raise InputError(f"{what}: road class {road_class!r} is not one of A..H")
+    iso8608_psd(key, [], what=what)  # the class, before any work
     x = _grid(length, dx, what)
     if not (0.0 < n_min < n_max):
         raise InputError(f"{what}: need 0 < n_min < n_max, got {n_min!r}, {n_max!r}")
     if n_max > 0.5 / dx * (1.0 + 1e-9):
         raise InputError(f"{what}: dx = {dx:g} m cannot represent n_max = {n_max:g} cycles/m; "
                          f"use dx <= {0.5 / n_max:.4g} m or a lower n_max")
-    if isinstance(coherence, str):
-        if coherence != "isotropic":
-            raise InputError(f"{what}: coherence must be 'isotropic' or a number in [0, 1], "
-                             f"got {coherence!r}")
-    elif not (isinstance(coherence, int | float) and 0.0 <= coherence <= 1.0):
-        raise InputError(f"{what}: coherence must be 'isotropic' or a number in [0, 1], "
-                         f"got {coherence!r}")
+    checked_coherence(coherence, what=what)
     if not (0.0 <= fade <= 0.5 * length):
         raise InputError(f"{what}: fade must be in [0, length/2], got {fade!r}")
 
@@ -269,14 +303,12 @@ def iso8608(road_class: str, length: float, dx: float, seed: int, *,
     if not np.any(band):
         raise InputError(f"{what}: no frequency k/L lies in [{n_min:g}, {n_max:g}] "
                          f"cycles/m for length {length:g} m; use a longer road")
-    gd = np.zeros_like(n)
-    gd[band] = ISO8608_GD0[key] * (n[band] / ISO8608_N0) ** -2.0
+    gd = np.where(band, iso8608_psd(key, n, n_band=(n_min, n_max)), 0.0)
     amp = np.sqrt(2.0 * gd * dn)
     rng = np.random.default_rng(seed)
     phase_left = rng.uniform(0.0, 2.0 * np.pi, n.size)
     phase_indep = rng.uniform(0.0, 2.0 * np.pi, n.size)
-    gamma = isotropic_coherence(n, track_width) if coherence == "isotropic" \
-        else np.full_like(n, float(coherence))
+    gamma = track_coherence(coherence, n, track_width)
     c_left = amp * np.exp(1j * phase_left)
     c_right = gamma * c_left + np.sqrt(1.0 - gamma**2) * amp * np.exp(1j * phase_indep)
     # irfft of (N/2) c_k gives sum_k |c_k| cos(2 pi n_k x + arg c_k)

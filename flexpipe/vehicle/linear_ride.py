@@ -57,21 +57,14 @@ def road_psd(f_hz, *, road_class: str, speed: float, n_band=None) -> np.ndarray:
     """One-sided temporal PSD ``G(f) = Gd(f / V) / V`` (m^2/Hz) of one track of an ISO 8608
     class-``road_class`` road met at ``speed`` (m/s), zero outside ``n_band`` (cycles/m;
     default the classification band, as :func:`flexpipe.roads.iso8608`)."""
-    from flexpipe.roads import ISO8608_BAND, ISO8608_GD0, ISO8608_N0
+    from flexpipe.roads import ISO8608_BAND, iso8608_psd
 
-    key = str(road_class).upper()
-    if key not in ISO8608_GD0:
-        raise InputError(f"road class {road_class!r} is not one of "
-                         f"{', '.join(ISO8608_GD0)}", key="road_class")
     if not (np.isfinite(speed) and speed > 0.0):
         raise InputError(f"a road spectrum needs a speed > 0 m/s, got {speed!r}: at rest "
                          "the road does not move under the wheels", key="speed")
-    n_lo, n_hi = ISO8608_BAND if n_band is None else n_band
     n = np.asarray(f_hz, dtype=float) / speed
-    inside = (n >= n_lo) & (n <= n_hi)
-    with np.errstate(divide="ignore"):
-        gd = ISO8608_GD0[key] * (np.where(inside, n, 1.0) / ISO8608_N0) ** -2.0
-    return np.where(inside, gd / speed, 0.0)
+    return iso8608_psd(road_class, n, n_band=ISO8608_BAND if n_band is None else n_band,
+                       what="ride") / speed
 
 
 def output_psd(road, H_same, H_opposite, gamma) -> np.ndarray:
@@ -177,7 +170,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
         A model linearized at rest, an unknown road class, a coherence outside [0, 1], a
         band that is not ``0 < n_lo < n_hi``, fewer than 100 samples.
     """
-    from flexpipe.roads import ISO8608_BAND, isotropic_coherence
+    from flexpipe.roads import ISO8608_BAND, checked_coherence, track_coherence
     from flexpipe.sweeps.iso2631 import response
 
     if modes.speed <= 0.0:
@@ -198,16 +191,8 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
                          key="track_width")
     v = modes.speed
     f = np.geomspace(v * n_lo, v * n_hi, n_freq)
-    if isinstance(coherence, str):
-        if coherence != "isotropic":
-            raise InputError(f"coherence must be 'isotropic' or a number in [0, 1], got "
-                             f"{coherence!r}", key="coherence")
-        gamma = isotropic_coherence(f / v, track_width)
-    elif isinstance(coherence, int | float) and 0.0 <= coherence <= 1.0:
-        gamma = np.full(f.size, float(coherence))
-    else:
-        raise InputError(f"coherence must be 'isotropic' or a number in [0, 1], got "
-                         f"{coherence!r}", key="coherence")
+    coherence = checked_coherence(coherence, what="ride")
+    gamma = track_coherence(coherence, f / v, track_width)
     G = road_psd(f, road_class=road_class, speed=v, n_band=(n_lo, n_hi))
     S = output_psd(G, modes.track_response(f, tracks="same"),
                    modes.track_response(f, tracks="opposite"), gamma)
@@ -235,8 +220,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
                         psd=S, rms=rms, weighted_rms=w_rms, points=points,
                         dynamic_load=dynamic,
                         info={"n_band_cycles/m": [n_lo, n_hi],
-                              "coherence_model": coherence if isinstance(coherence, str)
-                              else float(coherence),
+                              "coherence_model": coherence,
                               "road_rms_m": float(np.sqrt(np.trapezoid(G, f)))})
 
 
@@ -281,6 +265,7 @@ def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
     """
     from tqdm import tqdm
 
+    from flexpipe.roads import checked_coherence
     from flexpipe.vehicle.linear import linear_modes
     from flexpipe.vehicle.spec import Car, load_car
 
@@ -294,10 +279,7 @@ def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
         raise InputError(f"speeds must be distinct, in (0, {300 / 3.6:.2f}] m/s, at least "
                          f"one; got {speeds!r}", key="speeds")
     road_psd([1.0], road_class=road_class, speed=v[0])  # the class, before any work
-    if not (coherence == "isotropic" or (isinstance(coherence, int | float)
-                                         and 0.0 <= coherence <= 1.0)):
-        raise InputError(f"coherence must be 'isotropic' or a number in [0, 1], got "
-                         f"{coherence!r}", key="coherence")
+    checked_coherence(coherence, what="ride")
     if not isinstance(car, Car):
         from flexpipe._args import as_path
 
