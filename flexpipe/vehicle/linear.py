@@ -126,7 +126,7 @@ class LinearModes:
             out[i:i + 256] = self.C @ np.linalg.solve(s * eye - self.A, self.B) + self.D
         return out
 
-    def track_response(self, f_hz, *, tracks: str = "same") -> np.ndarray:
+    def track_response(self, f_hz, *, tracks: str = "same", H=None) -> np.ndarray:
         """``H`` (len(f_hz), outputs), complex: the response to a road profile per unit of
         its height: on both tracks (``tracks="same"``), or on the left track and its
         negative on the right (``"opposite"``: a roll and warp input; the road's
@@ -134,12 +134,13 @@ class LinearModes:
         slope ``2 / track`` times the height).  At a speed each wheel meets the profile
         at its own place (the rear ``wheelbase / V`` later) with its longitudinal slope
         ``j omega / V`` times the height; at rest all four wheels move in phase (a
-        four-post rig's heave, or its roll with ``"opposite"``)."""
+        four-post rig's heave, or its roll with ``"opposite"``).  ``H``: the
+        :meth:`frequency_response` at ``f_hz`` if already at hand."""
         from flexpipe._args import checked_choice
 
         checked_choice(tracks, "tracks", ("same", "opposite"))
         f = np.atleast_1d(np.asarray(f_hz, dtype=float))
-        H = self.frequency_response(f)
+        H = self.frequency_response(f) if H is None else H
         n_w = len(self.inputs) // 3
         w = 2 * np.pi * f[:, None]
         if self.speed > 0.0:

@@ -194,8 +194,9 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
     coherence = checked_coherence(coherence, what="ride")
     gamma = track_coherence(coherence, f / v, track_width)
     G = road_psd(f, road_class=road_class, speed=v, n_band=(n_lo, n_hi))
-    S = output_psd(G, modes.track_response(f, tracks="same"),
-                   modes.track_response(f, tracks="opposite"), gamma)
+    H = modes.frequency_response(f)
+    S = output_psd(G, modes.track_response(f, tracks="same", H=H),
+                   modes.track_response(f, tracks="opposite", H=H), gamma)
     rms = np.sqrt(np.trapezoid(S, f, axis=0))
     w_rms = np.full(rms.shape, np.nan)
     for j, name in enumerate(modes.outputs):
@@ -216,7 +217,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
         for j, load in zip(tyres, static, strict=True)}
     return RideResponse(car=modes.car, body=modes.body, speed=v,
                         road_class=str(road_class).upper(), track_width=track_width,
-                        f_hz=f, road_psd=G, coherence=np.asarray(gamma), outputs=modes.outputs,
+                        f_hz=f, road_psd=G, coherence=gamma, outputs=modes.outputs,
                         psd=S, rms=rms, weighted_rms=w_rms, points=points,
                         dynamic_load=dynamic,
                         info={"n_band_cycles/m": [n_lo, n_hi],
