@@ -21,12 +21,8 @@ from scipy.linalg import solve_continuous_lyapunov
 
 from flexpipe.errors import InputError
 from flexpipe.roads import ISO8608_GD0, ISO8608_N0
-from flexpipe.vehicle.linear_ride import (
-    comfort_reaction,
-    output_psd,
-    ride_response,
-    road_psd,
-)
+from flexpipe.sweeps.iso2631 import comfort_reaction
+from flexpipe.vehicle.linear_ride import output_psd, ride_response, road_psd
 
 # quarter car: sprung / unsprung mass (kg), spring, damper, tyre (N/m, N s/m)
 MS, MU, KS, CS, KT = 400.0, 40.0, 2.2e4, 1.5e3, 2.0e5

@@ -219,6 +219,7 @@ def _remove_stale_failure(failed: Path) -> None:
 
 
 def _summary(base: dict, results: dict, *, path, speed) -> dict:
+    from flexpipe.scenarios.comfort import ride_summary
     from flexpipe.vehicle.result import compare
 
     ok = all(r.status == 0 for r in results.values())
@@ -238,6 +239,14 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
             if "profile_ms_per_step" in r.info}
     if prof:  # flexpipe run --profile: Exudyn's timers and the Python step, ms per step
         summary["profile_ms_per_step"] = prof
+    t_end = min(r.simulated_time for r in results.values())
+    summary.update(ride_summary(results, t_from=min(HUB_COMPARE_FROM,
+                                                    HUB_COMPARE_FRACTION * t_end)))
+    summary["ride_note"] = (
+        "ISO 2631-1: aw weighted RMS (Wd x, y; Wk z), a_v = sqrt(sum aw^2) (comfort, "
+        "factors 1) and its Annex C reaction, at each named body point in body axes; "
+        "dynamic load coefficient = std / mean of the vertical tyre force; the samples of "
+        "the hub-force comparison")
     if "rigid" in results and "flexible" in results:
         ra, rb = results["rigid"], results["flexible"]
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)

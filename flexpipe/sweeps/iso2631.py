@@ -115,4 +115,19 @@ def ride_metrics(a, dt: float, weighting: str) -> dict:
             "vdv": float((np.sum(aw**4) * dt) ** 0.25)}
 
 
-__all__ = ["AXIS_WEIGHTING", "HEALTH_K", "PARAMETERS", "response", "ride_metrics", "weight"]
+#: ISO 2631-1:1997 Annex C: comfort reactions to the total vibration value a_v (m/s^2),
+#: (from, to, reaction); the standard's ranges overlap
+COMFORT_REACTIONS = ((0.0, 0.315, "not uncomfortable"), (0.315, 0.63, "a little uncomfortable"),
+                     (0.5, 1.0, "fairly uncomfortable"), (0.8, 1.6, "uncomfortable"),
+                     (1.25, 2.5, "very uncomfortable"), (2.0, np.inf, "extremely uncomfortable"))
+
+
+def comfort_reaction(a_v: float) -> str:
+    """ISO 2631-1 Annex C reaction to the total vibration value ``a_v`` (m/s^2); where the
+    standard's ranges overlap both are named ("a little uncomfortable / fairly
+    uncomfortable")."""
+    return " / ".join(name for lo, hi, name in COMFORT_REACTIONS if lo <= a_v < hi)
+
+
+__all__ = ["AXIS_WEIGHTING", "COMFORT_REACTIONS", "HEALTH_K", "PARAMETERS",
+           "comfort_reaction", "response", "ride_metrics", "weight"]

@@ -34,25 +34,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.sweeps.iso2631 import comfort_reaction
 
 #: frequency samples of the spectra (log spaced over the road's band at the speed): a
 #: step of 0.2 % resolves a resonance of damping ratio 0.01 with 10 samples per
 #: half-power band
 N_FREQ = 4000
-#: ISO 2631-1:1997 Annex C: comfort reactions to the total vibration value a_v (m/s^2),
-#: (from, to, reaction); the standard's ranges overlap
-COMFORT_REACTIONS = ((0.0, 0.315, "not uncomfortable"), (0.315, 0.63, "a little uncomfortable"),
-                     (0.5, 1.0, "fairly uncomfortable"), (0.8, 1.6, "uncomfortable"),
-                     (1.25, 2.5, "very uncomfortable"), (2.0, np.inf, "extremely uncomfortable"))
-
-
-def comfort_reaction(a_v: float) -> str:
-    """ISO 2631-1 Annex C reaction to the total vibration value ``a_v`` (m/s^2); where the
-    standard's ranges overlap both are named ("a little uncomfortable / fairly
-    uncomfortable")."""
-    return " / ".join(name for lo, hi, name in COMFORT_REACTIONS if lo <= a_v < hi)
-
-
 def road_psd(f_hz, *, road_class: str, speed: float, n_band=None) -> np.ndarray:
     """One-sided temporal PSD ``G(f) = Gd(f / V) / V`` (m^2/Hz) of one track of an ISO 8608
     class-``road_class`` road met at ``speed`` (m/s), zero outside ``n_band`` (cycles/m;

@@ -144,8 +144,8 @@ def write_ride_vs_speed(rides, out) -> list[Path]:
 
 
 def _plot_speeds(rides, path) -> None:
+    from flexpipe.sweeps.iso2631 import COMFORT_REACTIONS
     from flexpipe.vehicle.linear_output import _figure, _save
-    from flexpipe.vehicle.linear_ride import COMFORT_REACTIONS
 
     kmh = [r.speed * 3.6 for r in rides]
     fig, axes = _figure(2, 1, figsize=(8, 7), sharex=True)

@@ -1,0 +1,53 @@
+"""The ride summary of a scenario (flexpipe.scenarios.comfort) against closed forms: a sine
+acceleration's ISO 2631-1 weighted RMS is its amplitude / sqrt(2) times the weighting's
+gain at its frequency, the comfort value the root sum of squares of the axes; a sine tyre
+load's dynamic load coefficient is its amplitude / sqrt(2) over its mean."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from flexpipe.scenarios.comfort import ride_summary
+from flexpipe.sweeps.iso2631 import comfort_reaction, response
+
+
+class _Result(SimpleNamespace):
+    """What the summary reads of a Result: t, channels, status, result[name]."""
+
+    def __getitem__(self, name):
+        return self.channels[name]
+
+
+def _run(status=0):
+    t = np.arange(0.0, 60.0, 1e-3)
+    ch = {"acc_seat_x": 0.3 * np.sin(2 * np.pi * 1.0 * t),
+          "acc_seat_y": 0.2 * np.sin(2 * np.pi * 2.0 * t),
+          "acc_seat_z": 1.2 * np.sin(2 * np.pi * 5.0 * t),
+          "tire_fl_Fz": 4000.0 + 600.0 * np.sin(2 * np.pi * 12.0 * t),
+          "tire_rr_Fz": 3500.0 + 0.0 * t}
+    return _Result(t=t, channels=ch, status=status)
+
+
+def test_ride_summary_equals_closed_forms():
+    out = ride_summary({"rigid": _run(), "flexible": _run(status=-1)}, t_from=2.0)
+    assert set(out["ride_comfort"]) == {"rigid"}  # a run that stopped early is left out
+    seat = out["ride_comfort"]["rigid"]["seat"]
+    aw = {k: a / math.sqrt(2) * abs(response(f, w))
+          for k, a, f, w in (("x", 0.3, 1.0, "Wd"), ("y", 0.2, 2.0, "Wd"),
+                             ("z", 1.2, 5.0, "Wk"))}
+    for k in "xyz":
+        # the weighting's start-up at the record's start: under 0.5 % of 58 s
+        assert seat[f"aw_{k}_m/s^2"] == pytest.approx(aw[k], rel=5e-3)
+    a_v = math.sqrt(sum(v**2 for v in aw.values()))
+    assert seat["a_v_m/s^2"] == pytest.approx(a_v, rel=5e-3)
+    assert seat["reaction"] == comfort_reaction(seat["a_v_m/s^2"])
+    # VDV of a sine: (3/8 a^4 T)^(1/4), T = 58 s
+    assert seat["vdv_z_m/s^1.75"] == pytest.approx((3 / 8 * aw["z"] ** 4 * 4 * 58.0)
+                                                   ** 0.25, rel=5e-3)
+    load = out["dynamic_load_coefficient"]["rigid"]
+    assert load["fl"] == pytest.approx(600.0 / math.sqrt(2) / 4000.0, rel=1e-4)
+    assert load["rr"] == 0.0 and set(load) == {"fl", "rr"}
