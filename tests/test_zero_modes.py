@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import re
 import warnings
 from pathlib import Path
 
@@ -106,15 +107,20 @@ def test_supported_model_with_a_mechanism_warns(cases):
 
 
 def test_modes_of_a_too_thin_shell_warn_and_name_the_thickness(cases, capsys):
-    # 15 zero modes; with --n 10 all are zero, no elastic mode to compare with
-    for n, count in (("20", "15 zero-frequency modes"), ("10", "all 10 modes computed")):
+    # more zero modes than a free body's 6 (or all of them zero).  How many of the
+    # near-null space the eigensolver returns before the first bending mode (3.5e-5 Hz at
+    # this thickness) is round-off: 15 of 20 and all of 10 in the environment of
+    # 2026-12-02, 14 of 20 and 9 of 10 with MKL 2026.2.1 and SciPy 1.17.1
+    for n in ("20", "10"):
         rc = main(["modes", str(PLATE), "--material", "steel", "--thickness", "1e-9",
                    "--n", n, "-q", "-o", str(cases / "out")])
         err = capsys.readouterr().err
         assert rc == 0
         line = next(ln for ln in err.splitlines() if "warning" in ln)
-        assert "plate_quad.msh" in line and count in line
+        assert "plate_quad.msh" in line
         assert "--thickness 1e-09 m" in line and "bending stiffness" in line
+        found = re.search(r"(\d+) zero-frequency modes", line)
+        assert f"all {n} modes computed" in line or 6 < int(found.group(1)) <= int(n)
 
 
 def test_a_real_thin_foil_does_not_warn(cases, capsys):
