@@ -50,6 +50,9 @@ def test_straight_run_writes_hotspots_and_animation(straight):
     for name in ("flexible.csv", "motion_flexible.npz", "stress/hotspots.csv",
                  "animation/body.pvd", "summary.json"):
         assert name in desc and desc[name]
+    # each run's ride comfort and tyre loads (closed forms: tests/test_scenario_comfort.py)
+    assert set(summary["ride_comfort"]) == set(summary["dynamic_load_coefficient"]) \
+        == set(summary["cpu_time_s"])
     on_disk = json.loads((out / "summary.json").read_text())
     assert on_disk["file_descriptions"] == desc
     text = (out / "stress" / "hotspots.csv").read_text().splitlines()

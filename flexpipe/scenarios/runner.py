@@ -240,8 +240,7 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
     if prof:  # flexpipe run --profile: Exudyn's timers and the Python step, ms per step
         summary["profile_ms_per_step"] = prof
     t_end = min(r.simulated_time for r in results.values())
-    summary.update(ride_summary(results, t_from=min(HUB_COMPARE_FROM,
-                                                    HUB_COMPARE_FRACTION * t_end)))
+    summary.update(ride_summary(results, t_from=_t_from(t_end)))
     summary["ride_note"] = (
         "ISO 2631-1: aw weighted RMS (Wd x, y; Wk z), a_v = sqrt(sum aw^2) (comfort, "
         "factors 1) and its Annex C reaction, at each named body point in body axes; "
@@ -251,7 +250,7 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         ra, rb = results["rigid"], results["flexible"]
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)
         if ra.status == 0 and rb.status == 0:
-            t_from = min(HUB_COMPARE_FROM, HUB_COMPARE_FRACTION * ra.simulated_time)
+            t_from = _t_from(ra.simulated_time)
             diff = compare(ra, rb, t_from=t_from)
             summary["hub_force_difference_rigid_vs_flexible"] = _summary_diffs(diff)
             summary["hub_force_difference_note"] = (
@@ -306,6 +305,11 @@ def _save_channels(result, stage, body: str, fmt: str, errors: list, *, log) -> 
         return fallback
 
 
+def _t_from(t_end: float) -> float:
+    """Start of the samples compared and summarised: past the start-up."""
+    return min(HUB_COMPARE_FROM, HUB_COMPARE_FRACTION * t_end)
+
+
 def _plots(results, stage, *, plots, path, title) -> list:
     from flexpipe.vehicle import plots as P
 
@@ -315,6 +319,13 @@ def _plots(results, stage, *, plots, path, title) -> list:
         files.append(P.hub_force(results, stage / "hub_force_fl.png", title=plot_title).name)
     if "trajectory" in plots and path is not None:
         files.append(P.trajectory(results, path, stage / "trajectory.png").name)
+    # where rigid and flexible differ, by frequency: both complete, 2 s past the start-up
+    done = {b: r for b, r in results.items() if r.status == 0}
+    t_end = min(r.simulated_time for r in results.values())
+    if ("rigid" in done and len(done) == len(results) >= 2
+            and t_end - _t_from(t_end) >= 2.0 and "hub_fl_z" in done["rigid"].channels):
+        files.append(P.spectra(done, stage / "spectra.png", t_from=_t_from(t_end),
+                               title=f"Spectra of the runs\n{title}").name)
     return files
 
 

@@ -72,6 +72,61 @@ def hub_force(results: dict, path, *, corner: str = "fl", component: str = "z",
     return _save(plt, fig, path)
 
 
+def spectra(results: dict, path, *, t_from: float, corner: str = "fl",
+            point: str | None = None, title: str = "") -> Path:
+    """Where the runs differ in frequency: power spectral densities (Welch, 2 s Hann
+    segments, half overlap, samples from ``t_from``) of a corner's vertical hub force
+    with the PSD of each run's difference from the rigid one, and of a body point's
+    vertical acceleration (``point``: the first named point by default) with its ISO
+    2631-1 Wk weighting dashed."""
+    from scipy.signal import welch
+
+    from flexpipe.sweeps.iso2631 import response
+    from flexpipe.sweeps.metrics import points_of
+
+    first = next(iter(results.values()))
+    point = point or next(iter(points_of(first.channels)), None)
+    plt, fig = _figure((9, 7.5 if point else 4.5))
+    axes = fig.subplots(2 if point else 1, 1, sharex=True, squeeze=False)[:, 0]
+    name = f"hub_{corner}_z"
+
+    def psd(r, x):
+        keep = r.t >= t_from - 1e-12
+        dt = float(np.median(np.diff(r.t)))
+        n = min(int(round(2.0 / dt)), int(keep.sum()))
+        return welch(x[keep] - np.mean(x[keep]), fs=1.0 / dt, nperseg=n)
+
+    rigid = results.get("rigid")
+    for label, r in results.items():
+        f, p = psd(r, r[name])
+        axes[0].semilogy(f, p, label=f"{label} body", **STYLE.get(label, {}))
+        if rigid is not None and label != "rigid":
+            f, p = psd(r, np.interp(r.t, rigid.t, rigid[name]) - r[name])
+            axes[0].semilogy(f, p, label=f"rigid - {label}", color="tab:orange", lw=1.0)
+    axes[0].set_ylabel(f"vertical hub force {corner.upper()}\nPSD [N^2/Hz]")
+    axes[0].set_title(title or "Spectra of the runs", fontsize=10)
+    if point:
+        for label, r in results.items():
+            f, p = psd(r, r[f"acc_{point}_z"])
+            style = STYLE.get(label, {})
+            line, = axes[1].semilogy(f, p, label=f"{label} body", **style)
+            axes[1].semilogy(f, np.abs(response(f, "Wk")) ** 2 * p, lw=0.8, ls=":",
+                             color=line.get_color(), label=f"{label}, Wk weighted")
+        axes[1].set_ylabel(f"vertical acceleration, {point}\nPSD [(m/s^2)^2/Hz]")
+    for ax in axes:
+        ax.set_xlim(0.0, min(60.0, ax.get_xlim()[1]))
+        shown = [ln.get_ydata()[(ln.get_xdata() > 0.5) & (ln.get_xdata() <= 60.0)]
+                 for ln in ax.get_lines()]
+        top = max(float(np.max(y)) for y in shown)
+        low = min(float(np.min(y[y > 0])) for y in shown if np.any(y > 0))
+        ax.set_ylim(max(low / 3.0, top * 1e-8), top * 3.0)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[-1].set_xlabel("frequency [Hz]")
+    fig.tight_layout()
+    return _save(plt, fig, path)
+
+
 #: trajectory styles: the rigid trace wide and grey underneath, the others narrow and
 #: dashed / dotted on top, so that each stays visible where they coincide
 TRAJECTORY_STYLE = {"rigid": dict(color="0.55", lw=2.6, ls="-", zorder=2),
