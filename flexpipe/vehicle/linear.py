@@ -83,7 +83,8 @@ class LinearModes:
         and its longitudinal and lateral slopes dh/dx, dh/dy (rad, body axes, y to the
         left) under each wheel (``road_<corner>_z``, ``road_<corner>_slope_x``,
         ``road_<corner>_slope_y``); ``outputs`` ``y`` the vertical tyre forces
-        (``tire_<corner>_Fz``, N) and the accelerations of the car's named body points in
+        (``tire_<corner>_Fz``, N), the suspension travel (``travel_<corner>``, m, jounce
+        along the body's z axis) and the accelerations of the car's named body points in
         body axes (``acc_<point>_<x|y|z>``, m/s^2), as a run's channels name them.
     """
 
@@ -308,7 +309,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
 
 def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, *, R) -> dict:
     """Road inputs (height, slopes under each wheel) and outputs (vertical tyre forces,
-    body-point accelerations in the axes of the body rotated by ``R``) of
+    suspension travel, body-point accelerations in the axes of the body rotated by ``R``) of
     ``x' = A x + B u``, ``y = C x + D u``."""
     from flexpipe.exu.linearize import coordinate_derivatives
 
@@ -321,6 +322,13 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, *, R) -> dict:
     C = [np.hstack([Fq @ N, Fv @ N, Fs])]
     D = [Fu]
     names = [f"tire_{c}_Fz" for c in CORNERS[:n_w]]
+    # suspension travel (jounce of each wheel centre along the body's z axis, as a run's
+    # travel_<corner> channel): a function of the coordinates only
+    Jq, _ = coordinate_derivatives(system.mbs, np.arange(size),
+                                   lambda: system.state(0.0).jounce)
+    C.append(np.hstack([Jq @ N, np.zeros((n_w, k + Fs.shape[1]))]))
+    D.append(np.zeros((n_w, 3 * n_w)))
+    names += [f"travel_{c}" for c in CORNERS[:n_w]]
     points = list(system.points)
     if points:
         _, Jv = coordinate_derivatives(system.mbs, np.arange(size),
@@ -335,6 +343,13 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, *, R) -> dict:
                    for c in CORNERS[:n_w])
     return {"B": Bx, "C": np.vstack(C), "D": np.vstack(D), "inputs": inputs,
             "outputs": tuple(names)}
+
+
+def output_unit(name: str) -> str:
+    """SI unit of a linear model's output, by its (run channel) name."""
+    if name.startswith("tire_"):
+        return "N"
+    return "m" if name.startswith("travel_") else "m/s^2"
 
 
 def _wheel_xy(system, body) -> dict:

@@ -74,7 +74,9 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ, tracks: str = "same") -> li
     height: magnitude (output unit per m) and phase (deg) of every output."""
     out = Path(out)
     H = modes.track_response(f_hz, tracks=tracks)
-    units = {name: ("N/m" if name.endswith("_Fz") else "m/s^2/m") for name in modes.outputs}
+    from flexpipe.vehicle.linear import output_unit
+
+    units = {name: f"{output_unit(name)}/m" for name in modes.outputs}
     head = ["f_Hz"] + [c for name in modes.outputs
                        for c in (f"{name}_gain_{units[name]}", f"{name}_phase_deg")]
     lines = [",".join(head)]

@@ -91,7 +91,7 @@ class RideResponse:
     psd : ndarray (f, outputs)
         Output PSDs, (unit)^2/Hz, ``outputs`` as the linear model's.
     rms : ndarray (outputs,)
-        RMS of each output about its value at the linearization state (N, m/s^2).
+        RMS of each output about its value at the linearization state (N, m, m/s^2).
     weighted_rms : ndarray (outputs,)
         ISO 2631-1 weighted RMS of the accelerations (Wk for z, Wd for x and y; NaN for
         the tyre forces), m/s^2.
@@ -120,10 +120,11 @@ class RideResponse:
 
     def rows(self) -> list[dict]:
         """One dict per output (the CSV's columns, units in the keys)."""
+        from flexpipe.vehicle.linear import output_unit
+
         out = []
         for j, name in enumerate(self.outputs):
-            unit = "N" if name.endswith("_Fz") else "m/s^2"
-            row = {"output": name, "unit": unit, "rms": float(self.rms[j])}
+            row = {"output": name, "unit": output_unit(name), "rms": float(self.rms[j])}
             row["iso2631_weighting"] = _weighting(name) or ""
             row["weighted_rms"] = float(self.weighted_rms[j])
             out.append(row)

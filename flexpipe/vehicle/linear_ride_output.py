@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from flexpipe._io import write_text_atomic
+from flexpipe.vehicle.linear import output_unit
 
 #: what the ride figures are (the JSON's and the printout's notes)
 NOTES = (
@@ -35,6 +36,11 @@ def ride_text(ride) -> str:
             load = ride.dynamic_load.get(corner)
             lines.append(f"  {name:24s} RMS {ride.rms[j]:8.1f} N"
                          + (f"   dynamic load coefficient {load:.3f}" if load else ""))
+    travel = [(name, ride.rms[j]) for j, name in enumerate(ride.outputs)
+              if name.startswith("travel_")]
+    if travel:
+        lines.append("  suspension travel RMS  " + "  ".join(
+            f"{name[7:]} {v * 1e3:.1f} mm" for name, v in travel))
     for point, val in ride.points.items():
         w = [ride.weighted_rms[ride.outputs.index(f"acc_{point}_{ax}")] for ax in "xyz"]
         lines.append(f"  {point:24s} a_w x {w[0]:.3f}  y {w[1]:.3f}  z {w[2]:.3f}  "
@@ -61,7 +67,8 @@ def write_ride(ride, out) -> list[Path]:
            "notes": list(NOTES), "outputs": rows, "points": ride.points,
            "dynamic_load_coefficient": ride.dynamic_load}
     write_text_atomic(paths[1], json.dumps(doc, indent=1) + "\n")
-    units = ["N^2/Hz" if n.endswith("_Fz") else "(m/s^2)^2/Hz" for n in ride.outputs]
+    units = [f"({output_unit(n)})^2/Hz" if "/" in output_unit(n) else f"{output_unit(n)}^2/Hz"
+             for n in ride.outputs]
     head = ["f_Hz", "road_m^2/Hz", "coherence"] + [f"{n}_{u}" for n, u in
                                                    zip(ride.outputs, units, strict=True)]
     body = [",".join(f"{v:.7g}" for v in (f, g, c, *s)) for f, g, c, s in
@@ -106,7 +113,7 @@ def speed_table(rides) -> tuple[list, list]:
     first = rides[0]
     head = ["speed_km/h"]
     for name in first.outputs:
-        head.append(f"{name}_rms_{'N' if name.endswith('_Fz') else 'm/s^2'}")
+        head.append(f"{name}_rms_{output_unit(name)}")
     head += [f"{n}_weighted_rms_m/s^2" for n in first.outputs if n.startswith("acc_")]
     head += [f"{p}_a_v_m/s^2" for p in first.points]
     head += [f"tire_{c}_dynamic_load" for c in first.dynamic_load]
@@ -148,7 +155,9 @@ def _plot_speeds(rides, path) -> None:
     from flexpipe.vehicle.linear_output import _figure, _save
 
     kmh = [r.speed * 3.6 for r in rides]
-    fig, axes = _figure(2, 1, figsize=(8, 7), sharex=True)
+    travel = [name for name in rides[0].outputs if name.startswith("travel_")]
+    fig, axes = _figure(3 if travel else 2, 1, figsize=(8, 9.5 if travel else 7),
+                        sharex=True)
     for point in rides[0].points:
         axes[0].plot(kmh, [r.points[point]["a_v_m/s^2"] for r in rides], "o-", label=point)
     top = max(r.points[p]["a_v_m/s^2"] for r in rides for p in r.points) * 1.15
@@ -164,7 +173,12 @@ def _plot_speeds(rides, path) -> None:
         axes[1].plot(kmh, [r.dynamic_load[corner] for r in rides], "o-",
                      label=f"tyre {corner}")
     axes[1].set_ylabel("dynamic load coefficient\nRMS(Fz) / static Fz (-)")
-    axes[1].set_xlabel("speed (km/h)")
+    for name in travel:
+        j = rides[0].outputs.index(name)
+        axes[2].plot(kmh, [r.rms[j] * 1e3 for r in rides], "o-", label=name)
+    if travel:
+        axes[2].set_ylabel("suspension travel RMS (mm)")
+    axes[-1].set_xlabel("speed (km/h)")
     first = rides[0]
     axes[0].set_title(f"{first.car}, {first.body} body: ISO 8608 class {first.road_class} "
                       "(linear model)")
