@@ -54,21 +54,21 @@ def write_ride(ride, out) -> list[Path]:
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / "ride.csv", out / "ride.json", out / "ride_psd.csv", out / "ride_psd.png"]
+    rows = ride.rows()
     lines = ["output,rms,unit,iso2631_weighting,weighted_rms_m/s^2"]
-    for row in ride.rows():
+    for row in rows:
         w = "" if np.isnan(row["weighted_rms"]) else f"{row['weighted_rms']:.7g}"
         lines.append(f"{row['output']},{row['rms']:.7g},{row['unit']},"
                      f"{row['iso2631_weighting']},{w}")
     write_text_atomic(paths[0], "\n".join(lines) + "\n")
     rows = [{k: (None if isinstance(v, float) and np.isnan(v) else v) for k, v in r.items()}
-            for r in ride.rows()]
+            for r in rows]
     doc = {"car": ride.car, "body": ride.body, "speed_m_per_s": ride.speed,
            "road_class": ride.road_class, "track_width_m": ride.track_width, **ride.info,
            "notes": list(NOTES), "outputs": rows, "points": ride.points,
            "dynamic_load_coefficient": ride.dynamic_load}
     write_text_atomic(paths[1], json.dumps(doc, indent=1) + "\n")
-    units = [f"({output_unit(n)})^2/Hz" if "/" in output_unit(n) else f"{output_unit(n)}^2/Hz"
-             for n in ride.outputs]
+    units = [_squared(output_unit(n)) + "/Hz" for n in ride.outputs]
     head = ["f_Hz", "road_m^2/Hz", "coherence"] + [f"{n}_{u}" for n, u in
                                                    zip(ride.outputs, units, strict=True)]
     body = [",".join(f"{v:.7g}" for v in (f, g, c, *s)) for f, g, c, s in
@@ -76,6 +76,11 @@ def write_ride(ride, out) -> list[Path]:
     write_text_atomic(paths[2], "\n".join([",".join(head), *body]) + "\n")
     _plot(ride, paths[3])
     return paths
+
+
+def _squared(unit: str) -> str:
+    """``N`` -> ``N^2``, ``m/s^2`` -> ``(m/s^2)^2``."""
+    return f"({unit})^2" if "/" in unit else f"{unit}^2"
 
 
 def _plot(ride, path) -> None:
