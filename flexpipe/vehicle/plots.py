@@ -78,7 +78,7 @@ def spectra(results: dict, path, *, t_from: float, corner: str = "fl",
     segments, half overlap, samples from ``t_from``) of a corner's vertical hub force
     with the PSD of each run's difference from the rigid one, and of a body point's
     vertical acceleration (``point``: the first named point by default) with its ISO
-    2631-1 Wk weighting dashed."""
+    2631-1 Wk weighting dotted."""
     from scipy.signal import welch
 
     from flexpipe.sweeps.iso2631 import response
