@@ -13,6 +13,7 @@ References, each independent of the spectral route under test:
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -123,9 +124,10 @@ def _track_width(m) -> float:
     return float(np.mean(np.abs(y[0::2] - y[1::2])))
 
 
-def _time_run(m, road, *, dt=1e-3):
+def _time_run(m, road, *, dt=1e-3, histories=False):
     """The linear model run in time over two periods of the periodic ``road``; RMS and
-    ISO 2631-1 weighted RMS of every output over the second period (steady)."""
+    ISO 2631-1 weighted RMS of every output over the second period (steady), or with
+    ``histories`` the outputs over it (about their means)."""
     from scipy.signal import lsim
 
     from flexpipe.sweeps.iso2631 import response
@@ -156,6 +158,8 @@ def _time_run(m, road, *, dt=1e-3):
         U[:, 2 * n_w + i] = (at(road.left, s) - at(road.right, s)) / abs(np.diff(y[axle])[0])
     _, out, _ = lsim((m.A, m.B, m.C, m.D), U, t)
     out = out[steps:] - out[steps:].mean(axis=0)
+    if histories:
+        return out
     rms = np.sqrt(np.mean(out**2, axis=0))
     w_rms = np.full(rms.shape, np.nan)
     f = np.fft.rfftfreq(steps, dt)
@@ -201,9 +205,29 @@ def test_spectra_equal_the_linear_model_run_over_a_synthesised_road(modes, body,
                                r.rms[:4] / static, rtol=1e-12)
 
 
-def test_ride_refuses_a_parked_car_and_bad_options(modes):
-    import dataclasses
+def test_flexible_minus_rigid_equals_their_time_runs_subtracted(modes):
+    """``difference_rms``: the two bodies' linear models run in time over the same road,
+    their outputs subtracted sample by sample, have the spectral RMS of the difference
+    (hub forces, tyre forces, travel, floor accelerations)."""
+    from flexpipe.roads import iso8608
 
+    rigid, flexible = modes["rigid"], modes["flexible"]
+    B = _track_width(flexible)
+    road = iso8608("C", length=400.0, dx=0.02, seed=1, track_width=B, coherence=1.0)
+    diff = (_time_run(flexible, road, histories=True)
+            - _time_run(rigid, road, histories=True))
+    rms = np.sqrt(np.mean(diff**2, axis=0))
+    r = ride_response(flexible, "C", coherence=1.0, track_width=B, reference=rigid)
+    assert r.info["reference_body"] == "rigid"
+    hub = np.array([name.startswith("hub_") and name[-1] in "xz" for name in r.outputs])
+    np.testing.assert_allclose(rms[hub], r.difference_rms[hub], rtol=0.01)
+    for row, d in zip(r.rows(), r.difference_rms, strict=True):
+        assert row["difference_rms"] == d
+    with pytest.raises(InputError, match="same car's linear model at the same speed"):
+        ride_response(flexible, "C", reference=dataclasses.replace(rigid, speed=10.0))
+
+
+def test_ride_refuses_a_parked_car_and_bad_options(modes):
     m = modes["rigid"]
     with pytest.raises(InputError, match="speed > 0"):
         ride_response(dataclasses.replace(m, speed=0.0), "C")
@@ -291,6 +315,9 @@ def test_ride_vs_speed_and_its_command(tmp_path, capsys, modes):
     ("linear", ["--speed", "70", "--road-class", "C", "--coherence", "2"],
      "--coherence must be 'isotropic' or a number in [0, 1], got '2'"),
     ("linear", ["--speed", "70", "--road-class", "C", "--coherence", "some"], "got 'some'"),
+    ("linear", ["--reference", "rigid"], "--reference needs --road-class"),
+    ("linear", ["--speed", "70", "--road-class", "C", "--reference", "flexible"],
+     "--reference must be another body than --body"),
     ("ride", ["--speeds", "70,70"], "--speeds must be distinct speeds in (0, 300] km/h"),
     ("ride", ["--speeds", "0,50"], "got '0,50'"),
     ("ride", ["--speeds", "fast"], "got 'fast'"),

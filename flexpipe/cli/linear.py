@@ -50,6 +50,10 @@ def add_arguments(p) -> None:
                         "from the linear model: RMS, ISO 2631-1 weighted RMS and spectra "
                         "(ride.csv/.json, ride_psd.csv/.png)")
     add_model_arguments(p, what="with --road-class: ")
+    p.add_argument("--reference", default=None, metavar="BODY",
+                   help="with --road-class: also linearize the car with this body (rigid, "
+                        "flexible or full) and give the RMS of the outputs' difference on "
+                        "the same road (e.g. flexible minus rigid hub forces)")
     p.add_argument("-o", "--out", default=None,
                    help="output folder (default out/linear/<car>-<body>-<speed>kmh)")
 
@@ -85,6 +89,14 @@ def check_options(args) -> None:
         if args.speed <= 0.0:
             raise InputError("--road-class needs --speed > 0 km/h: at rest the road does "
                              "not move under the wheels")
+    if args.reference is not None:
+        if args.road_class is None:
+            raise InputError("--reference needs --road-class (and --speed): it compares "
+                             "the two bodies on a road")
+        ref = args.reference.strip().lower()
+        if ref not in BODIES or ref == args.body.strip().lower():
+            raise InputError(f"--reference must be another body than --body "
+                             f"({', '.join(BODIES)}), got {args.reference!r}")
 
 
 def check_model_options(args) -> None:
@@ -168,8 +180,11 @@ def run(args) -> int:
         from flexpipe.vehicle.linear_ride_output import NOTES as RIDE_NOTES
         from flexpipe.vehicle.linear_ride_output import ride_text, write_ride
 
+        reference = None if args.reference is None else linear_modes(
+            car, body=args.reference.strip().lower(), speed=args.speed / 3.6,
+            f_max=args.f_max, log=print)
         ride = ride_response(modes, args.road_class.strip().upper(),
-                             coherence=args.coherence)
+                             coherence=args.coherence, reference=reference)
         print(ride_text(ride))
         for note in RIDE_NOTES:
             print(f"note: {note}")

@@ -413,7 +413,37 @@ class LinkageModel:
         for i, parts in enumerate(self.part_nodes):
             for obj, m, cm in parts:  # the acceleration of each part's centre of mass
                 out[i] += m * (self.g - np.asarray(gb(obj, OV.Acceleration, cm)))
+        return out + self.link_forces()
+
+    def corner_momenta(self, ov=OV.Velocity) -> np.ndarray:
+        """(4, 3, global): the sum of ``m v`` (or with ``ov`` another output, e.g. the
+        acceleration: ``m a``) over each corner's parts, at their centres of mass."""
+        gb = self.mbs.GetObjectOutputBody
+        out = np.zeros((len(self.part_nodes), 3))
+        for i, parts in enumerate(self.part_nodes):
+            for obj, m, cm in parts:
+                out[i] += m * np.asarray(gb(obj, ov, cm))
+        return out
+
+    def links_to_other(self) -> list:
+        """Per link from a corner to the rack or an anti-roll bar, at the current state:
+        (corner, unit vector (global) of the link's pull on the corner per unit of
+        tension, its tension (N), the global index of its constraint's multiplier, or
+        None for a spring link)."""
         gm = self.mbs.GetMarkerOutput
+        out = []
+        for i, co, mb, ma in self.to_other:
+            d = np.asarray(gm(ma, OV.Position)) - np.asarray(gm(mb, OV.Position))
+            ae = list(self.mbs.systemData.GetObjectLTGAE(co))
+            out.append((i, -d / np.linalg.norm(d), float(self.mbs.GetObjectOutput(co, OV.Force)),
+                        int(ae[0]) if ae else None))
+        return out
+
+    def link_forces(self) -> np.ndarray:
+        """(4, 3, global): the forces of the links to the rack and the anti-roll bars on
+        each corner, at the current state."""
+        gm = self.mbs.GetMarkerOutput
+        out = np.zeros((len(self.part_nodes), 3))
         for i, co, mb, ma in self.to_other:
             d = np.asarray(gm(ma, OV.Position)) - np.asarray(gm(mb, OV.Position))
             F = float(self.mbs.GetObjectOutput(co, OV.Force))

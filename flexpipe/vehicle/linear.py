@@ -84,7 +84,9 @@ class LinearModes:
         left) under each wheel (``road_<corner>_z``, ``road_<corner>_slope_x``,
         ``road_<corner>_slope_y``); ``outputs`` ``y`` the vertical tyre forces
         (``tire_<corner>_Fz``, N), the suspension travel (``travel_<corner>``, m, jounce
-        along the body's z axis) and the accelerations of the car's named body points in
+        along the body's z axis), the hub forces (``hub_<corner>_<x|y|z>``, N, body axes,
+        :mod:`flexpipe.vehicle.linear_hub`) and the accelerations of the car's named body
+        points in
         body axes (``acc_<point>_<x|y|z>``, m/s^2), as a run's channels name them.
     """
 
@@ -232,6 +234,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     from scipy.linalg import eig
 
     from flexpipe.exu.linearize import hold_tires, linearize, node_slices, start_from_initial
+    from flexpipe.vehicle.linear_hub import hub_rows
     from flexpipe.vehicle.linear_tires import TireLinearization
     from flexpipe.vehicle.simulation import SPECTRAL_RADIUS
 
@@ -250,7 +253,7 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     tires = TireLinearization(system, ctrl, slices)
     # the tyres' force at the state as a constant force in Exudyn's element: their
     # derivatives come from tires.derivatives; at rest no brake holds the wheels
-    Q, _, Fz = tires.generalized()
+    Q, _, Fz, F_tire = tires.generalized()
     hold_tires(system, Q, release_spin=speed == 0.0)
     lin = linearize(system.mbs)
     Kt, Dt, B, Eq, Ev, Az, Ur, Fz_d = tires.derivatives(lin.q.size)
@@ -268,6 +271,12 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     A[2 * k:, 2 * k:] = Az
     body = _body_state(system, slices, lin.q)
     io = _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, R=body["rotation"])
+    n_w = Fz.size
+    Ch, Dh, hub = hub_rows(system, lin, N=N, A=A, Bx=io["B"], K=K, D=D, B_slip=B,
+                           Ur=Ur[:lin.q.size], F_tire=F_tire,
+                           T_d=tuple(d[n_w:] for d in Fz_d), R=body["rotation"])
+    io.update(C=np.vstack([io["C"], Ch]), D=np.vstack([io["D"], Dh]),
+              outputs=io["outputs"] + tuple(hub))
     lam, L, X = eig(A, left=True, right=True)
     # participation of the tyre slip states in each mode (unit-free: left times right
     # eigenvector, summed over the slip states, as a share of the sum over all states)
@@ -318,7 +327,7 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, *, R) -> dict:
     Bx = np.zeros((A.shape[0], 3 * n_w))
     Bx[k:2 * k] = Minv @ (N.T @ Ur[:size])
     Bx[2 * k:] = Ur[size:]
-    Fq, Fv, Fs, Fu = Fz_d
+    Fq, Fv, Fs, Fu = (d[:n_w] for d in Fz_d)  # the vertical forces' rows
     C = [np.hstack([Fq @ N, Fv @ N, Fs])]
     D = [Fu]
     names = [f"tire_{c}_Fz" for c in CORNERS[:n_w]]
@@ -347,7 +356,7 @@ def _io_matrices(system, lin, N, A, Minv, Ur, Fz_d, k, *, R) -> dict:
 
 def output_unit(name: str) -> str:
     """SI unit of a linear model's output, by its (run channel) name."""
-    if name.startswith("tire_"):
+    if name.startswith(("tire_", "hub_")):
         return "N"
     return "m" if name.startswith("travel_") else "m/s^2"
 

@@ -100,6 +100,9 @@ class RideResponse:
         (ISO 2631-1 Annex C).
     dynamic_load : dict
         Per tyre: RMS of the vertical force over its static value (-).
+    difference_rms : ndarray (outputs,) or None
+        With a ``reference`` model: RMS of this model's outputs minus the reference's on
+        the same road (e.g. flexible minus rigid hub forces), free of any time step.
     """
 
     car: str
@@ -116,6 +119,7 @@ class RideResponse:
     weighted_rms: np.ndarray
     points: dict
     dynamic_load: dict
+    difference_rms: np.ndarray | None = None
     info: dict = field(default_factory=dict)
 
     def rows(self) -> list[dict]:
@@ -127,13 +131,15 @@ class RideResponse:
             row = {"output": name, "unit": output_unit(name), "rms": float(self.rms[j])}
             row["iso2631_weighting"] = _weighting(name) or ""
             row["weighted_rms"] = float(self.weighted_rms[j])
+            if self.difference_rms is not None:
+                row["difference_rms"] = float(self.difference_rms[j])
             out.append(row)
         return out
 
 
 def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
-                  track_width: float | None = None, n_band=None,
-                  n_freq: int = N_FREQ) -> RideResponse:
+                  track_width: float | None = None, n_band=None, n_freq: int = N_FREQ,
+                  reference=None) -> RideResponse:
     """Spectra, RMS and ISO 2631-1 values of a linearized car on an ISO 8608 road.
 
     Parameters
@@ -151,12 +157,16 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
         Spatial-frequency band (cycles/m); default the ISO 8608 classification band.
     n_freq : int
         Frequency samples (default :data:`N_FREQ`).
+    reference : LinearModes, optional
+        The same car's model at the same speed with another body (e.g. rigid): the RMS
+        of the outputs' difference on the same road (``difference_rms``).
 
     Raises
     ------
     InputError
         A model linearized at rest, an unknown road class, a coherence outside [0, 1], a
-        band that is not ``0 < n_lo < n_hi``, fewer than 100 samples.
+        band that is not ``0 < n_lo < n_hi``, fewer than 100 samples, a reference of
+        other outputs or speed.
     """
     from flexpipe.roads import ISO8608_BAND, checked_coherence, track_coherence
     from flexpipe.sweeps.iso2631 import response
@@ -183,9 +193,23 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
     gamma = track_coherence(coherence, f / v, track_width)
     G = road_psd(f, road_class=road_class, speed=v, n_band=(n_lo, n_hi))
     H = modes.frequency_response(f)
-    S = output_psd(G, modes.track_response(f, tracks="same", H=H),
-                   modes.track_response(f, tracks="opposite", H=H), gamma)
+    H_same = modes.track_response(f, tracks="same", H=H)
+    H_opposite = modes.track_response(f, tracks="opposite", H=H)
+    S = output_psd(G, H_same, H_opposite, gamma)
     rms = np.sqrt(np.trapezoid(S, f, axis=0))
+    difference = None
+    if reference is not None:  # the two models' outputs on the same road, subtracted
+        if tuple(reference.outputs) != tuple(modes.outputs) \
+                or not abs(reference.speed - v) <= 1e-9 * v:
+            raise InputError(f"the reference must be the same car's linear model at the "
+                             f"same speed ({v:g} m/s, outputs {len(modes.outputs)}); got "
+                             f"{reference.speed:g} m/s, {len(reference.outputs)} outputs",
+                             key="reference")
+        H_ref = reference.frequency_response(f)
+        S_d = output_psd(G, H_same - reference.track_response(f, tracks="same", H=H_ref),
+                         H_opposite - reference.track_response(f, tracks="opposite",
+                                                               H=H_ref), gamma)
+        difference = np.sqrt(np.trapezoid(S_d, f, axis=0))
     w_rms = np.full(rms.shape, np.nan)
     for j, name in enumerate(modes.outputs):
         if (wk := _weighting(name)) is not None:
@@ -208,9 +232,12 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
                         f_hz=f, road_psd=G, coherence=gamma, outputs=modes.outputs,
                         psd=S, rms=rms, weighted_rms=w_rms, points=points,
                         dynamic_load=dynamic,
+                        difference_rms=difference,
                         info={"n_band_cycles/m": [n_lo, n_hi],
                               "coherence_model": coherence,
-                              "road_rms_m": float(np.sqrt(np.trapezoid(G, f)))})
+                              "road_rms_m": float(np.sqrt(np.trapezoid(G, f))),
+                              **({"reference_body": reference.body}
+                                 if reference is not None else {})})
 
 
 def _weighting(name: str) -> str | None:

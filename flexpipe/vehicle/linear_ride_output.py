@@ -41,6 +41,15 @@ def ride_text(ride) -> str:
     if travel:
         lines.append("  suspension travel RMS  " + "  ".join(
             f"{name[7:]} {v * 1e3:.1f} mm" for name, v in travel))
+    hubs = sorted({name[4:6] for name in ride.outputs if name.startswith("hub_")},
+                  key="fl fr rl rr".split().index)
+    for c in hubs:
+        j = [ride.outputs.index(f"hub_{c}_{ax}") for ax in "xyz"]
+        text = "  ".join(f"{ax} {ride.rms[i]:6.1f}" for ax, i in zip("xyz", j, strict=True))
+        if ride.difference_rms is not None:
+            text += (f"   {ride.body} - {ride.info['reference_body']}: " + "  ".join(
+                f"{ax} {ride.difference_rms[i]:5.1f}" for ax, i in zip("xyz", j, strict=True)))
+        lines.append(f"  hub_{c} RMS (N, body axes)  {text}")
     for point, val in ride.points.items():
         w = [ride.weighted_rms[ride.outputs.index(f"acc_{point}_{ax}")] for ax in "xyz"]
         lines.append(f"  {point:24s} a_w x {w[0]:.3f}  y {w[1]:.3f}  z {w[2]:.3f}  "
@@ -55,11 +64,14 @@ def write_ride(ride, out) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / "ride.csv", out / "ride.json", out / "ride_psd.csv", out / "ride_psd.png"]
     rows = ride.rows()
-    lines = ["output,rms,unit,iso2631_weighting,weighted_rms_m/s^2"]
+    ref = ride.info.get("reference_body")
+    lines = ["output,rms,unit,iso2631_weighting,weighted_rms_m/s^2"
+             + (f",difference_rms_vs_{ref}" if ref else "")]
     for row in rows:
         w = "" if np.isnan(row["weighted_rms"]) else f"{row['weighted_rms']:.7g}"
         lines.append(f"{row['output']},{row['rms']:.7g},{row['unit']},"
-                     f"{row['iso2631_weighting']},{w}")
+                     f"{row['iso2631_weighting']},{w}"
+                     + (f",{row['difference_rms']:.7g}" if ref else ""))
     write_text_atomic(paths[0], "\n".join(lines) + "\n")
     rows = [{k: (None if isinstance(v, float) and np.isnan(v) else v) for k, v in r.items()}
             for r in rows]

@@ -41,7 +41,8 @@ class TireLinearization:
                     for w, s in zip(system.wheel_node, system.spin_node, strict=True)]
 
     def generalized(self, road=None):
-        """(Q (4, 8), slip rates (4, 2), Fz (4,)) at the current Exudyn state and slips;
+        """(Q (4, 8), slip rates (4, 2), Fz (4,), F (4, 3): the force at the contact
+        point, global) at the current Exudyn state and slips;
         ``road``: (4, 3) offsets of the road height (m) and of its longitudinal and
         lateral slopes (rad: dh/dx along the body's x axis, dh/dy along its y axis, to
         the left) under each wheel."""
@@ -86,23 +87,24 @@ class TireLinearization:
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
         z6, z63 = np.zeros((n, 6)), np.zeros((n, 6, 3))
         _, _, Q = element_numpy(ep, r, s_axis, qt, st.wheel_q, Y, z63, z6, z6, z63)
-        return Q, rate, Fz
+        return Q, rate, Fz, Y[:, :3]
 
     def _flat(self, size: int, road=None):
-        """(Q over all ODE2 coordinates (size,), rates of the slip states), Fz (4,) as one
-        vector."""
-        Q, rate, Fz = self.generalized(road)
+        """(Q over all ODE2 coordinates (size,), rates of the slip states), Fz (4,), the
+        force vectors (12,: wheel by wheel, global x, y, z) as one vector."""
+        Q, rate, Fz, F = self.generalized(road)
         out = np.zeros(size)
         for i, ix in enumerate(self.idx):
             out[ix] += Q[i]
-        return np.concatenate([out, [rate[i, c] for i, c in self.states], Fz])
+        return np.concatenate([out, [rate[i, c] for i, c in self.states], Fz, F.ravel()])
 
     def derivatives(self, size: int):
         """``K_t, D_t`` (size, size): minus the tyre force's derivatives by coordinates and
         velocities; ``B`` (size, s): by the slips; ``E_q, E_v`` (s, size) and ``A_s``
         (s, s): the slips' rates by coordinates, velocities and slips; ``U`` (size + s, 8):
         force and slip rates by the road inputs (height, slopes under each wheel); ``F``:
-        the vertical tyre forces' derivatives (``q``, ``v``, slips, road inputs)."""
+        the derivatives (``q``, ``v``, slips, road inputs) of the vertical tyre forces
+        (4 rows) and of the tyre force vectors (12 rows, global, wheel by wheel)."""
         from flexpipe.exu.linearize import coordinate_derivatives
 
         cols = np.concatenate(self.idx)
@@ -112,11 +114,11 @@ class TireLinearization:
                                         eps_q=EPS_Q, eps_v=EPS_V)
         Kt, Dt = np.zeros((size, size)), np.zeros((size, size))
         Eq, Ev = np.zeros((ns, size)), np.zeros((ns, size))
-        Fq, Fv = np.zeros((n_w, size)), np.zeros((n_w, size))
+        Fq, Fv = np.zeros((4 * n_w, size)), np.zeros((4 * n_w, size))
         Kt[:, cols], Dt[:, cols] = -dq[:size], -dv[:size]
         Eq[:, cols], Ev[:, cols] = dq[size:size + ns], dv[size:size + ns]
         Fq[:, cols], Fv[:, cols] = dq[size + ns:], dv[size + ns:]
-        d_slip = np.zeros((size + ns + n_w, ns))
+        d_slip = np.zeros((size + ns + 4 * n_w, ns))
         for k, (i, c) in enumerate(self.states):
             slip = (self.kappa, self.tan_alpha)[c]
             vals = []
@@ -125,7 +127,7 @@ class TireLinearization:
                 vals.append(self._flat(size))
                 slip[i] -= sgn * EPS_S
             d_slip[:, k] = (vals[0] - vals[1]) / (2.0 * EPS_S)
-        d_road = np.zeros((size + ns + n_w, 3 * n_w))
+        d_road = np.zeros((size + ns + 4 * n_w, 3 * n_w))
         for j in range(3 * n_w):
             vals = []
             for sgn in (1.0, -1.0):
