@@ -86,8 +86,8 @@ class LinearModes:
         (``tire_<corner>_Fz``, N), the suspension travel (``travel_<corner>``, m, jounce
         along the body's z axis), the hub forces (``hub_<corner>_<x|y|z>``, N, body axes,
         :mod:`flexpipe.vehicle.linear_hub`) and the accelerations of the car's named body
-        points in
-        body axes (``acc_<point>_<x|y|z>``, m/s^2), as a run's channels name them.
+        points in body axes (``acc_<point>_<x|y|z>``, m/s^2), as a run's channels name
+        them.
     """
 
     car: str
