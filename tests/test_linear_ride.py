@@ -223,6 +223,13 @@ def test_flexible_minus_rigid_equals_their_time_runs_subtracted(modes):
     np.testing.assert_allclose(rms[hub], r.difference_rms[hub], rtol=0.01)
     for row, d in zip(r.rows(), r.difference_rms, strict=True):
         assert row["difference_rms"] == d
+    # the difference's spectrum peaks at a mode of the body's elastic modes (+-0.5 Hz)
+    np.testing.assert_allclose(np.sqrt(np.trapezoid(r.difference_psd, r.f_hz, axis=0)),
+                               r.difference_rms, rtol=1e-12)
+    f_peak = r.f_hz[np.argmax(r.difference_psd[:, r.outputs.index("hub_fl_x")])]
+    elastic = [f for f, lab in zip(flexible.frequency_hz, flexible.label, strict=True)
+               if lab.startswith("body elastic")]
+    assert min(abs(f_peak - f) for f in elastic) < 0.5
     with pytest.raises(InputError, match="same car's linear model at the same speed"):
         ride_response(flexible, "C", reference=dataclasses.replace(rigid, speed=10.0))
 

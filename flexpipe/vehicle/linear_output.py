@@ -90,10 +90,12 @@ def write_track_response(modes, out, *, f_hz=FRF_HZ, tracks: str = "same") -> li
     write_text_atomic(paths[0], "\n".join(lines) + "\n")
     fig, axes = _figure(2, 1, figsize=(8, 7), sharex=True)
     for j, name in enumerate(modes.outputs):
-        ax = axes[0] if name.endswith("_Fz") else axes[1]
-        if name.endswith("_Fz") or name.endswith("_z"):
-            ax.loglog(f_hz, np.abs(H[:, j]), label=name)
-    axes[0].set_ylabel("vertical tyre force per road height (N/m)")
+        if name.endswith("_Fz") or (name.startswith("hub_") and name.endswith("_z")):
+            axes[0].loglog(f_hz, np.abs(H[:, j]), label=name,
+                           ls="--" if name.startswith("hub_") else "-")
+        elif name.startswith("acc_") and name.endswith("_z"):
+            axes[1].loglog(f_hz, np.abs(H[:, j]), label=name)
+    axes[0].set_ylabel("vertical tyre and hub forces\nper road height (N/m)")
     axes[1].set_ylabel("vertical floor acceleration\nper road height (m/s^2 / m)")
     axes[1].set_xlabel("frequency (Hz)")
     if modes.speed > 0:

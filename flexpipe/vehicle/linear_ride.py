@@ -100,9 +100,10 @@ class RideResponse:
         (ISO 2631-1 Annex C).
     dynamic_load : dict
         Per tyre: RMS of the vertical force over its static value (-).
-    difference_rms : ndarray (outputs,) or None
-        With a ``reference`` model: RMS of this model's outputs minus the reference's on
-        the same road (e.g. flexible minus rigid hub forces), free of any time step.
+    difference_rms, difference_psd : ndarray (outputs,) and (f, outputs), or None
+        With a ``reference`` model: RMS and PSD of this model's outputs minus the
+        reference's on the same road (e.g. flexible minus rigid hub forces), free of any
+        time step.
     """
 
     car: str
@@ -120,6 +121,7 @@ class RideResponse:
     points: dict
     dynamic_load: dict
     difference_rms: np.ndarray | None = None
+    difference_psd: np.ndarray | None = None
     info: dict = field(default_factory=dict)
 
     def rows(self) -> list[dict]:
@@ -197,7 +199,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
     H_opposite = modes.track_response(f, tracks="opposite", H=H)
     S = output_psd(G, H_same, H_opposite, gamma)
     rms = np.sqrt(np.trapezoid(S, f, axis=0))
-    difference = None
+    difference = S_d = None
     if reference is not None:  # the two models' outputs on the same road, subtracted
         if tuple(reference.outputs) != tuple(modes.outputs) \
                 or not abs(reference.speed - v) <= 1e-9 * v:
@@ -232,7 +234,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
                         f_hz=f, road_psd=G, coherence=gamma, outputs=modes.outputs,
                         psd=S, rms=rms, weighted_rms=w_rms, points=points,
                         dynamic_load=dynamic,
-                        difference_rms=difference,
+                        difference_rms=difference, difference_psd=S_d,
                         info={"n_band_cycles/m": [n_lo, n_hi],
                               "coherence_model": coherence,
                               "road_rms_m": float(np.sqrt(np.trapezoid(G, f))),

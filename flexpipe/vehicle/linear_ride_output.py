@@ -83,8 +83,12 @@ def write_ride(ride, out) -> list[Path]:
     units = [_squared(output_unit(n)) + "/Hz" for n in ride.outputs]
     head = ["f_Hz", "road_m^2/Hz", "coherence"] + [f"{n}_{u}" for n, u in
                                                    zip(ride.outputs, units, strict=True)]
+    columns = [ride.psd]
+    if ref:  # the difference from the reference body's outputs
+        head += [f"{n}_minus_{ref}_{u}" for n, u in zip(ride.outputs, units, strict=True)]
+        columns.append(ride.difference_psd)
     body = [",".join(f"{v:.7g}" for v in (f, g, c, *s)) for f, g, c, s in
-            zip(ride.f_hz, ride.road_psd, ride.coherence, ride.psd, strict=True)]
+            zip(ride.f_hz, ride.road_psd, ride.coherence, np.hstack(columns), strict=True)]
     write_text_atomic(paths[2], "\n".join([",".join(head), *body]) + "\n")
     _plot(ride, paths[3])
     return paths
@@ -99,20 +103,28 @@ def _plot(ride, path) -> None:
     from flexpipe.sweeps.iso2631 import response
     from flexpipe.vehicle.linear_output import _figure, _save
 
-    fig, axes = _figure(2, 1, figsize=(8, 7), sharex=True)
+    ref = ride.info.get("reference_body")
+    fig, axes = _figure(3 if ref else 2, 1, figsize=(8, 10 if ref else 7), sharex=True)
     f = ride.f_hz
     for j, name in enumerate(ride.outputs):
-        if name.endswith("_Fz"):
-            axes[0].loglog(f, ride.psd[:, j], label=f"{name} (RMS {ride.rms[j]:.0f} N)")
-        elif name.endswith("_z"):
+        if name.endswith("_Fz") or (name.startswith("hub_") and name.endswith("_z")):
+            axes[0].loglog(f, ride.psd[:, j], label=f"{name} (RMS {ride.rms[j]:.0f} N)",
+                           ls="--" if name.startswith("hub_") else "-")
+        elif name.startswith("acc_") and name.endswith("_z"):
             wk = np.abs(response(f, "Wk")) ** 2
             line, = axes[1].loglog(f, ride.psd[:, j],
                                    label=f"{name} (RMS {ride.rms[j]:.2f} m/s^2)")
             axes[1].loglog(f, wk * ride.psd[:, j], ls="--", color=line.get_color(),
                            label=f"  Wk weighted ({ride.weighted_rms[j]:.2f} m/s^2)")
-    axes[0].set_ylabel("vertical tyre force PSD (N^2/Hz)")
+    axes[0].set_ylabel("vertical tyre and hub forces\nPSD (N^2/Hz)")
     axes[1].set_ylabel("vertical floor acceleration\nPSD ((m/s^2)^2/Hz)")
-    axes[1].set_xlabel("frequency (Hz)")
+    if ref:
+        for j, name in enumerate(ride.outputs):
+            if name.startswith(("hub_fl_", "hub_rl_")):
+                axes[2].loglog(f, ride.difference_psd[:, j],
+                               label=f"{name} (RMS {ride.difference_rms[j]:.1f} N)")
+        axes[2].set_ylabel(f"hub forces, {ride.body} minus\n{ref}: PSD (N^2/Hz)")
+    axes[-1].set_xlabel("frequency (Hz)")
     axes[0].set_title(f"{ride.car}, {ride.body} body: ISO 8608 class {ride.road_class}, "
                       f"{ride.speed * 3.6:g} km/h (linear model)")
     for ax in axes:
