@@ -415,14 +415,14 @@ class LinkageModel:
                 out[i] += m * (self.g - np.asarray(gb(obj, OV.Acceleration, cm)))
         return out + self.link_forces()
 
-    def corner_momenta(self, ov=OV.Velocity) -> np.ndarray:
-        """(4, 3, global): the sum of ``m v`` (or with ``ov`` another output, e.g. the
-        acceleration: ``m a``) over each corner's parts, at their centres of mass."""
+    def corner_momenta(self) -> np.ndarray:
+        """(4, 3, global): the sum of ``m v`` over each corner's parts, at their centres
+        of mass."""
         gb = self.mbs.GetObjectOutputBody
         out = np.zeros((len(self.part_nodes), 3))
         for i, parts in enumerate(self.part_nodes):
             for obj, m, cm in parts:
-                out[i] += m * np.asarray(gb(obj, ov, cm))
+                out[i] += m * np.asarray(gb(obj, OV.Velocity, cm))
         return out
 
     def links_to_other(self) -> list:
@@ -442,10 +442,7 @@ class LinkageModel:
     def link_forces(self) -> np.ndarray:
         """(4, 3, global): the forces of the links to the rack and the anti-roll bars on
         each corner, at the current state."""
-        gm = self.mbs.GetMarkerOutput
         out = np.zeros((len(self.part_nodes), 3))
-        for i, co, mb, ma in self.to_other:
-            d = np.asarray(gm(ma, OV.Position)) - np.asarray(gm(mb, OV.Position))
-            F = float(self.mbs.GetObjectOutput(co, OV.Force))
-            out[i] += -F * d / np.linalg.norm(d)  # tension pulls the corner's end back
+        for i, pull, F, _ in self.links_to_other():
+            out[i] += F * pull  # tension pulls the corner's end back
         return out
