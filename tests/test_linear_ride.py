@@ -316,6 +316,42 @@ def test_ride_vs_speed_and_its_command(tmp_path, capsys, modes):
     assert (out / "ride_vs_speed.png").stat().st_size > 10_000
 
 
+def test_ride_vs_speed_against_a_reference_body(tmp_path, capsys, modes, monkeypatch):
+    """``flexpipe ride --body flexible --reference rigid``: at each speed both bodies'
+    models on the same road; the difference columns are the RMS of the two responses'
+    difference (as ride_response gives it), which obeys the triangle inequality of RMS
+    values against the two bodies' own RMS, and the hub forces' difference table is
+    printed."""
+    import csv
+    import json
+
+    from flexpipe import cli
+    from flexpipe.vehicle import linear
+    from flexpipe.vehicle.linear import output_unit
+    from flexpipe.vehicle.linear_ride import ride_vs_speed
+
+    monkeypatch.setattr(linear, "linear_modes",
+                        lambda car, *, body, speed, f_max=None: modes[body])
+    out = tmp_path / "r"
+    assert cli.main(["ride", str(LINKAGE), "--speeds", "70", "--reference", "Rigid",
+                     "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "hub forces, RMS of flexible minus rigid" in text and "fl_x" in text
+    with open(out / "ride_vs_speed.csv", newline="") as fh:
+        row = next(csv.DictReader(fh))
+    flexible, rigid = (ride_response(modes[b], "C") for b in ("flexible", "rigid"))
+    diff = ride_response(modes["flexible"], "C", reference=modes["rigid"]).difference_rms
+    for j, name in enumerate(flexible.outputs):
+        d = float(row[f"{name}_difference_rms_{output_unit(name)}"])
+        np.testing.assert_allclose(d, diff[j], rtol=1e-6)
+        assert abs(flexible.rms[j] - rigid.rms[j]) * (1 - 1e-6) <= d \
+            <= (flexible.rms[j] + rigid.rms[j]) * (1 + 1e-6), name
+    assert json.loads((out / "ride_vs_speed.json").read_text())["reference_body"] == "rigid"
+    assert (out / "ride_vs_speed.png").stat().st_size > 10_000
+    with pytest.raises(InputError, match="reference must be another body"):
+        ride_vs_speed(LINKAGE, [20.0], body="rigid", reference="rigid")
+
+
 @pytest.mark.parametrize(("command", "args", "expect"), [
     ("linear", ["--road-class", "C"], "--road-class needs --speed > 0"),
     ("linear", ["--speed", "70", "--road-class", "K"], "--road-class must be one of A, B"),
@@ -331,6 +367,8 @@ def test_ride_vs_speed_and_its_command(tmp_path, capsys, modes):
     ("ride", ["--road-class", "Q"], "--road-class must be one of A"),
     ("ride", ["--body", "soft"], "--body must be one of rigid, flexible, full"),
     ("ride", ["--coherence", "-0.1"], "--coherence must be"),
+    ("ride", ["--reference", "flexible"], "--reference must be another body than --body"),
+    ("ride", ["--reference", "stiff"], "got 'stiff'"),
 ])
 def test_commands_refuse_bad_ride_options_before_any_work(tmp_path, capsys, monkeypatch,
                                                           command, args, expect):

@@ -89,10 +89,17 @@ def check_options(args) -> None:
         if args.speed <= 0.0:
             raise InputError("--road-class needs --speed > 0 km/h: at rest the road does "
                              "not move under the wheels")
+    if args.reference is not None and args.road_class is None:
+        raise InputError("--reference needs --road-class (and --speed): it compares the "
+                         "two bodies on a road")
+    check_reference(args)
+
+
+def check_reference(args) -> None:
+    """``--reference`` (if given) names another body than ``--body``."""
+    from flexpipe.errors import InputError
+
     if args.reference is not None:
-        if args.road_class is None:
-            raise InputError("--reference needs --road-class (and --speed): it compares "
-                             "the two bodies on a road")
         ref = args.reference.strip().lower()
         if ref not in BODIES or ref == args.body.strip().lower():
             raise InputError(f"--reference must be another body than --body "

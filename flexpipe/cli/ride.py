@@ -5,8 +5,10 @@ At each of ``--speeds`` the car is linearized in steady straight running
 (:func:`flexpipe.linear_modes`) and its response to a road of ``--road-class`` is found
 from the road's spectrum (:func:`flexpipe.vehicle.linear_ride.ride_vs_speed`): the RMS of
 the vertical tyre forces and body-point accelerations, the ISO 2631-1 weighted RMS, each
-point's comfort value ``a_v`` and each tyre's dynamic load coefficient.  Prints a table
-and writes ``ride_vs_speed.csv`` / ``.json`` / ``.png`` into ``--out`` (default
+point's comfort value ``a_v`` and each tyre's dynamic load coefficient; with
+``--reference BODY`` also the RMS of the outputs' difference from the car with that body
+on the same road (e.g. flexible minus rigid hub forces).  Prints a table and writes
+``ride_vs_speed.csv`` / ``.json`` / ``.png`` into ``--out`` (default
 ``out/ride/<car>-<body>-<class>``).  For one speed's spectra: ``flexpipe linear --speed
 KMH --road-class CLASS``.
 """
@@ -38,23 +40,29 @@ def add_arguments(p) -> None:
     p.add_argument("--speeds", default="30,50,70,90,110,130", metavar="KMH,...",
                    help="speeds, km/h, comma separated (default 30,50,70,90,110,130)")
     add_model_arguments(p)
+    p.add_argument("--reference", default=None, metavar="BODY",
+                   help="also linearize the car with this body (rigid, flexible or full) "
+                        "at each speed and give the RMS of the outputs' difference on the "
+                        "same road (e.g. flexible minus rigid hub forces against speed)")
     p.add_argument("-o", "--out", default=None,
                    help="output folder (default out/ride/<car>-<body>-<class>)")
 
 
 def check_options(args) -> None:
-    """Refuse a bad ``--speeds``, ``--road-class``, ``--body``, ``--f-max`` or
-    ``--coherence`` before the first linearization; sets ``args.kmh`` (the speeds).
+    """Refuse a bad ``--speeds``, ``--road-class``, ``--body``, ``--reference``,
+    ``--f-max`` or ``--coherence`` before the first linearization; sets ``args.kmh`` (the
+    speeds).
 
     Raises
     ------
     InputError
         Naming the option, the value given and what is valid.
     """
-    from flexpipe.cli.linear import check_model_options, check_road_class
+    from flexpipe.cli.linear import check_model_options, check_reference, check_road_class
     from flexpipe.errors import InputError
 
     check_model_options(args)
+    check_reference(args)
     check_road_class(args.road_class)
     try:
         kmh = [float(s) for s in args.speeds.split(",")]
@@ -84,7 +92,8 @@ def run(args) -> int:
     out = args.out or Path("out") / "ride" / f"{car.name}-{body}-{road_class}"
     out = check_output_folder(out, option="-o")
     rides = ride_vs_speed(car, [s / 3.6 for s in args.kmh], road_class, body=body,
-                          coherence=args.coherence, f_max=args.f_max)
+                          coherence=args.coherence, f_max=args.f_max,
+                          reference=args.reference)
     head, rows = speed_table(rides)
     pick = [0] + [j for j, h in enumerate(head) if "_a_v_" in h or "dynamic_load" in h]
     print(f"{car.name}, {body} body, ISO 8608 class {road_class}, coherence "
@@ -95,6 +104,14 @@ def run(args) -> int:
     for row in rows:
         print("  ".join(f"{row[j]:{len(n)}.{1 if k == 0 else 3}f}"
                         for k, (j, n) in enumerate(zip(pick, names, strict=True))))
+    if rides[0].difference_rms is not None:
+        hubs = [j for j, name in enumerate(rides[0].outputs) if name.startswith("hub_")]
+        print(f"hub forces, RMS of {body} minus {rides[0].info['reference_body']} on the "
+              "same road (N, body axes)")
+        names = ["speed_km/h"] + [rides[0].outputs[j][4:] for j in hubs]
+        print("  ".join(f"{n:>6s}" for n in names))
+        for r in rides:
+            print("  ".join(f"{v:6.1f}" for v in [r.speed * 3.6, *r.difference_rms[hubs]]))
     for note in NOTES:
         print(f"note: {note}")
     paths = write_ride_vs_speed(rides, out)

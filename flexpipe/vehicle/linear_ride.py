@@ -252,7 +252,8 @@ def _weighting(name: str) -> str | None:
 
 
 def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
-                  coherence="isotropic", f_max=None, progress: bool = True) -> list:
+                  coherence="isotropic", f_max=None, reference: str | None = None,
+                  progress: bool = True) -> list:
     """The ride on one ISO 8608 road at several speeds: the car linearized at each
     (:func:`flexpipe.linear_modes`) and answered by :func:`ride_response`.
 
@@ -266,6 +267,11 @@ def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
         As :func:`ride_response`.
     body, f_max
         As :func:`flexpipe.linear_modes`.
+    reference : str, optional
+        Another body (``"rigid"``, ``"flexible"`` or ``"full"``): the car is linearized
+        with it too at each speed and each response carries the RMS of the outputs'
+        difference on the same road (``difference_rms``, e.g. flexible minus rigid hub
+        forces against speed).
     progress : bool
         Show a progress bar (tqdm) over the speeds.
 
@@ -277,14 +283,16 @@ def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
     Raises
     ------
     InputError
-        No speeds, a repeated or non-positive speed, or anything
-        :func:`~flexpipe.vehicle.linear.linear_modes` or :func:`ride_response` refuses
-        (checked for the road before the first linearization).
+        No speeds, a repeated or non-positive speed, a reference that is not another
+        body, or anything :func:`~flexpipe.vehicle.linear.linear_modes` or
+        :func:`ride_response` refuses (checked for the road before the first
+        linearization).
     """
     from tqdm import tqdm
 
     from flexpipe.roads import checked_coherence
     from flexpipe.vehicle.linear import linear_modes
+    from flexpipe.vehicle.run_inputs import BODIES
     from flexpipe.vehicle.spec import Car, load_car
 
     try:
@@ -298,6 +306,11 @@ def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
                          f"one; got {speeds!r}", key="speeds")
     road_psd([1.0], road_class=road_class, speed=v[0])  # the class, before any work
     checked_coherence(coherence, what="ride")
+    if reference is not None:
+        ref = str(reference).strip().lower()
+        if ref not in BODIES or ref == str(body).strip().lower():
+            raise InputError(f"reference must be another body than {body!r} "
+                             f"({', '.join(BODIES)}), got {reference!r}", key="reference")
     if not isinstance(car, Car):
         from flexpipe._args import as_path
 
@@ -305,5 +318,8 @@ def ride_vs_speed(car, speeds, road_class: str = "C", *, body: str = "flexible",
     out = []
     for s in tqdm(v, desc="ride: speeds", unit="speed", disable=not progress):
         modes = linear_modes(car, body=body, speed=s, f_max=f_max)
-        out.append(ride_response(modes, road_class, coherence=coherence))
+        ref_modes = None if reference is None else linear_modes(car, body=ref, speed=s,
+                                                                f_max=f_max)
+        out.append(ride_response(modes, road_class, coherence=coherence,
+                                 reference=ref_modes))
     return out

@@ -137,8 +137,8 @@ def _plot(ride, path) -> None:
 
 def speed_table(rides) -> tuple[list, list]:
     """Header (units in the names) and rows of ``ride_vs_speed.csv``: per speed, every
-    output's RMS and weighted RMS, each body point's ``a_v`` and each tyre's dynamic load
-    coefficient."""
+    output's RMS and weighted RMS, each body point's ``a_v``, each tyre's dynamic load
+    coefficient and, against a reference body, every output's difference RMS."""
     first = rides[0]
     head = ["speed_km/h"]
     for name in first.outputs:
@@ -146,12 +146,15 @@ def speed_table(rides) -> tuple[list, list]:
     head += [f"{n}_weighted_rms_m/s^2" for n in first.outputs if n.startswith("acc_")]
     head += [f"{p}_a_v_m/s^2" for p in first.points]
     head += [f"tire_{c}_dynamic_load" for c in first.dynamic_load]
+    compared = first.difference_rms is not None
+    if compared:  # against the reference body on the same road
+        head += [f"{name}_difference_rms_{output_unit(name)}" for name in first.outputs]
     rows = []
     for r in rides:
         acc = [j for j, n in enumerate(r.outputs) if n.startswith("acc_")]
         rows.append([r.speed * 3.6, *r.rms, *r.weighted_rms[acc],
                      *(p["a_v_m/s^2"] for p in r.points.values()),
-                     *r.dynamic_load.values()])
+                     *r.dynamic_load.values(), *(r.difference_rms if compared else ())])
     return head, rows
 
 
@@ -167,7 +170,8 @@ def write_ride_vs_speed(rides, out) -> list[Path]:
     first = rides[0]
     doc = {"car": first.car, "body": first.body, "road_class": first.road_class,
            "track_width_m": first.track_width,
-           "coherence_model": first.info["coherence_model"], "notes": list(NOTES),
+           "coherence_model": first.info["coherence_model"],
+           "reference_body": first.info.get("reference_body"), "notes": list(NOTES),
            "speeds": [{"speed_km/h": r.speed * 3.6, "points": r.points,
                        "dynamic_load_coefficient": r.dynamic_load,
                        "road_rms_m": r.info["road_rms_m"],
@@ -184,9 +188,12 @@ def _plot_speeds(rides, path) -> None:
     from flexpipe.vehicle.linear_output import _figure, _save
 
     kmh = [r.speed * 3.6 for r in rides]
-    travel = [name for name in rides[0].outputs if name.startswith("travel_")]
-    fig, axes = _figure(3 if travel else 2, 1, figsize=(8, 9.5 if travel else 7),
-                        sharex=True)
+    first = rides[0]
+    travel = [name for name in first.outputs if name.startswith("travel_")]
+    hubs = ([name for name in first.outputs if name.startswith("hub_")]
+            if first.difference_rms is not None else [])
+    n = 2 + bool(travel) + bool(hubs)
+    fig, axes = _figure(n, 1, figsize=(8, 2.4 + 2.4 * n), sharex=True)
     for point in rides[0].points:
         axes[0].plot(kmh, [r.points[point]["a_v_m/s^2"] for r in rides], "o-", label=point)
     top = max(r.points[p]["a_v_m/s^2"] for r in rides for p in r.points) * 1.15
@@ -207,11 +214,20 @@ def _plot_speeds(rides, path) -> None:
         axes[2].plot(kmh, [r.rms[j] * 1e3 for r in rides], "o-", label=name)
     if travel:
         axes[2].set_ylabel("suspension travel RMS (mm)")
+    colour = {}
+    for name in hubs:  # a colour per corner, a line style per axis
+        corner, axis = name[4:-2], name[-1]
+        j = first.outputs.index(name)
+        axes[-1].plot(kmh, [r.difference_rms[j] for r in rides],
+                      marker="o", ls={"x": "-", "y": "--", "z": ":"}[axis],
+                      color=colour.setdefault(corner, f"C{len(colour)}"), label=name)
+    if hubs:
+        axes[-1].set_ylabel(f"hub force difference RMS (N)\n{first.body} - "
+                            f"{first.info['reference_body']}")
     axes[-1].set_xlabel("speed (km/h)")
-    first = rides[0]
     axes[0].set_title(f"{first.car}, {first.body} body: ISO 8608 class {first.road_class} "
                       "(linear model)")
     for ax in axes:
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, ncol=4 if hubs and ax is axes[-1] else 1)
     _save(fig, path)
