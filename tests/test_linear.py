@@ -263,11 +263,14 @@ def test_road_response_equals_the_run_on_a_sine_road(tmp_path, f_hz, tracks):
     for name in names:
         c, *_ = np.linalg.lstsq(M, run.channels[name][keep], rcond=None)
         ratio = np.hypot(c[0], c[1]) / (abs(H[m.outputs.index(name)]) * a)
-        # measured 2026-12-03: 1.003-1.004 (6 Hz), 0.997-1.002 (15 Hz), 0.999-1.008
+        # measured 2026-12-03 (17:00 UTC, the drive torque following the wheels and the
+        # run's slope in both): 1.003-1.004 (6 Hz), 0.997-1.002 (15 Hz), 1.007-1.008
         # (opposite tracks, 6 Hz); suspension travel 0.9998-1.0006 (6 Hz), 0.994-0.997
         # (15 Hz), 1.005 (opposite); vertical hub forces 0.998-1.008.  The horizontal
-        # hub forces 0.9995-1.025: at 15 Hz the fore-aft ones 1.021-1.025 as the floor's
-        # fore-aft acceleration (docs/linear.md), in roll the lateral one 1.023; within
-        # 0.4 % the same at h = 0.25 ms, so not the run's step
-        tol = 0.03 if name.startswith("hub_") and name[-1] in "xy" else 0.01
+        # hub forces 1.001-1.025: at 15 Hz the fore-aft ones 1.020-1.025 (the floor's
+        # fore-aft acceleration 1.015; docs/linear.md), in roll the lateral one 1.013;
+        # within 0.4 % the same at h = 0.25 ms, so not the run's step.  The lateral one
+        # in roll was 1.023 with the drive torque fixed in space in the linear model
+        tol = {"x": 0.03, "y": 0.02}.get(name[-1], 0.01) if name.startswith("hub_") \
+            else 0.01
         assert abs(ratio - 1.0) < tol, f"{f_hz} Hz {name}: run / linear = {ratio:.4f}"

@@ -23,6 +23,7 @@ from scipy.linalg import solve_continuous_lyapunov
 from flexpipe.errors import InputError
 from flexpipe.roads import ISO8608_GD0, ISO8608_N0
 from flexpipe.sweeps.iso2631 import comfort_reaction
+from flexpipe.vehicle.dynamics import ROAD_NORMAL_HALF_BASE_M
 from flexpipe.vehicle.linear_ride import output_psd, ride_response, road_psd
 
 # quarter car: sprung / unsprung mass (kg), spring, damper, tyre (N/m, N s/m)
@@ -136,14 +137,15 @@ def _time_run(m, road, *, dt=1e-3, histories=False):
     steps = round(period / m.speed / dt)  # a whole number of samples per period
     dt = period / m.speed / steps
     t = np.arange(2 * steps) * dt
-    n, dx = road.x.size - 1, road.x[1] - road.x[0]
-    k = np.fft.rfftfreq(n, dx)
-
-    def slope(h):  # exact derivative of the periodic profile
-        return np.fft.irfft(np.fft.rfft(h[:-1]) * 2j * np.pi * k, n)
+    n = road.x.size - 1
 
     def at(h, s):
         return np.interp(np.mod(s, period), road.x - road.x[0], np.append(h[:n], h[0]))
+
+    e = ROAD_NORMAL_HALF_BASE_M
+
+    def slope(h, s):  # as a run's tyre meets it: the central difference over +-e
+        return (at(h, s + e) - at(h, s - e)) / (2.0 * e)
 
     x = np.asarray(m.info["wheel_x_m"], dtype=float)
     y = np.asarray(m.info["wheel_y_m"], dtype=float)
@@ -153,7 +155,7 @@ def _time_run(m, road, *, dt=1e-3, histories=False):
         s = m.speed * t - (x.max() - x[i])  # the front wheels lead
         h = road.left if y[i] > 0 else road.right
         U[:, i] = at(h, s)
-        U[:, n_w + i] = at(slope(h), s)
+        U[:, n_w + i] = slope(h, s)
         axle = slice(i - i % 2, i - i % 2 + 2)
         U[:, 2 * n_w + i] = (at(road.left, s) - at(road.right, s)) / abs(np.diff(y[axle])[0])
     _, out, _ = lsim((m.A, m.B, m.C, m.D), U, t)

@@ -423,7 +423,13 @@ class CarSystem:
             so(elem, "dampingMatrix", D[i])
             so(elem, "stiffnessMatrix", K[i])
             so(elem, "forceVector", f[i])
-        T = loads.drive_torque
+        self.set_drive(loads.drive_torque, st)
+
+    def set_drive(self, T, st: CarState) -> None:
+        """The drive torques ``T`` (N m per wheel, or None) about the wheels' spin axes at
+        the state ``st``, and their reaction on the body (its frame or its powertrain
+        mounts): follower loads, set again for every step (and, in a linearization, for
+        every perturbed configuration)."""
         driven = () if T is None else tuple(np.flatnonzero(T))
         if driven or self._drive_on:  # the driven wheels, and those that were
             setp = self.mbs.SetLoadParameter

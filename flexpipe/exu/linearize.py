@@ -82,8 +82,8 @@ class _Access:
         return np.asarray(self.mbs.ComputeLinearizedSystem(self.ss)[0], dtype=float)
 
 
-def linearize(mbs, *, external=None, eps_q: float = EPS_Q, eps_v: float = EPS_V,
-              rank_tol: float = 1e-10) -> Linearized:
+def linearize(mbs, *, external=None, follow=None, eps_q: float = EPS_Q,
+              eps_v: float = EPS_V, rank_tol: float = 1e-10) -> Linearized:
     """Linear equations of ``mbs`` (assembled, its current configuration the state).
 
     Parameters
@@ -93,6 +93,11 @@ def linearize(mbs, *, external=None, eps_q: float = EPS_Q, eps_v: float = EPS_V,
         ``external() -> (n,)``: generalized forces the caller applies itself at the current
         configuration (they enter the multipliers' fit only; the caller adds their
         derivatives).
+    follow : callable, optional
+        ``follow() -> None``: sets the loads that follow the configuration (e.g. a drive
+        torque about a wheel's spin axis) from Exudyn's current coordinates, as a run's
+        step sets them; called at every perturbed configuration, so that their
+        derivatives enter ``K`` (Exudyn's own loads are fixed vectors).
     eps_q, eps_v : float
         Central-difference steps.
     rank_tol : float
@@ -121,6 +126,8 @@ def linearize(mbs, *, external=None, eps_q: float = EPS_Q, eps_v: float = EPS_V,
             q = q0.copy()
             q[j] += sgn * eps_q
             acc.set(q, v0)
+            if follow is not None:
+                follow()
             cols.append(acc.rhs() - acc.jacobian_ae().T @ lam)
         K[:, j] = -(cols[0] - cols[1]) / (2.0 * eps_q)
         rates = []
@@ -131,6 +138,8 @@ def linearize(mbs, *, external=None, eps_q: float = EPS_Q, eps_v: float = EPS_V,
             rates.append(acc.rhs())
         D[:, j] = -(rates[0] - rates[1]) / (2.0 * eps_v)
     acc.set(q0, v0)
+    if follow is not None:
+        follow()
     _, s, Vt = np.linalg.svd(C0)
     rank = int(np.count_nonzero(s > rank_tol * s[0])) if s.size else 0
     N = Vt[rank:].T.copy()

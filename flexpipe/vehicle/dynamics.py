@@ -40,6 +40,9 @@ from flexpipe.vehicle.sensor_rows import BUSHING_AXES, Recorder, record_mounts
 from flexpipe.vehicle.spec import CORNERS
 
 #: offsets (in units of the finite-difference step) of the road-normal stencil
+#: half the base of the road normal's central differences (m): the tyre meets the slope
+#: of the profile averaged over +-5 cm (a crude enveloping by the contact patch)
+ROAD_NORMAL_HALF_BASE_M = 0.05
 _DX = np.array([0.0, 1.0, -1.0, 0.0, 0.0])
 _DY = np.array([0.0, 0.0, 0.0, 1.0, -1.0])
 
@@ -212,7 +215,7 @@ class CarController:
     # ------------------------------------------------------------------ pieces
     def road_contact(self, P: np.ndarray):
         """Road height (n,) and upward unit normal (n, 3) under points P (n, 3)."""
-        e = 0.05
+        e = ROAD_NORMAL_HALF_BASE_M
         x = (P[:, 0] + _DX[:, None] * e).ravel()  # the points and +-e in x, then in y
         y = (P[:, 1] + _DY[:, None] * e).ravel()
         z = np.asarray(self.road.height_xy(x, y), dtype=float).reshape(5, -1)

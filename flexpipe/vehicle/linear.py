@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from flexpipe.errors import InputError
+from flexpipe.vehicle.dynamics import ROAD_NORMAL_HALF_BASE_M
 
 #: an eigenvalue below this (rad/s) is a free motion (the car rolling away, at rest the
 #: relaxed slips' anchors): counted in ``info["free_modes"]``, not listed
@@ -135,10 +136,12 @@ class LinearModes:
         negative on the right (``"opposite"``: a roll and warp input; the road's
         cross-section straight between the wheels, so each axle also meets the lateral
         slope ``2 / track`` times the height).  At a speed each wheel meets the profile
-        at its own place (the rear ``wheelbase / V`` later) with its longitudinal slope
-        ``j omega / V`` times the height; at rest all four wheels move in phase (a
-        four-post rig's heave, or its roll with ``"opposite"``).  ``H``: the
-        :meth:`frequency_response` at ``f_hz`` if already at hand."""
+        at its own place (the rear ``wheelbase / V`` later) with its longitudinal slope as
+        a run's tyre meets it, the central difference over ``+-e`` (``e`` =
+        :data:`~flexpipe.vehicle.dynamics.ROAD_NORMAL_HALF_BASE_M`): ``j sin(k e) / e``
+        times the height at the wavenumber ``k = omega / V``; at rest all four wheels
+        move in phase (a four-post rig's heave, or its roll with ``"opposite"``).
+        ``H``: the :meth:`frequency_response` at ``f_hz`` if already at hand."""
         from flexpipe._args import checked_choice
 
         checked_choice(tracks, "tracks", ("same", "opposite"))
@@ -149,7 +152,8 @@ class LinearModes:
         if self.speed > 0.0:
             x = np.asarray(self.info["wheel_x_m"], dtype=float)
             gain = np.exp(-1j * w * ((x.max() - x) / self.speed)[None, :])
-            slope_x = 1j * w / self.speed * gain
+            e = ROAD_NORMAL_HALF_BASE_M
+            slope_x = 1j * np.sin(w / self.speed * e) / e * gain
         else:
             gain, slope_x = np.ones((len(f), n_w)), np.zeros((len(f), n_w))
         slope_y = np.zeros_like(gain)
@@ -255,7 +259,10 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     # derivatives come from tires.derivatives; at rest no brake holds the wheels
     Q, _, Fz, F_tire = tires.generalized()
     hold_tires(system, Q, release_spin=speed == 0.0)
-    lin = linearize(system.mbs)
+    # the drive torques follow the wheels' spin axes (as a run sets them every step)
+    T = loads.drive_torque
+    lin = linearize(system.mbs, follow=None if T is None or not np.any(T) else
+                    (lambda: system.set_drive(T, system.state(0.0))))
     Kt, Dt, B, Eq, Ev, Az, Ur, Fz_d = tires.derivatives(lin.q.size)
     K, D, N = lin.K + Kt, lin.D + Dt, lin.N
     Mr, Kr, Dr = N.T @ lin.M @ N, N.T @ K @ N, N.T @ D @ N
