@@ -37,9 +37,11 @@ def test_compiled_element_equals_the_numpy_formulation():
 
 def test_generalized_force_is_the_virtual_power_of_force_and_moment():
     """At the linearization point (q, q_t) the element applies f - D q_t - K q; for any
-    virtual rate dq its power must be F . v_P(dq) + M . w(dq): v_P = dx + (w_c + s dth)
-    x r with w_c = G de (the wheel turning with its carrier and spinning about s), and
-    the moment's part about s on the spin, the rest on the carrier."""
+    virtual rate dq its power must be F . v_P(dq) + M . w(dq): v_P = dx + w x r with the
+    wheel's angular velocity w = P w_c + s dth, w_c = G de, P = I - s s^T (the wheel
+    turns with its carrier except about s, where the spin coordinate is its absolute
+    rotation: a bearing passes no moment about the axis), so the moments' parts about s
+    act on the spin, the rest on the carrier."""
     rng = np.random.default_rng(1)
     c = _case(rng)
     D, K, f = element_numpy(*c.values())
@@ -50,8 +52,8 @@ def test_generalized_force_is_the_virtual_power_of_force_and_moment():
         for _ in range(5):
             dq = rng.normal(size=8)
             w_c = _g(c["ep"][i]) @ dq[3:7]
-            vP = dq[:3] + np.cross(w_c + s * dq[7], r)
             w_m = w_c - s * (s @ w_c) + s * dq[7]
+            vP = dq[:3] + np.cross(w_m, r)
             np.testing.assert_allclose(gen @ dq, F @ vP + M @ w_m, rtol=1e-10)
 
 
@@ -70,3 +72,22 @@ def test_linearized_force_follows_its_derivatives():
         # the z coordinate moves the contact point by dz e_z and turns nothing: its row
         # of the change is the vertical force's slope times dz
         np.testing.assert_allclose((g2 - g1)[2], c["AY"][i, 2] * 1e-3, rtol=1e-9)
+
+
+def test_a_carrier_turning_about_the_spin_axis_leaves_the_wheel_alone():
+    """A wheel turns on a bearing: its carrier rotating about the spin axis (a knuckle
+    pitching as the suspension moves) neither changes the wheel's spin, so neither the
+    tyre's slip nor its force (no damping row for that rate), nor takes a moment about
+    the axis (the tyre's moment about it acts on the spin coordinate alone).  The rate
+    ``de`` with ``G de = s`` is that rotation (``G G^T = 4 I`` for unit Euler
+    parameters)."""
+    c = _case(np.random.default_rng(3))
+    D, K, f = element_numpy(*c.values())
+    for i in range(4):
+        G, s = _g(c["ep"][i]), c["s"][i]
+        dq = np.zeros(8)
+        dq[3:7] = G.T @ s / 4.0
+        np.testing.assert_allclose(G @ dq[3:7], s, atol=1e-12)
+        np.testing.assert_allclose(D[i] @ dq, 0.0, atol=1e-9 * np.abs(D[i]).max())
+        gen = f[i] - D[i] @ c["qt"][i] - K[i, :, :7] @ c["q"][i]
+        assert abs(gen @ dq) < 1e-9 * np.abs(gen).max()

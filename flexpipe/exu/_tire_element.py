@@ -10,9 +10,12 @@ coordinate.  With ``Y = (F, M)`` (force at the contact point, the tyre's own mom
 and ``JY`` the map from coordinate rates to (contact-point velocity of the wheel, the
 rotation the moment works on), the element is ``D = -JY^T (DY Jc + dY Jw)``,
 ``K[:, z] = -JY^T AY``, ``K[:, e] = -JY^T SY G`` and ``f = JY^T (Y0 - DY v_P,n - ...)``.
-The moment's part about the spin axis goes to the spin coordinate, the rest to the
-carrier.  ``tests/test_tire_element.py`` checks the compiled kernel against the NumPy
-formulation (:func:`element_numpy`).
+The spin coordinate is the wheel's absolute rotation about its axis: the wheel turns on
+a bearing, so the carrier's rotation about that axis neither turns the wheel nor takes a
+moment about it.  The moments' parts about the spin axis (of the contact force and the
+tyre's own) go to the spin coordinate, the rest to the carrier.
+``tests/test_tire_element.py`` checks the compiled kernel against the NumPy formulation
+(:func:`element_numpy`).
 """
 
 from __future__ import annotations
@@ -39,7 +42,7 @@ def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
         P = np.eye(3) - np.outer(s[i], s[i])
         JY = np.zeros((6, 8))
         JY[:3, :3] = np.eye(3)
-        JY[:3, 3:7] = -rx @ G
+        JY[:3, 3:7] = -rx @ P @ G
         JY[:3, 7] = -rx @ s[i]
         JY[3:, 3:7] = P @ G
         JY[3:, 7] = s[i]
@@ -47,8 +50,7 @@ def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
         Jc[:, :3] = np.eye(3)
         Jc[:, 3:7] = -rx @ P @ G
         Jw = np.zeros(8)
-        Jw[3:7] = s[i] @ G
-        Jw[7] = 1.0
+        Jw[7] = 1.0  # the spin coordinate is the wheel's absolute spin
         vP, om = Jc @ qt[i], Jw @ qt[i]
         SG = SY[i] @ G
         D[i] = -JY.T @ (DY[i] @ Jc + np.outer(dY[i], Jw))
@@ -84,23 +86,21 @@ def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
         for a in range(3):
             JY[a, a] = 1.0
             Jc[a, a] = 1.0
-        # P G and s^T G
+        # P G (the carrier's rotation without its part about the spin axis)
         for c in range(4):
             sg = s0 * G[0, c] + s1 * G[1, c] + s2 * G[2, c]
-            Jw[3 + c] = sg
             for a in range(3):
                 PG[a, c] = G[a, c] - sv[a] * sg
-        Jw[0], Jw[1], Jw[2], Jw[7] = 0.0, 0.0, 0.0, 1.0
+        Jw[:] = 0.0
+        Jw[7] = 1.0  # the spin coordinate is the wheel's absolute spin
         for c in range(4):
-            # -r x (G col), -r x (PG col): rows of -rx @ X
-            g0, g1, g2 = G[0, c], G[1, c], G[2, c]
-            JY[0, 3 + c] = -(r1 * g2 - r2 * g1)
-            JY[1, 3 + c] = -(r2 * g0 - r0 * g2)
-            JY[2, 3 + c] = -(r0 * g1 - r1 * g0)
+            # -r x (PG col): rows of -rx @ P G
             p0, p1, p2 = PG[0, c], PG[1, c], PG[2, c]
             Jc[0, 3 + c] = -(r1 * p2 - r2 * p1)
             Jc[1, 3 + c] = -(r2 * p0 - r0 * p2)
             Jc[2, 3 + c] = -(r0 * p1 - r1 * p0)
+            JY[0, 3 + c], JY[1, 3 + c], JY[2, 3 + c] = Jc[0, 3 + c], Jc[1, 3 + c], \
+                Jc[2, 3 + c]
             JY[3, 3 + c], JY[4, 3 + c], JY[5, 3 + c] = p0, p1, p2
         JY[0, 7] = -(r1 * s2 - r2 * s1)
         JY[1, 7] = -(r2 * s0 - r0 * s2)

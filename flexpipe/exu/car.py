@@ -96,7 +96,8 @@ class CarLoads:
     suspension_f0: np.ndarray = None  # (4,) its force at zero travel and rate (linearized)
     rack_travel: float | None = None  # linkage cars: steering rack travel (m, toward +y)
     #: (4,) the drive part of spin_torque whose reaction goes to the body, not the carrier
-    #: (driveshafts; None or zeros: every spin torque reacted on the carrier)
+    #: (driveshafts; None or zeros: every spin torque reacted on the carrier: brakes,
+    #: in-wheel motors)
     drive_torque: np.ndarray | None = None
 
 
@@ -399,15 +400,15 @@ class CarSystem:
             forceVector=np.zeros(8), visualization=eii.VObjectGenericODE2(show=False))))
         self.load_spin.append(mbs.AddLoad(eii.LoadCoordinate(markerNumber=m_spin, load=0.0)))
         self.spin_node.append(n_s)
-        # a drive torque through a driveshaft: the spin coordinate's load puts its reaction
-        # on the carrier; these loads move it to the body (+T s on the carrier, -T s on
-        # the body frame), set each step along the spin axes
+        # the spin coordinate is the wheel's absolute rotation about its axis (a bearing
+        # passes no moment about it): the reaction of a spin torque is a load of its own,
+        # on the carrier (brake caliper, in-wheel motor) or on the body (driveshaft), set
+        # each step along the spin axes (set_spin_reactions)
         if i == 0:
             self.load_drive = []
             self.load_drive_body = mbs.AddLoad(eii.LoadTorqueVector(  # or the powertrain
                 markerNumber=getattr(self, "drive_marker", self.frame_marker),
                 loadVector=[0.0, 0.0, 0.0]))
-            self._drive_on = ()  # wheels whose drive reaction loads are set
             #: (CoupleSplit, loads) when powertrain mounts take the couple (add_reaction_mounts)
             self.reaction = None
         m_c = mbs.AddMarker(eii.MarkerNodeRigid(nodeNumber=n_w))
@@ -423,27 +424,28 @@ class CarSystem:
             so(elem, "dampingMatrix", D[i])
             so(elem, "stiffnessMatrix", K[i])
             so(elem, "forceVector", f[i])
-        self.set_drive(loads.drive_torque, st)
+        self.set_spin_reactions(loads.spin_torque, loads.drive_torque, st)
 
-    def set_drive(self, T, st: CarState) -> None:
-        """The drive torques ``T`` (N m per wheel, or None) about the wheels' spin axes at
-        the state ``st``, and their reaction on the body (its frame or its powertrain
-        mounts): follower loads, set again for every step (and, in a linearization, for
-        every perturbed configuration)."""
-        driven = () if T is None else tuple(np.flatnonzero(T))
-        if driven or self._drive_on:  # the driven wheels, and those that were
-            setp = self.mbs.SetLoadParameter
-            tq = (np.zeros(4) if T is None else np.asarray(T))[:, None] * st.wheel_R[:, :, 1]
-            for i in sorted(set(driven) | set(self._drive_on)):
-                setp(self.load_drive[i], "loadVector", tq[i].tolist())
-            tau = -tq.sum(axis=0)  # the couple on the body
-            if self.reaction is None:  # on its frame
-                setp(self.load_drive_body, "loadVector", tau.tolist())
-            else:  # at its powertrain mounts (a flexible body)
-                split, mount_loads = self.reaction
-                for load, f in zip(mount_loads, split.rotated(st.body_R, tau), strict=True):
-                    setp(load, "loadVector", f.tolist())
-            self._drive_on = driven
+    def set_spin_reactions(self, spin_torque, drive_torque, st: CarState) -> None:
+        """The reactions of the spin torques (N m per wheel, on the wheels about their
+        spin axes) at the state ``st``: the ``drive_torque`` part (or None) on the body
+        (its frame or its powertrain mounts: driveshafts), the rest on the carriers (brake
+        calipers, in-wheel motors).  Follower loads along the spin axes, set again for
+        every step (and, in a linearization, for every perturbed configuration)."""
+        setp = self.mbs.SetLoadParameter
+        s = st.wheel_R[:, :, 1]
+        T = np.asarray(spin_torque, dtype=float)
+        Tb = np.zeros(4) if drive_torque is None else np.asarray(drive_torque, dtype=float)
+        on_carrier = -(T - Tb)[:, None] * s
+        for i in range(4):
+            setp(self.load_drive[i], "loadVector", on_carrier[i].tolist())
+        tau = -(Tb[:, None] * s).sum(axis=0)  # the couple on the body
+        if self.reaction is None:  # on its frame
+            setp(self.load_drive_body, "loadVector", tau.tolist())
+        else:  # at its powertrain mounts (a flexible body)
+            split, mount_loads = self.reaction
+            for load, f in zip(mount_loads, split.rotated(st.body_R, tau), strict=True):
+                setp(load, "loadVector", f.tolist())
 
     def tire_matrices(self, ts, st: CarState):
         """Linear ODE2 elements (damping D, stiffness K, force f on each carrier's 7 node

@@ -294,7 +294,7 @@ class CarController:
         # tyres: correct the relaxation over the step just taken, then linearize the
         # force for the coming one (solved implicitly, flexpipe.vehicle.tire_coupling)
         s_axis = st.wheel_R[:, :, 1]
-        omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
+        omega = st.spin_rate  # the wheels' absolute spin (flexpipe/exu/_tire_element.py)
         # road under the wheels now and where they will be at the end of the step (the
         # force is balanced there: the normal's tilt carries the road slope into Fx, Fy)
         ahead = st.wheel_p + self.h * st.wheel_v
@@ -315,11 +315,12 @@ class CarController:
             return self._fail(st.t, "tyre forces became non-finite")
         share = self.drive_share if self.torque >= 0 else self.brake_share
         T = self.torque * share
-        # brakes oppose the rolling direction
+        # brakes oppose the wheel's rotation against its carrier (disc against caliper)
+        rel = omega - np.einsum("ij,ij->i", st.wheel_w, s_axis)
         if self.torque < 0:
-            T = -np.abs(T) * np.sign(np.where(omega == 0, 1.0, omega))
+            T = -np.abs(T) * np.sign(np.where(rel == 0, 1.0, rel))
         if self.parked:  # parking brake: viscous, at half the explicit limit
-            T = -0.5 * self.spin_inertia / self.h * st.spin_rate
+            T = -0.5 * self.spin_inertia / self.h * rel
         # the tyre's own moments are in the implicit element: only drive and brake here
         spin_torque = np.broadcast_to(np.asarray(T, dtype=float), (4,)).copy()
         drive = spin_torque if self.torque > 0.0 and self.body_reaction else None

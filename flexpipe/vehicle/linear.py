@@ -259,10 +259,9 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
     # derivatives come from tires.derivatives; at rest no brake holds the wheels
     Q, _, Fz, F_tire = tires.generalized()
     hold_tires(system, Q, release_spin=speed == 0.0)
-    # the drive torques follow the wheels' spin axes (as a run sets them every step)
-    T = loads.drive_torque
-    lin = linearize(system.mbs, follow=None if T is None or not np.any(T) else
-                    (lambda: system.set_drive(T, system.state(0.0))))
+    # the spin torques' reactions follow the wheels' spin axes (as a run sets them)
+    lin = linearize(system.mbs, follow=lambda: system.set_spin_reactions(
+        loads.spin_torque, loads.drive_torque, system.state(0.0)))
     Kt, Dt, B, Eq, Ev, Az, Ur, Fz_d = tires.derivatives(lin.q.size)
     K, D, N = lin.K + Kt, lin.D + Dt, lin.N
     Mr, Kr, Dr = N.T @ lin.M @ N, N.T @ K @ N, N.T @ D @ N

@@ -53,7 +53,7 @@ class TireLinearization:
         sy, ctrl = self.system, self.ctrl
         st = sy.state(0.0)
         s_axis = st.wheel_R[:, :, 1]
-        omega = st.spin_rate + np.einsum("ij,ij->i", st.wheel_w, s_axis)
+        omega = st.spin_rate  # the wheels' absolute spin, as a run's
         h_road, n_road = ctrl.road_contact(st.wheel_p)
         if road is not None:  # the road raised and tilted under each wheel
             up = np.array([0.0, 0.0, 1.0])
