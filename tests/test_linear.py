@@ -263,12 +263,13 @@ def test_road_response_equals_the_run_on_a_sine_road(tmp_path, f_hz, tracks):
     for name in names:
         c, *_ = np.linalg.lstsq(M, run.channels[name][keep], rcond=None)
         ratio = np.hypot(c[0], c[1]) / (abs(H[m.outputs.index(name)]) * a)
-        # measured 2026-12-03 (17:00 UTC, the drive torque following the wheels and the
-        # run's slope in both): 1.003-1.004 (6 Hz), 0.997-1.002 (15 Hz), 1.007-1.008
-        # (opposite tracks, 6 Hz); suspension travel 0.9998-1.0006 (6 Hz), 0.994-0.997
-        # (15 Hz), 1.005 (opposite); vertical hub forces 0.998-1.008.  The horizontal
-        # hub forces 1.001-1.025: at 15 Hz the fore-aft ones 1.020-1.025 (the floor's
-        # fore-aft acceleration 1.015; docs/linear.md), in roll the lateral one 1.013;
+        # measured 2026-12-03 (18:00 UTC, the wheels' spin absolute, the spin torques'
+        # reactions following the wheels and the run's slope in both): 1.003-1.004 (6 Hz),
+        # 0.998-1.002 (15 Hz), 1.007-1.008 (opposite tracks, 6 Hz); suspension travel
+        # 0.9999-1.0006 (6 Hz), 0.995-0.997 (15 Hz), 1.005 (opposite); vertical hub
+        # forces 0.998-1.008.  The horizontal hub forces 0.995-1.025: at 15 Hz the
+        # fore-aft ones 1.021-1.025 (the floor's fore-aft acceleration 1.014;
+        # docs/linear.md), in roll the lateral one 1.012;
         # within 0.4 % the same at h = 0.25 ms, so not the run's step.  The lateral one
         # in roll was 1.023 with the drive torque fixed in space in the linear model
         tol = {"x": 0.03, "y": 0.02}.get(name[-1], 0.01) if name.startswith("hub_") \
