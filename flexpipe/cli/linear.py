@@ -50,12 +50,17 @@ def add_arguments(p) -> None:
                         "from the linear model: RMS, ISO 2631-1 weighted RMS and spectra "
                         "(ride.csv/.json, ride_psd.csv/.png)")
     add_model_arguments(p, what="with --road-class: ")
-    p.add_argument("--reference", default=None, metavar="BODY",
-                   help="with --road-class: also linearize the car with this body (rigid, "
-                        "flexible or full) and give the RMS of the outputs' difference on "
-                        "the same road (e.g. flexible minus rigid hub forces)")
+    add_reference_argument(p, what="with --road-class: ")
     p.add_argument("-o", "--out", default=None,
                    help="output folder (default out/linear/<car>-<body>-<speed>kmh)")
+
+
+def add_reference_argument(p, *, what: str = "", where: str = "") -> None:
+    """``--reference`` of ``flexpipe linear`` and ``ride``: a second body to compare."""
+    p.add_argument("--reference", default=None, metavar="BODY",
+                   help=f"{what}also linearize the car with this body (rigid, flexible or "
+                        f"full){where} and give the RMS of the outputs' difference on the "
+                        "same road (e.g. flexible minus rigid hub forces)")
 
 
 def add_model_arguments(p, *, what: str = "") -> None:

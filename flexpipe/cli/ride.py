@@ -30,7 +30,7 @@ linearization: on the sample 4 s (rigid body) and 9-25 s (flexible) per speed on
 
 def add_arguments(p) -> None:
     """Options of ``flexpipe ride``."""
-    from flexpipe.cli.linear import add_model_arguments
+    from flexpipe.cli.linear import add_model_arguments, add_reference_argument
 
     p.formatter_class = argparse.RawDescriptionHelpFormatter
     p.epilog = _EPILOG
@@ -40,10 +40,7 @@ def add_arguments(p) -> None:
     p.add_argument("--speeds", default="30,50,70,90,110,130", metavar="KMH,...",
                    help="speeds, km/h, comma separated (default 30,50,70,90,110,130)")
     add_model_arguments(p)
-    p.add_argument("--reference", default=None, metavar="BODY",
-                   help="also linearize the car with this body (rigid, flexible or full) "
-                        "at each speed and give the RMS of the outputs' difference on the "
-                        "same road (e.g. flexible minus rigid hub forces against speed)")
+    add_reference_argument(p, where=" at each speed")
     p.add_argument("-o", "--out", default=None,
                    help="output folder (default out/ride/<car>-<body>-<class>)")
 

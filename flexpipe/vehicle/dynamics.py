@@ -39,8 +39,7 @@ from flexpipe.vehicle.reaction_mounts import CoupleSplit
 from flexpipe.vehicle.sensor_rows import BUSHING_AXES, Recorder, record_mounts
 from flexpipe.vehicle.spec import CORNERS
 
-#: half the base of the road normal's central differences (m): the tyre meets the slope
-#: of the profile averaged over +-5 cm (a crude enveloping by the contact patch)
+#: half the base of the road normal's central differences (m): the slope a tyre meets
 ROAD_NORMAL_HALF_BASE_M = 0.05
 #: offsets (in units of the finite-difference step) of the road-normal stencil
 _DX = np.array([0.0, 1.0, -1.0, 0.0, 0.0])
