@@ -286,6 +286,15 @@ def test_cli_writes_the_ride_files(tmp_path, capsys, modes, monkeypatch):
     assert float(mat["speed_m_per_s"][0, 0]) == m.speed
 
 
+def _speed_table(out) -> dict:
+    """``ride_vs_speed.csv`` in ``out`` as {column: values}."""
+    import csv
+
+    with open(out / "ride_vs_speed.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
 def test_ride_vs_speed_and_its_command(tmp_path, capsys, modes):
     """``flexpipe ride``: at each speed the car linearized there and answered by
     ride_response (the 70 km/h entry equals the fixture's model's), written as a table
@@ -299,11 +308,7 @@ def test_ride_vs_speed_and_its_command(tmp_path, capsys, modes):
                      "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "driver_floor_a_v" in text and "tire_fl_dynamic_load" in text
-    import csv
-
-    with open(out / "ride_vs_speed.csv", newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    table = {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    table = _speed_table(out)
     np.testing.assert_allclose(table["speed_km/h"], [70.0, 35.0], rtol=1e-6)
     r70 = ride_response(modes["rigid"], "C")
     np.testing.assert_allclose(table["driver_floor_a_v_m/s^2"][0],
@@ -324,7 +329,6 @@ def test_ride_vs_speed_against_a_reference_body(tmp_path, capsys, modes, monkeyp
     difference (as ride_response gives it), which obeys the triangle inequality of RMS
     values against the two bodies' own RMS, and the hub forces' difference table is
     printed."""
-    import csv
     import json
 
     from flexpipe import cli
@@ -339,12 +343,11 @@ def test_ride_vs_speed_against_a_reference_body(tmp_path, capsys, modes, monkeyp
                      "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "hub forces, RMS of flexible minus rigid" in text and "fl_x" in text
-    with open(out / "ride_vs_speed.csv", newline="") as fh:
-        row = next(csv.DictReader(fh))
+    table = _speed_table(out)
     flexible, rigid = (ride_response(modes[b], "C") for b in ("flexible", "rigid"))
     diff = ride_response(modes["flexible"], "C", reference=modes["rigid"]).difference_rms
     for j, name in enumerate(flexible.outputs):
-        d = float(row[f"{name}_difference_rms_{output_unit(name)}"])
+        d = table[f"{name}_difference_rms_{output_unit(name)}"][0]
         np.testing.assert_allclose(d, diff[j], rtol=1e-6)
         assert abs(flexible.rms[j] - rigid.rms[j]) * (1 - 1e-6) <= d \
             <= (flexible.rms[j] + rigid.rms[j]) * (1 + 1e-6), name

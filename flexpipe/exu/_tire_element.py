@@ -71,7 +71,6 @@ def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
     G = np.zeros((3, 4))
     JY = np.zeros((6, 8))
     Jc = np.zeros((3, 8))
-    Jw = np.zeros(8)
     PG = np.zeros((3, 4))
     for i in range(n):
         e0, e1, e2, e3 = ep[i, 0], ep[i, 1], ep[i, 2], ep[i, 3]
@@ -91,8 +90,6 @@ def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
             sg = s0 * G[0, c] + s1 * G[1, c] + s2 * G[2, c]
             for a in range(3):
                 PG[a, c] = G[a, c] - sv[a] * sg
-        Jw[:] = 0.0
-        Jw[7] = 1.0  # the spin coordinate is the wheel's absolute spin
         for c in range(4):
             # -r x (PG col): rows of -rx @ P G
             p0, p1, p2 = PG[0, c], PG[1, c], PG[2, c]
@@ -107,12 +104,11 @@ def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
         JY[2, 7] = -(r0 * s1 - r1 * s0)
         JY[3, 7], JY[4, 7], JY[5, 7] = s0, s1, s2
         vP = np.zeros(3)
-        om = 0.0
+        om = qt[i, 7]  # Jw = e_7: the spin coordinate is the wheel's absolute spin
         for c in range(8):
-            om += Jw[c] * qt[i, c]
             for a in range(3):
                 vP[a] += Jc[a, c] * qt[i, c]
-        # B = DY Jc + dY Jw^T (6, 8); SG = SY G (6, 4); rhs (6)
+        # B = DY Jc + dY e_7^T (6, 8); SG = SY G (6, 4); rhs (6)
         rhs = np.zeros(6)
         for k in range(6):
             acc = Y0[i, k] - dY[i, k] * om - AY[i, k] * q[i, 2]
@@ -125,7 +121,7 @@ def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
                     K[i, j, 3 + c] -= JY[k, j] * sgk
             rhs[k] = acc
             for c in range(8):
-                b = dY[i, k] * Jw[c]
+                b = dY[i, k] if c == 7 else 0.0
                 for a in range(3):
                     b += DY[i, k, a] * Jc[a, c]
                 for j in range(8):

@@ -314,8 +314,8 @@ class CarController:
             return self._fail(st.t, "tyre forces became non-finite")
         share = self.drive_share if self.torque >= 0 else self.brake_share
         T = self.torque * share
-        # brakes oppose the wheel's rotation against its carrier (disc against caliper)
-        rel = omega - np.einsum("ij,ij->i", st.wheel_w, s_axis)
+        if self.torque < 0 or self.parked:  # a brake acts on the disc against its caliper
+            rel = omega - np.einsum("ij,ij->i", st.wheel_w, s_axis)
         if self.torque < 0:
             T = -np.abs(T) * np.sign(np.where(rel == 0, 1.0, rel))
         if self.parked:  # parking brake: viscous, at half the explicit limit
