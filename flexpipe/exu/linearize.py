@@ -58,7 +58,12 @@ class _Access:
         self.sd = mbs.systemData
         self.ss = exu.SimulationSettings()
         self.solver = exu.MainSolverImplicitSecondOrder()
+        # Exudyn's solver initialization (and ComputeLinearizedSystem) copies the
+        # initial configuration into the current one: the state to linearize at is kept
+        # and put back (a car run to a steady state is not at its initial state)
+        here = self.sd.GetSystemState(exu.ConfigurationType.Current)
         self.solver.InitializeSolver(mbs, self.ss)
+        self.sd.SetSystemState(here, configuration=exu.ConfigurationType.Current)
         self.n = self.solver.GetODE2size()
         self.m = self.solver.GetAEsize()
 
@@ -79,7 +84,16 @@ class _Access:
         return J[self.n:, : self.n].copy()
 
     def mass(self) -> np.ndarray:
-        return np.asarray(self.mbs.ComputeLinearizedSystem(self.ss)[0], dtype=float)
+        """Exudyn's mass matrix at the current state (``ComputeLinearizedSystem`` takes
+        the initial configuration and makes it the current one: both are put back)."""
+        cur, init = exu.ConfigurationType.Current, exu.ConfigurationType.Initial
+        here, start = self.sd.GetSystemState(cur), self.sd.GetSystemState(init)
+        self.sd.SetSystemState(here, configuration=init)
+        try:
+            return np.asarray(self.mbs.ComputeLinearizedSystem(self.ss)[0], dtype=float)
+        finally:
+            self.sd.SetSystemState(start, configuration=init)
+            self.sd.SetSystemState(here, configuration=cur)
 
 
 def linearize(mbs, *, external=None, follow=None, eps_q: float = EPS_Q,
@@ -144,6 +158,24 @@ def linearize(mbs, *, external=None, follow=None, eps_q: float = EPS_Q,
     rank = int(np.count_nonzero(s > rank_tol * s[0])) if s.size else 0
     N = Vt[rank:].T.copy()
     return Linearized(M=M, K=K, D=D, C=C0, N=N, q=q0, v=v0, lam=lam, residual_N=residual)
+
+
+def steady_translation(mbs, velocity, *, keep=()) -> None:
+    """Make the current velocities those of a steady motion: every rigid node translating
+    with ``velocity`` (3,) without turning, every other coordinate at rest except those
+    of the nodes ``keep`` (e.g. the wheels' spin).  A run reaches its steady state only
+    up to decaying transients, and a law with a kink at zero relative velocity (a
+    dual-rate damper) has no single slope there: at zero it has the mean of its two."""
+    sd = mbs.systemData
+    v = np.array(sd.GetODE2Coordinates_t(), dtype=float)
+    keep = {int(k) for k in keep}
+    for node, sl in node_slices(mbs).items():
+        if node in keep:
+            continue
+        v[sl] = 0.0
+        if str(mbs.GetNode(node).get("nodeType", "")).startswith("RigidBody"):
+            v[sl.start:sl.start + 3] = velocity
+    sd.SetODE2Coordinates_t([float(x) for x in v])
 
 
 def node_slices(mbs) -> dict:

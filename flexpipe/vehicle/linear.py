@@ -237,7 +237,13 @@ def linear_modes(car, *, body: str = "flexible", speed: float = 0.0, road=None,
 def _analyse(system, ctrl, *, speed: float) -> dict:
     from scipy.linalg import eig
 
-    from flexpipe.exu.linearize import hold_tires, linearize, node_slices, start_from_initial
+    from flexpipe.exu.linearize import (
+        hold_tires,
+        linearize,
+        node_slices,
+        start_from_initial,
+        steady_translation,
+    )
     from flexpipe.vehicle.linear_hub import hub_rows
     from flexpipe.vehicle.linear_tires import TireLinearization
     from flexpipe.vehicle.simulation import SPECTRAL_RADIUS
@@ -248,6 +254,13 @@ def _analyse(system, ctrl, *, speed: float) -> dict:
         if not ok or ctrl.status < 0:
             raise RuntimeError(f"the run to a steady state at {speed:g} m/s stopped at "
                                f"t = {t:.3f} s: {ctrl.message}")
+        # the state reached, its decaying transients' velocities removed: the whole car
+        # translating along the road, the wheels spinning as they do
+        st = system.state(0.0)
+        n = np.mean(ctrl.road_contact(st.wheel_p)[1], axis=0)
+        n /= np.linalg.norm(n)
+        steady_translation(system.mbs, st.body_v - (st.body_v @ n) * n,
+                           keep=system.spin_node)
     st = system.state(0.0)
     loads = ctrl(st)
     if loads is None:
