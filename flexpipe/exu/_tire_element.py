@@ -14,8 +14,15 @@ The spin coordinate is the wheel's absolute rotation about its axis: the wheel t
 a bearing, so the carrier's rotation about that axis neither turns the wheel nor takes a
 moment about it.  The moments' parts about the spin axis (of the contact force and the
 tyre's own) go to the spin coordinate, the rest to the carrier.
+
+The wheel's spin momentum ``J omega s`` turns with the carrier: the bearing applies
+``J omega (w_c x s)`` to the wheel, so the carrier carries the gyroscopic moment
+``M_g = J omega (s x w_c)`` (``w_c = G de/dt``), linearized in the step as a damping
+(``-J omega_n G^T [s]x G`` on the carrier's rates, ``-J G^T (s x w_c,n)`` on the spin)
+plus ``-J omega_n G^T (s x w_c,n)`` in ``f``.  It does no work (``M_g . w_c = 0``).
 ``tests/test_tire_element.py`` checks the compiled kernel against the NumPy formulation
-(:func:`element_numpy`).
+(:func:`element_numpy`), and a spinning wheel on a free carrier conserves its angular
+momentum.
 """
 
 from __future__ import annotations
@@ -31,7 +38,7 @@ def _g_matrix(e):
     return 2.0 * np.array([[-e1, e0, -e3, e2], [-e2, e3, e0, -e1], [-e3, -e2, e1, e0]])
 
 
-def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
+def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY, J):
     """Reference formulation, one wheel at a time with NumPy (see module docstring)."""
     n = ep.shape[0]
     D, K, f = np.zeros((n, 8, 8)), np.zeros((n, 8, 8)), np.zeros((n, 8))
@@ -58,11 +65,18 @@ def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
         K[i, :, 3:7] = -JY.T @ SG
         rhs = Y0[i] - DY[i] @ vP - dY[i] * om - AY[i] * q[i, 2] - SG @ q[i, 3:7]
         f[i] = JY.T @ rhs
+        # the spin momentum's gyroscopic moment on the carrier
+        sx = np.array([[0.0, -s[i, 2], s[i, 1]], [s[i, 2], 0.0, -s[i, 0]],
+                       [-s[i, 1], s[i, 0], 0.0]])
+        sw = sx @ (G @ qt[i, 3:7])
+        D[i, 3:7, 3:7] -= J[i] * om * G.T @ sx @ G
+        D[i, 3:7, 7] -= J[i] * G.T @ sw
+        f[i, 3:7] -= J[i] * om * G.T @ sw
     return D, K, f
 
 
 @_jit
-def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
+def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY, J):
     """Compiled :func:`element_numpy` (explicit loops over the small matrices)."""
     n = ep.shape[0]
     D = np.zeros((n, 8, 8))
@@ -129,4 +143,21 @@ def element(ep, r, s, qt, q, Y0, DY, dY, AY, SY):
             for j in range(8):
                 K[i, j, 2] -= JY[k, j] * AY[i, k]
                 f[i, j] += JY[k, j] * rhs[k]
+        # the spin momentum's gyroscopic moment on the carrier: s x (G col) per column
+        w0 = w1 = w2 = 0.0
+        for c in range(4):
+            w0 += G[0, c] * qt[i, 3 + c]
+            w1 += G[1, c] * qt[i, 3 + c]
+            w2 += G[2, c] * qt[i, 3 + c]
+        sw0, sw1, sw2 = s1 * w2 - s2 * w1, s2 * w0 - s0 * w2, s0 * w1 - s1 * w0
+        Jw = J[i]
+        for c in range(4):
+            g0, g1, g2 = G[0, c], G[1, c], G[2, c]
+            x0, x1, x2 = s1 * g2 - s2 * g1, s2 * g0 - s0 * g2, s0 * g1 - s1 * g0
+            for a in range(4):
+                D[i, 3 + a, 3 + c] -= Jw * om * (G[0, a] * x0 + G[1, a] * x1
+                                                  + G[2, a] * x2)
+            gsw = G[0, c] * sw0 + G[1, c] * sw1 + G[2, c] * sw2
+            D[i, 3 + c, 7] -= Jw * gsw
+            f[i, 3 + c] -= Jw * om * gsw
     return D, K, f

@@ -86,7 +86,9 @@ class TireLinearization:
         ep = sy.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
         z6, z63 = np.zeros((n, 6)), np.zeros((n, 6, 3))
-        _, _, Q = element_numpy(ep, r, s_axis, qt, st.wheel_q, Y, z63, z6, z6, z63)
+        D, _, f = element_numpy(ep, r, s_axis, qt, st.wheel_q, Y, z63, z6, z6, z63,
+                                np.asarray(sy.spin_J, dtype=float))
+        Q = f - np.einsum("nij,nj->ni", D, qt)  # with the wheels' gyroscopic moments
         return Q, rate, Fz, Y[:, :3]
 
     def _flat(self, size: int, road=None):
