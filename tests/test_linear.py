@@ -307,13 +307,13 @@ def test_road_response_equals_the_run_on_a_sine_road(tmp_path, f_hz, tracks, gra
     for name in names:
         c, *_ = np.linalg.lstsq(M, run.channels[name][keep], rcond=None)
         ratio = np.hypot(c[0], c[1]) / (abs(H[m.outputs.index(name)]) * a)
-        # measured 2026-12-03 (21:00 UTC, linearized at the state the car reached with
-        # the velocities of a steady motion, not at its settled start; a script with the
-        # same fit): vertical tyre forces, travel, vertical hub forces and floor
-        # accelerations 0.9985-1.0003 (both tracks, 6 and 15 Hz), 1.0025-1.0052
-        # (opposite tracks), 0.9989-1.0010 (rear drive on the slope); horizontal hub
-        # forces within 0.4 % except the front lateral one in roll, 1.0101 (1.0055 at
-        # 0.25 mm: the run's nonlinearity), and the rear-driven car's 0.9996-1.0099.
+        # measured 2026-12-03 (21:05 UTC, linearized at the state the car reached with
+        # the velocities of a steady motion, not at its settled start; the wheels'
+        # gyroscopic moment in both; a script with the same fit): vertical tyre forces,
+        # travel, vertical hub forces and floor accelerations 0.9985-1.0003 (both
+        # tracks, 6 and 15 Hz), 0.9992-1.0016 (opposite tracks), 0.9989-1.0010 (rear
+        # drive on the slope); horizontal hub forces within 0.4 % except the
+        # rear-driven car's 0.9996-1.0113.
         # Before that fix (the linear model at the settled start: the car's start spin
         # rates and pitch with the relaxed slips of the state reached) the fore-aft ones
         # were 1.021-1.025 here and the rear-driven car's driven tyres' fore-aft force
