@@ -393,8 +393,6 @@ class CarSystem:
                                      initialVelocities=[float(spec.spin_rate[i])]))
         mbs.AddObject(eii.ObjectRotationalMass1D(inertia=float(spec.spin_inertia[i]),
                                                  nodeNumber=n_s))
-        #: the wheels' spin inertias (kg m^2): their gyroscopic moment is in the tyre element
-        self.spin_J = np.asarray(spec.spin_inertia, dtype=float)
         m_spin = mbs.AddMarker(eii.MarkerNodeCoordinate(nodeNumber=n_s, coordinate=0))
         self.tire_elem.append(mbs.AddObject(eii.ObjectGenericODE2(
             nodeNumbers=[n_w, n_s], massMatrix=np.zeros((8, 8)),
@@ -458,7 +456,8 @@ class CarSystem:
         ep = self.wheel_ref[:, 3:] + st.wheel_q[:, 3:]
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
         args = [np.ascontiguousarray(a, dtype=float)
-                for a in (ep, ts.r, ts.spin_axis, qt, st.wheel_q, *ts.lin6, self.spin_J)]
+                for a in (ep, ts.r, ts.spin_axis, qt, st.wheel_q, *ts.lin6,
+                          self.spec.spin_inertia)]  # J: the spin's gyroscopic moment
         kernel = element if jit_enabled() else element_numpy
         D, K, f = kernel(*args)
         return D, K, f

@@ -87,7 +87,7 @@ class TireLinearization:
         qt = np.concatenate([st.wheel_qt, st.spin_rate[:, None]], axis=1)
         z6, z63 = np.zeros((n, 6)), np.zeros((n, 6, 3))
         D, _, f = element_numpy(ep, r, s_axis, qt, st.wheel_q, Y, z63, z6, z6, z63,
-                                np.asarray(sy.spin_J, dtype=float))
+                                np.asarray(sy.spec.spin_inertia, dtype=float))
         Q = f - np.einsum("nij,nj->ni", D, qt)  # with the wheels' gyroscopic moments
         return Q, rate, Fz, Y[:, :3]
 
