@@ -320,3 +320,19 @@ def test_road_response_equals_the_run_on_a_sine_road(tmp_path, f_hz, tracks, gra
         # 0.53
         tol = 0.015 if name.startswith("hub_") and name[-1] in "xy" else 0.01
         assert abs(ratio - 1.0) < tol, f"{f_hz} Hz {name}: run / linear = {ratio:.4f}"
+
+
+def test_dual_rate_dampers_enter_with_their_mean_slope_at_speed(tmp_path):
+    """At a speed the car is linearized at the state its 2 s run reached, with the
+    velocities of a steady motion: every damper at zero relative velocity, where a
+    dual-rate damper's central difference is the mean of its two slopes.  So the sample
+    (1:2 dual-rate dampers) has the modes of the same car with symmetric dampers at the
+    mean slopes (an independent car file).  Measured 2026-12-03: eigenvalues within
+    1.1e-5; with the run's decaying transient velocities left in, each damper sat on one
+    of its slopes and the ride modes' damping ratios moved by up to 0.17."""
+    dual = fp.linear_modes(LINKAGE, body="rigid", speed=20.0)
+    mean = fp.linear_modes(fp.load_car(_symmetric_damper_car(tmp_path)), body="rigid",
+                           speed=20.0)
+    a, b = np.sort_complex(dual.eigenvalues), np.sort_complex(mean.eigenvalues)
+    assert a.shape == b.shape
+    assert np.max(np.abs(a - b) / np.abs(b)) < 1e-3
