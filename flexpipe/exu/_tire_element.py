@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flexpipe.flexbody.invariants import skew
 from flexpipe.tires._fast import _jit
 
 
@@ -44,8 +45,7 @@ def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY, J):
     D, K, f = np.zeros((n, 8, 8)), np.zeros((n, 8, 8)), np.zeros((n, 8))
     for i in range(n):
         G = _g_matrix(ep[i])
-        rx = np.array([[0.0, -r[i, 2], r[i, 1]], [r[i, 2], 0.0, -r[i, 0]],
-                       [-r[i, 1], r[i, 0], 0.0]])
+        rx = skew(r[i])
         P = np.eye(3) - np.outer(s[i], s[i])
         JY = np.zeros((6, 8))
         JY[:3, :3] = np.eye(3)
@@ -66,8 +66,7 @@ def element_numpy(ep, r, s, qt, q, Y0, DY, dY, AY, SY, J):
         rhs = Y0[i] - DY[i] @ vP - dY[i] * om - AY[i] * q[i, 2] - SG @ q[i, 3:7]
         f[i] = JY.T @ rhs
         # the spin momentum's gyroscopic moment on the carrier
-        sx = np.array([[0.0, -s[i, 2], s[i, 1]], [s[i, 2], 0.0, -s[i, 0]],
-                       [-s[i, 1], s[i, 0], 0.0]])
+        sx = skew(s[i])
         sw = sx @ (G @ qt[i, 3:7])
         D[i, 3:7, 3:7] -= J[i] * om * G.T @ sx @ G
         D[i, 3:7, 7] -= J[i] * G.T @ sw
