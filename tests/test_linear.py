@@ -118,8 +118,7 @@ def _released(car, *, body, speed, amplitude, h):
         v = np.array(sd.GetODE2Coordinates_t(configuration=C.Initial)) + N @ yd0
         sd.SetODE2Coordinates_t(list(v), configuration=C.Initial)
         if speed > 0.0:  # controls fixed at the state's, as in the linear model
-            ctrl._next_driver_t = np.inf
-            ctrl._hold = (0.0, 1.0, ctrl.delta, ctrl.delta, ctrl.torque, ctrl.torque)
+            ctrl.hold_controls()
         else:  # parked, and no parking brake (none in the linear model)
             ctrl.parked = True
             ctrl.spin_inertia = np.zeros(4)

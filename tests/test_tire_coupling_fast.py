@@ -114,12 +114,11 @@ def _rot(rng, n):
 
 def test_compiled_applied_force_equals_the_numpy_reference():
     """The force the integrator applied at the end of a step (the linearization carried to
-    the new state), compiled against ``CarController._applied_tire_force_numpy``."""
+    the new state), compiled against ``tire_coupling.applied_force_reference``."""
     from types import SimpleNamespace
 
     from flexpipe.vehicle._tire_coupling_fast import applied_force
-    from flexpipe.vehicle.dynamics import CarController
-    from flexpipe.vehicle.tire_coupling import TireStep
+    from flexpipe.vehicle.tire_coupling import TireStep, applied_force_reference
 
     rng = np.random.default_rng(7)
     n = 4
@@ -136,8 +135,7 @@ def test_compiled_applied_force_equals_the_numpy_reference():
                   spin_axis=st0.wheel_R[:, :, 1], S=rng.normal(size=(n, 3, 3)),
                   lin6=())  # the tyre element's input: not read by the applied force
     om0, om = rng.normal(size=n), rng.normal(size=n)
-    ctl = SimpleNamespace(_tire_lin=(ts, st0, om0))
-    ref = CarController._applied_tire_force_numpy(ctl, st, st.wheel_R[:, :, 1], om)
+    ref = applied_force_reference((ts, st0, om0), st, st.wheel_R[:, :, 1], om)
     got = applied_force(ts.F0, ts.Dv, ts.dw, ts.A, ts.S, ts.r, ts.spin_axis, st0.wheel_w,
                         st0.wheel_v, om0, st0.wheel_p[:, 2], st0.wheel_R, st.wheel_R[:, :, 1],
                         st.wheel_w, st.wheel_v, om, st.wheel_p[:, 2], st.wheel_R)

@@ -31,13 +31,13 @@ import math
 import numpy as np
 
 from flexpipe.tires._fast import enabled as _jit_enabled
-from flexpipe.tires.contact import _cross
 from flexpipe.vehicle import mounted_motion, sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
 from flexpipe.vehicle.corners import ackermann_angles, road_wheel_angles
 from flexpipe.vehicle.reaction_mounts import CoupleSplit
 from flexpipe.vehicle.sensor_rows import BUSHING_AXES, Recorder, record_mounts
 from flexpipe.vehicle.spec import CORNERS
+from flexpipe.vehicle.tire_coupling import ImplicitTires, applied_force_reference
 
 #: half the base of the road normal's central differences (m): the slope a tyre meets
 ROAD_NORMAL_HALF_BASE_M = 0.05
@@ -156,8 +156,6 @@ class CarController:
         self.mirror = np.zeros(4, dtype=bool)
         for t, ix in self.tire_groups:
             self.mirror[ix] = t.mirror_for([sides[i] for i in ix])
-        from flexpipe.vehicle.tire_coupling import ImplicitTires
-
         self.tires = ImplicitTires(tires, self.mirror)
         st = car.steering
         self.steered = np.array([car.corners[i].axle == st.axle for i in range(4)])
@@ -260,6 +258,14 @@ class CarController:
             d0, q0 = self._held(t)
         self._hold = (t, max(t1, t + 1e-12), d0, cmd, q0, torque)
         self.delta_cmd = cmd
+
+    def hold_controls(self) -> None:
+        """Hold the steering and the drive torque at their present values from now on: the
+        driver stops sampling (the controls of a linear model, :mod:`flexpipe.vehicle.linear`,
+        in a run continued from its state)."""
+        self._next_driver_t = math.inf
+        self._hold = (0.0, 1.0, self.delta, self.delta, self.torque, self.torque)
+        self.delta_cmd = self.delta
 
     def _held(self, t: float):
         """Steering command and drive torque of the first-order hold at time ``t``."""
@@ -401,25 +407,7 @@ class CarController:
                                  st0.wheel_w, st0.wheel_v, om0, st0.wheel_p[:, 2],
                                  st0.wheel_R, s_axis, st.wheel_w, st.wheel_v, omega,
                                  st.wheel_p[:, 2], st.wheel_R)
-        return self._applied_tire_force_numpy(st, s_axis, omega)
-
-    def _applied_tire_force_numpy(self, st, s_axis, omega):
-        """Reference of the compiled :func:`~flexpipe.vehicle._tire_coupling_fast.
-        applied_force`."""
-        ts, st0, om0 = self._tire_lin
-        wc = st.wheel_w - np.einsum("ij,ij->i", st.wheel_w, s_axis)[:, None] * s_axis
-        wc0 = st0.wheel_w - np.einsum("ij,ij->i", st0.wheel_w, ts.spin_axis)[:, None] \
-            * ts.spin_axis
-        vP = st.wheel_v + _cross(wc, ts.r)
-        vP0 = st0.wheel_v + _cross(wc0, ts.r)
-        F = (ts.F0 + np.einsum("nij,nj->ni", ts.Dv, vP - vP0)
-             + ts.dw * (omega - om0)[:, None]
-             + ts.A * (st.wheel_p[:, 2] - st0.wheel_p[:, 2])[:, None])
-        # rotation of the carriers over the step (small angles)
-        dR = st.wheel_R @ st0.wheel_R.transpose(0, 2, 1)
-        th = 0.5 * np.stack([dR[:, 2, 1] - dR[:, 1, 2], dR[:, 0, 2] - dR[:, 2, 0],
-                             dR[:, 1, 0] - dR[:, 0, 1]], axis=1)
-        return F + np.einsum("nij,nj->ni", ts.S, th)
+        return applied_force_reference(self._tire_lin, st, s_axis, omega)
 
     def refresh_first_row(self) -> None:
         """Record the t = 0 row again once the integrator has solved the initial

@@ -263,3 +263,24 @@ class ImplicitTires:
         if not views:
             for dst, src in zip(full, part, strict=True):
                 dst[ix] = src
+
+
+def applied_force_reference(lin, st, s_axis, omega) -> np.ndarray:
+    """Tyre force (n, 3) the integrator applied at the end of a step: the linearization
+    ``lin = (TireStep, state at the step's start, spin rates there)`` carried to the new
+    state ``st`` (spin axes ``s_axis``, spin rates ``omega``).  The NumPy reference of the
+    compiled :func:`flexpipe.vehicle._tire_coupling_fast.applied_force`."""
+    ts, st0, om0 = lin
+    wc = st.wheel_w - np.einsum("ij,ij->i", st.wheel_w, s_axis)[:, None] * s_axis
+    wc0 = st0.wheel_w - np.einsum("ij,ij->i", st0.wheel_w, ts.spin_axis)[:, None] \
+        * ts.spin_axis
+    vP = st.wheel_v + _cross(wc, ts.r)
+    vP0 = st0.wheel_v + _cross(wc0, ts.r)
+    F = (ts.F0 + np.einsum("nij,nj->ni", ts.Dv, vP - vP0)
+         + ts.dw * (omega - om0)[:, None]
+         + ts.A * (st.wheel_p[:, 2] - st0.wheel_p[:, 2])[:, None])
+    # rotation of the carriers over the step (small angles)
+    dR = st.wheel_R @ st0.wheel_R.transpose(0, 2, 1)
+    th = 0.5 * np.stack([dR[:, 2, 1] - dR[:, 1, 2], dR[:, 0, 2] - dR[:, 2, 0],
+                         dR[:, 1, 0] - dR[:, 0, 1]], axis=1)
+    return F + np.einsum("nij,nj->ni", ts.S, th)
