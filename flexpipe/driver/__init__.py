@@ -4,7 +4,8 @@
   :func:`iso3888_1`, :func:`circle` and readers :func:`read_path` (``.csv`` x, y points or ``.toml``
   ``[path]`` table), :func:`path_from_spec`.
 * :class:`PurePursuit` (frozen; gains from ``[steering]``) and :class:`SpeedPI`
-  (gains from ``[speed]``, keeps its integral), :func:`read_driver`.
+  (gains from ``[speed]``, keeps its integral), :func:`read_driver`; both commands pass
+  the driver's neuromuscular lag (:class:`FirstOrderLag`, 0.1 s unless the file says).
 * :class:`OpenLoopSteer` (frozen): a steering-wheel angle against time (step, ramp,
   sine with dwell, sine, table) in place of the path follower; :class:`OpenLoopTorque`
   (frozen): a wheel torque against time in place of the speed controller.
@@ -14,7 +15,7 @@
 """
 
 from flexpipe.driver.bicycle import KinematicBicycle, simulate
-from flexpipe.driver.control import PurePursuit, SpeedPI, read_driver
+from flexpipe.driver.control import FirstOrderLag, PurePursuit, SpeedPI, read_driver
 from flexpipe.driver.open_loop import OpenLoopSteer, OpenLoopTorque
 from flexpipe.driver.path import Path
 from flexpipe.driver.speed import SpeedProfile, read_speed_profile
@@ -33,6 +34,7 @@ from flexpipe.driver.tracks import (
 )
 
 __all__ = [
+    "FirstOrderLag",
     "ISO3888_1_LENGTHS",
     "ISO3888_1_OFFSET",
     "PATH_TYPES",

@@ -30,6 +30,7 @@ import math
 
 import numpy as np
 
+from flexpipe.driver.control import FirstOrderLag
 from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.vehicle import mounted_motion, sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
@@ -173,6 +174,11 @@ class CarController:
         #: first-order hold of the driver's commands: (t0, t1, steer0, steer1, torque0,
         #: torque1), both commands ramping linearly from t0 to t1 (None: no command yet)
         self._hold = None
+        # the driver's neuromuscular lag on each closed-loop command (none on an open-loop
+        # input: a steering robot's or a measured drive's)
+        lag = FirstOrderLag
+        self._steer_lag = lag(0.0 if self.open_loop else steering.neuromuscular_lag)
+        self._torque_lag = lag(0.0 if self.open_torque else speed_pi.neuromuscular_lag)
         self.step_no = self.status = 0
         self.message = ""
         names = ["x", "y", "z", "x_rear", "y_rear", "roll", "pitch", "yaw", "speed", "ay",
@@ -241,13 +247,18 @@ class CarController:
         else:
             p = st.body_p + tau * st.body_v
             cmd = self.steering.steer(float(p[0]), float(p[1]), yaw + tau * st.body_w[2], v)
-        cmd = max(-self.max_angle, min(self.max_angle, cmd))
+        cmd = self._steer_lag(max(-self.max_angle, min(self.max_angle, cmd)), dt)
         a_target = 0.0
         if self.profile is not None:
             self.v_target, a_target = self.profile.target(float(st.t), self._odometer)
             self._odometer += abs(v) * dt
-        torque = self.speed_pi.torque_at(t1) if self.open_torque else \
-            self.speed_pi.torque(self.v_target, v, dt, a_target)
+        if self.open_torque:
+            torque = self.speed_pi.torque_at(t1)
+        else:  # the lag on the feedback; a profile's feed-forward is the driver's plan
+            pi = self.speed_pi
+            ff = pi.feedforward * a_target
+            torque = self._torque_lag(pi.torque(self.v_target, v, dt, a_target) - ff, dt) + ff
+            torque = min(pi.drive_torque_max, max(-pi.brake_torque_max, torque))
         t = float(st.t)
         # first-order hold: from the held values now to the new commands at the next
         # sampling instant (the first one: the steering from the actuator's angle, the
