@@ -234,6 +234,15 @@ class SpeedPI:
             self.integral = trial
         return out
 
+    def lagged(self, torque: float, a_target: float, lag, dt: float) -> float:
+        """This controller's ``torque`` (at the target acceleration ``a_target``) with its
+        feedback part through ``lag`` (a :class:`FirstOrderLag` sampled every ``dt``):
+        a speed profile's feed-forward is the driver's plan and passes as planned.
+        Clamped to the torque limits."""
+        ff = self.feedforward * a_target
+        out = lag(torque - ff, dt) + ff
+        return min(self.drive_torque_max, max(-self.brake_torque_max, out))
+
 
 @dataclasses.dataclass
 class FirstOrderLag:

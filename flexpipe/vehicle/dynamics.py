@@ -176,9 +176,9 @@ class CarController:
         self._hold = None
         # the driver's neuromuscular lag on each closed-loop command (none on an open-loop
         # input: a steering robot's or a measured drive's)
-        lag = FirstOrderLag
-        self._steer_lag = lag(0.0 if self.open_loop else steering.neuromuscular_lag)
-        self._torque_lag = lag(0.0 if self.open_torque else speed_pi.neuromuscular_lag)
+        self._steer_lag = FirstOrderLag(0.0 if self.open_loop else steering.neuromuscular_lag)
+        self._torque_lag = FirstOrderLag(0.0 if self.open_torque else
+                                         speed_pi.neuromuscular_lag)
         self.step_no = self.status = 0
         self.message = ""
         names = ["x", "y", "z", "x_rear", "y_rear", "roll", "pitch", "yaw", "speed", "ay",
@@ -252,13 +252,9 @@ class CarController:
         if self.profile is not None:
             self.v_target, a_target = self.profile.target(float(st.t), self._odometer)
             self._odometer += abs(v) * dt
-        if self.open_torque:
-            torque = self.speed_pi.torque_at(t1)
-        else:  # the lag on the feedback; a profile's feed-forward is the driver's plan
-            pi = self.speed_pi
-            ff = pi.feedforward * a_target
-            torque = self._torque_lag(pi.torque(self.v_target, v, dt, a_target) - ff, dt) + ff
-            torque = min(pi.drive_torque_max, max(-pi.brake_torque_max, torque))
+        pi = self.speed_pi
+        torque = pi.torque_at(t1) if self.open_torque else pi.lagged(
+            pi.torque(self.v_target, v, dt, a_target), a_target, self._torque_lag, dt)
         t = float(st.t)
         # first-order hold: from the held values now to the new commands at the next
         # sampling instant (the first one: the steering from the actuator's angle, the
