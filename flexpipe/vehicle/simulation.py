@@ -83,11 +83,12 @@ def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
 
 
 def default_driver(car: Car, mass: float):
-    """Pure pursuit and PI speed controller with gains scaled to the car.  The preview (2 m + 0.1 s x speed) is short because the controller applies it to the
-    pose predicted 0.3 s ahead (:class:`~flexpipe.vehicle.dynamics.CarController`): with
-    that and the driver's 0.1 s neuromuscular lag the linkage sedan tracks ``make
-    slalom``'s 18 m / 0.8 m slalom at 60 km/h within 0.074 m (2026-12-03; 0.126 m without
-    the lag; a plain pure pursuit on the dynamic car lags by a quarter period).
+    """Pure pursuit and PI speed controller with gains scaled to the car.  The preview
+    (2 m + 0.1 s x speed) is short because the controller applies it to the pose predicted
+    0.3 s ahead (:class:`~flexpipe.vehicle.dynamics.CarController`): with that and the
+    driver's 0.1 s neuromuscular lag the linkage sedan tracks ``make slalom``'s 18 m /
+    0.8 m slalom at 60 km/h within 0.074 m (2026-12-03; 0.126 m without the lag; a plain
+    pure pursuit on the dynamic car lags by a quarter period).
     """
     from flexpipe.driver import PurePursuit, SpeedPI
 
