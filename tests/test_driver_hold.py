@@ -66,4 +66,6 @@ def test_steering_angle_continuous_rate_and_torque_ramped(run):
 
 def test_slalom_start_still_tracked(run):
     _, res = run
-    assert np.abs(res.channels["lateral_error"]).max() < 0.15  # 0.127 m (staircase 0.129)
+    # 0.076 m with the driver's 0.1 s neuromuscular lag (2026-12-03); 0.127 m without it
+    # (staircase 0.129)
+    assert np.abs(res.channels["lateral_error"]).max() < 0.15
