@@ -44,6 +44,9 @@ def test_lag_from_the_driver_file_and_its_bad_values(tmp_path):
                  "drive_torque_max_Nm = 10.0\nbrake_torque_max_Nm = 10.0\n")
     steering, speed = read_driver(f)
     assert steering.neuromuscular_lag == 0.15 and speed.neuromuscular_lag == 0.1
+    # a run's info and summary.json say which lag acted
+    assert steering.describe().endswith("neuromuscular lag 0.15 s")
+    assert speed.describe().endswith("neuromuscular lag 0.1 s")
     f.write_text("[steering]\nwheelbase_m = 2.7\nneuromuscular_lag_s = -0.1\n")
     with pytest.raises(InputError, match="neuromuscular_lag_s") as e:
         read_driver(f)

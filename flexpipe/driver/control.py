@@ -114,6 +114,12 @@ class PurePursuit:
                              f"{type(path).__name__}")
         return dataclasses.replace(self, path=path)
 
+    def describe(self) -> str:
+        """One line for a run's ``info["steering"]`` and ``summary.json``."""
+        return (f"path follower: pure pursuit, preview {self.lookahead_base:g} m + "
+                f"{self.lookahead_time:g} s x speed, neuromuscular lag "
+                f"{self.neuromuscular_lag:g} s")
+
     def lookahead(self, v: float) -> float:
         """Preview distance at speed ``v`` (m)."""
         return self.lookahead_base + self.lookahead_time * abs(v)
@@ -209,6 +215,12 @@ class SpeedPI:
                                             hi=1.0))
         t.finish()
         return obj
+
+    def describe(self) -> str:
+        """One line for a run's ``info["speed_control"]`` and ``summary.json``."""
+        return (f"PI speed control: kp {self.kp:.4g} N m s/m, ki {self.ki:.4g} N m/m, "
+                f"feed-forward {self.feedforward:.4g} N m s^2/m, neuromuscular lag "
+                f"{self.neuromuscular_lag:g} s")
 
     def reset(self) -> None:
         """Clear the integral state."""

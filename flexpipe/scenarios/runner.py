@@ -231,6 +231,8 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         "wall_time_s": {b: round(r.wall_time, 3) for b, r in results.items()},
         "realtime_factor": {b: round(r.realtime_factor, 3) for b, r in results.items()},
         "time_step_s": next(iter(results.values())).info["h"],
+        "driver": {k: next(iter(results.values())).info.get(k)
+                   for k in ("steering", "speed_control")},
         "exudyn_module": next(iter(results.values())).info.get("exudyn_module"),
         "newton_iterations_per_step": {b: r.info.get("newton_iterations_per_step")
                                        for b, r in results.items()},
