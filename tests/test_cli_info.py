@@ -104,9 +104,22 @@ def test_info_describes_a_path_file(capsys):
     assert f"y {path.y.min():.4g} .. {path.y.max():.4g} m" in out
 
 
+def test_info_describes_a_driver_file(capsys):
+    """The gains and the neuromuscular lag as the file gives them."""
+    from flexpipe.roads._tables import read_toml
+
+    f = ROOT / "paths" / "driver.toml"
+    raw = read_toml(f)
+    assert main(["info", str(f)]) == 0
+    out = capsys.readouterr().out
+    st, sp = raw["steering"], raw["speed"]
+    assert f"preview {st['lookahead_base_m']:g} m + {st['lookahead_time_s']:g} s x speed" in out
+    assert f"kp {sp['kp_Nm_s_per_m']:.4g} N m s/m, ki {sp['ki_Nm_per_m']:.4g} N m/m" in out
+    assert out.count(f"neuromuscular lag {st['neuromuscular_lag_s']:g} s") == 2
+
+
 @pytest.mark.parametrize("name, words", [
     ("sweeps/sample.toml", ["is a sweep file", "flexpipe sweep"]),
-    ("paths/driver.toml", ["is a driver file"]),
     ("cars/halfcar_paper.toml", ["is a half-car parameter file"]),
     ("other.toml", ["not a car, road or path file", "['x']"]),
 ])

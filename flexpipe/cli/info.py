@@ -41,7 +41,8 @@ def add_arguments(p) -> None:
 TAKES = ("a reduced body (.npz from flexpipe reduce), a car file (.toml with a [car] "
          "table, e.g. cars/sedan.toml), a road (.toml with a [road] table, .crg, .rdf, .csv) or "
          "path (.toml with a [path] table, .csv) file, a speed profile (.toml with a "
-         "[speed_profile] table, .csv), a tyre (.tir), or a mesh (.bdf, .inp, .msh, .vtu, ...)")
+         "[speed_profile] table, .csv), a driver (.toml with a [steering] table), a tyre "
+         "(.tir), or a mesh (.bdf, .inp, .msh, .vtu, ...)")
 
 #: TOML files info does not describe: (tables that tell them, what they are, their use),
 #: tried in order.  Any file with a [sweep] table is a sweep, whatever its design (a grid
@@ -51,7 +52,6 @@ _OTHER_TOML = (
     (("table1",), "half-car parameter", "read by flexpipe.halfcar.params.load_params for "
                                         "make paper"),
     (("sweep",), "sweep", "run it with flexpipe sweep FILE"),
-    (("steering",), "driver", "read by simulate(..., driver=FILE) and flexpipe run --driver"),
 )
 
 
@@ -70,7 +70,7 @@ def toml_kind(doc: dict) -> str:
         return "path"
     if "speed_profile" in doc:
         return "speed profile"
-    return ""
+    return "driver" if "steering" in doc else ""
 
 
 def toml_text(path) -> str:
@@ -122,6 +122,13 @@ def toml_text(path) -> str:
         from flexpipe.driver.speed import profile_file_text
 
         return profile_file_text(path)
+    if kind == "driver":  # read by simulate(..., driver=FILE) and flexpipe run --driver
+        from flexpipe.driver import read_driver
+
+        steering, speed = read_driver(path)
+        speed = speed.describe() if speed is not None else \
+            "the car's default PI speed controller (gains from its mass)"
+        return f"{path}: driver\n  steering: {steering.describe()}\n  speed: {speed}"
     use = next((u for _, k, u in _OTHER_TOML if k == kind), None)
     what = (f"is a {kind} file, not a car, mesh or body file ({use})" if kind else
             f"is not a car, road or path file: it has no [car], [road] or [path] table "
