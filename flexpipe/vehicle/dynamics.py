@@ -9,7 +9,7 @@ the output channels into preallocated arrays every ``output_every`` steps.
 Output channels (SI units; "body axes" = the chassis frame, ISO 8855 orientation)
 -----------------------------------------------------------------------------
 ``x, y, z`` body-origin position, ``x_rear, y_rear`` rear-axle centre (the point the
-driver steers along the path), ``roll, pitch, yaw`` (rad), ``speed`` (forward, m/s),
+driver steers along the path), ``roll, pitch, yaw`` (rad), ``speed`` (body origin, forward),
 ``steer`` road-wheel angle (rad), ``steering_wheel`` (rad), ``drive_torque`` (N m, total),
 ``lateral_error`` (m, rear-axle centre from the path), ``ay`` lateral acceleration of the
 body origin (m/s^2, body axes, from its velocity), ``speed_target`` (m/s, the driver's),
