@@ -25,7 +25,8 @@ it the pure pursuit, which acts on the pose predicted 0.3 s ahead, passes the bo
 road-excited roll and yaw vibration to the steering: on the sample sedan (ISO C, 70 km/h,
 rigid body, 10 s) 1.4 mrad RMS of road-wheel angle at 8-20 Hz, beyond any human driver's
 bandwidth, and the front lateral hub force's 8-20 Hz content 67.8 N RMS against 55.4 N with
-the steering held (52.5 N with the lag; measured 2026-12-03, ``tests/test_driver_lag.py``).
+the steering held (52.5 N with the lag; 10 s runs of ``make straight``'s case, 2026-12-03;
+``tests/test_driver_lag.py`` checks the same on 3 s runs).
 """
 
 from __future__ import annotations
