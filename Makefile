@@ -37,9 +37,15 @@ CHECKED_TESTS = tests/test_brackets.py tests/test_exudyn_body.py tests/test_forc
 	tests/test_inertia_coupling.py tests/test_mounts.py tests/test_node_state.py \
 	tests/test_prewarp.py tests/test_linkage_car.py
 
+# the suite runs on TEST_WORKERS pytest-xdist processes (a test file stays on one), each
+# held to one BLAS / MKL / Numba thread so that the workers do not oversubscribe the cores
+TEST_WORKERS ?= 2
+PYTEST = OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 NUMBA_NUM_THREADS=1 \
+	$(PY) -m pytest -q -n $(TEST_WORKERS) --dist loadfile
+
 test: setup
-	$(PY) -m pytest -q
-	FLEXPIPE_EXUDYN=checked $(PY) -m pytest -q $(CHECKED_TESTS)
+	$(PYTEST)
+	FLEXPIPE_EXUDYN=checked $(PYTEST) $(CHECKED_TESTS)
 
 bench: setup
 	$(PY) -m bench

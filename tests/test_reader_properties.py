@@ -161,7 +161,8 @@ def _other_readers():
             ("driver.toml", REPO / "paths" / "driver.toml", read_driver)]
 
 
-@pytest.mark.parametrize("name, base, loader", _other_readers(), ids=lambda v: str(v)[-12:])
+@pytest.mark.parametrize("name, base, loader", _other_readers(),
+                         ids=[f"{n}-{b.name}" for n, b, _ in _other_readers()])
 def test_other_damaged_files_load_or_raise_flexpipe_error(tmp_path, name, base, loader):
     """Road, path and driver readers under the same damage as the .tir and CRG files."""
 
