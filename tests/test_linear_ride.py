@@ -127,8 +127,8 @@ def _track_width(m) -> float:
 
 def _time_run(m, road, *, dt=1e-3, histories=False):
     """The linear model run in time over two periods of the periodic ``road``; RMS and
-    ISO 2631-1 weighted RMS of every output over the second period (steady), or with
-    ``histories`` the outputs over it (about their means)."""
+    ISO 2631-1 weighted RMS of every output and then each seat's over the second period
+    (steady), or with ``histories`` the outputs over it (about their means)."""
     from scipy.signal import lsim
 
     from flexpipe.sweeps.iso2631 import response
@@ -159,13 +159,25 @@ def _time_run(m, road, *, dt=1e-3, histories=False):
         axle = slice(i - i % 2, i - i % 2 + 2)
         U[:, 2 * n_w + i] = (at(road.left, s) - at(road.right, s)) / abs(np.diff(y[axle])[0])
     _, out, _ = lsim((m.A, m.B, m.C, m.D), U, t)
+    names = list(m.outputs)
+    # each seat: its floor point's motion through the seat's own ODE,
+    # z'' + 2 zeta w z' + w^2 z = -a_floor, the seat's acceleration -(2 zeta w z' + w^2 z)
+    for seat, floor, fn, zeta in m.info.get("seats", ()):
+        w = 2 * np.pi * fn
+        a = out[:, names.index(f"acc_{floor}_z")]
+        _, a_seat, _ = lsim(([[0, 1], [-w * w, -2 * zeta * w]], [[0], [-1]],
+                             [[-w * w, -2 * zeta * w]], [[0]]), a, t)
+        cols = [out[:, names.index(f"acc_{floor}_x")], out[:, names.index(f"acc_{floor}_y")],
+                a_seat]
+        out = np.column_stack([out, *cols])
+        names += [f"acc_{seat}_{ax}" for ax in "xyz"]
     out = out[steps:] - out[steps:].mean(axis=0)
     if histories:
         return out
     rms = np.sqrt(np.mean(out**2, axis=0))
     w_rms = np.full(rms.shape, np.nan)
     f = np.fft.rfftfreq(steps, dt)
-    for j, name in enumerate(m.outputs):
+    for j, name in enumerate(names):
         if name.startswith("acc_"):  # periodic record: weighted exactly through its FFT
             aw = np.fft.irfft(np.fft.rfft(out[:, j]) * response(f, "Wk" if name[-1] == "z"
                                                                   else "Wd"), steps)
@@ -189,19 +201,26 @@ def test_spectra_equal_the_linear_model_run_over_a_synthesised_road(modes, body,
     r = ride_response(m, "C", coherence=coherence, track_width=B)
     from flexpipe.vehicle.linear import output_unit
 
-    acc = np.array([name.startswith("acc_") for name in m.outputs])
-    assert {output_unit(name) for name in m.outputs} == {"N", "m", "m/s^2"}
+    # the car's outputs and, after them, the seats' (the sample's driver seat)
+    assert r.outputs[:len(m.outputs)] == m.outputs
+    assert r.outputs[len(m.outputs):] == ("acc_driver_seat_x", "acc_driver_seat_y",
+                                          "acc_driver_seat_z")
+    acc = np.array([name.startswith("acc_") for name in r.outputs])
+    assert {output_unit(name) for name in r.outputs} == {"N", "m", "m/s^2"}
     # outputs of weight, against the largest of their unit: the lateral accelerations on
     # identical tracks are a mirror asymmetry's (rigid: none; both routes agree on that)
-    unit = np.array([output_unit(name) for name in m.outputs])
+    unit = np.array([output_unit(name) for name in r.outputs])
     scale = np.array([r.rms[unit == u].max() for u in unit])
     material = r.rms > 0.02 * scale
     np.testing.assert_allclose(rms[material], r.rms[material], rtol=tol)
     assert np.all(np.abs(rms - r.rms)[~material] <= 0.02 * scale[~material])
     np.testing.assert_allclose(w_rms[acc & material], r.weighted_rms[acc & material],
                                rtol=tol)
-    assert set(r.points) == {name[4:-2] for name in m.outputs if name.endswith("_z")
+    assert set(r.points) == {name[4:-2] for name in r.outputs if name.endswith("_z")
                              and name.startswith("acc_")}
+    seat_value = 100 * w_rms[r.outputs.index("acc_driver_seat_z")] / w_rms[
+        r.outputs.index("acc_driver_floor_z")]
+    assert r.points["driver_seat"]["SEAT_%"] == pytest.approx(seat_value, rel=tol)
     static = np.asarray(m.info["tire_Fz_N"])
     np.testing.assert_allclose([r.dynamic_load[c] for c in ("fl", "fr", "rl", "rr")],
                                r.rms[:4] / static, rtol=1e-12)

@@ -145,7 +145,7 @@ def test_point_accelerations_and_motion_from_sensors_equal_the_python_reads(body
     ref = fp.simulate(car, **kw)
     assert r.status == ref.status == 0
     names = [k for k in ref.channels if k.startswith("acc_")]
-    assert len(names) == 3 * len(car.body.points) > 0
+    assert len(names) == 3 * (len(car.body.points) + len(car.body.seats)) > 0
     for k in names:
         a, b = r[k], ref[k]
         assert np.isfinite(a).all()

@@ -6,7 +6,9 @@ comfort total value ``a_v = sqrt(a_wx^2 + a_wy^2 + a_wz^2)`` (multiplying factor
 ISO 2631-1 8.2.3) and its reaction (Annex C); per tyre the dynamic load coefficient, the
 standard deviation of the vertical tyre force over its mean.  From the same samples as
 the hub-force comparison (after its start time), so rigid and flexible compare alike,
-and with the linear model's prediction (:func:`flexpipe.ride_response`).
+and with the linear model's prediction (:func:`flexpipe.ride_response`).  A seat
+(:mod:`flexpipe.vehicle.seats`) is a point too, with its SEAT value: its vertical ``a_w``
+over its floor point's, in %.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ def ride_summary(results: dict, *, t_from: float) -> dict:
     ``t_from`` on; runs that stopped early are left out."""
     from flexpipe.sweeps.iso2631 import comfort_reaction
     from flexpipe.sweeps.metrics import run_metrics
+    from flexpipe.vehicle.seats import seat_value
 
     comfort, load = {}, {}
     for body, r in results.items():
@@ -39,6 +42,12 @@ def ride_summary(results: dict, *, t_from: float) -> dict:
                 points[p] = {**{f"aw_{k}_m/s^2": round(v, 4) for k, v in aw.items()},
                              "vdv_z_m/s^1.75": round(m[f"vdv_{p}_z_m_per_s1.75"], 4),
                              "a_v_m/s^2": round(a_v, 4), "reaction": comfort_reaction(a_v)}
+        seats = (getattr(r, "info", None) or {}).get("seats") or {}
+        for seat, floor in seats.items():  # flexpipe.vehicle.seats
+            if seat in points and floor in points:
+                points[seat]["SEAT_%"] = round(seat_value(
+                    points[seat]["aw_z_m/s^2"], points[floor]["aw_z_m/s^2"]), 2)
+                points[seat]["floor_point"] = floor
         comfort[body] = points
         keep = r.t >= t_from - 1e-12
         load[body] = {c: round(float(np.std(r[f"tire_{c}_Fz"][keep])

@@ -245,9 +245,10 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
     summary.update(ride_summary(results, t_from=_t_from(t_end)))
     summary["ride_note"] = (
         "ISO 2631-1: aw weighted RMS (Wd x, y; Wk z), a_v = sqrt(sum aw^2) (comfort, "
-        "factors 1) and its Annex C reaction, at each named body point in body axes; "
-        "dynamic load coefficient = std / mean of the vertical tyre force; the samples of "
-        "the hub-force comparison")
+        "factors 1) and its Annex C reaction, at each named body point in body axes and "
+        "on each seat (the occupant on the cushion over its floor_point; SEAT_% = its aw_z "
+        "over the floor's); dynamic load coefficient = std / mean of the vertical tyre "
+        "force; the samples of the hub-force comparison")
     if "rigid" in results and "flexible" in results:
         ra, rb = results["rigid"], results["flexible"]
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)

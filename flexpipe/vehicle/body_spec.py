@@ -1,5 +1,5 @@
 """The ``[body]`` table of the car file: mesh or rigid mass properties, non-structural
-masses, output points and per-mount ties (see :mod:`flexpipe.vehicle.spec` and
+masses, output points, seats and per-mount ties (see :mod:`flexpipe.vehicle.spec` and
 ``docs/car-file.md``).
 
 Every error is an :class:`~flexpipe.errors.InputError` naming the file, line and key.
@@ -18,6 +18,7 @@ from flexpipe.errors import InputError
 from flexpipe.fem.material import LIBRARY, Material
 from flexpipe.mesh.units import unit_system
 from flexpipe.vehicle._toml import Table
+from flexpipe.vehicle.seats import read_seats
 
 #: lowest interface band a car file may ask for (Hz): the characteristic constraint modes
 #: must reach well above the 20-40 Hz band of the body's fixed-interface modes
@@ -75,6 +76,8 @@ class BodySpec:
     #: (full Craig-Bampton, ``interface_band_hz = "all"``); None: the default
     #: (:data:`flexpipe.vehicle.linkage_setup.INTERFACE_F_MAX_HZ`)
     interface_band_hz: float | None = None
+    #: ``[body.seats.<name>]``: seats on named floor points (:mod:`flexpipe.vehicle.seats`)
+    seats: tuple = ()
 
 
 # --------------------------------------------------------------------------- readers
@@ -218,6 +221,7 @@ def read_body(doc: Table, base: Path) -> BodySpec:
         for k in list(p.data):
             points[k] = p.vector(k)
         p.finish()
+    seats = read_seats(t, points)
     if body_file is not None and masses:
         raise t.error("mass", "a ready body file carries its own masses: add the "
                               "non-structural masses before reducing it (flexpipe reduce), "
@@ -263,6 +267,6 @@ def read_body(doc: Table, base: Path) -> BodySpec:
         _warn_ignored_by_body_file(t)
     t.finish()
     return BodySpec(mesh, scale, units, material, thick, zeta, radius, rigid, tuple(masses), points,
-                    fatigue, body_file, mounts, band)
+                    fatigue, body_file, mounts, band, seats)
 
 

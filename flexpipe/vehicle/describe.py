@@ -50,6 +50,7 @@ def car_text(car: Car) -> str:
     lines.append(f"  body: {src}; {rb.mass:.2f} kg, centre of mass "
                  f"{_p(rb.center_of_mass)} m, "
                  f"{len(car.body.added_masses)} non-structural masses")
+    lines += [f"  {seat.describe()}" for seat in car.body.seats]
     unsprung = [c.unsprung_mass for c in car.corners]
     if car.suspension is None:
         lines.append("  unsprung (per corner, kg): " + ", ".join(

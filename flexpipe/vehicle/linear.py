@@ -230,6 +230,8 @@ def linear_modes(car, *, body: str = "flexible", speed: float = 0.0, road=None,
     modes = simulate(car, road=road, speed=speed, t_end=1.0, body=body, f_max=f_max,
                      max_mode_hz=max_mode_hz, cache=cache, log=log, prewarp=False,
                      probe=lambda system, ctrl: _analyse(system, ctrl, speed=speed))
+    modes["info"]["seats"] = [(s.name, s.floor_point, s.natural_frequency_hz, s.damping_ratio)
+                              for s in car.body.seats]  # flexpipe.ride_response's seats
     return LinearModes(car=car.name, body=body, speed=float(speed), **modes)
 
 

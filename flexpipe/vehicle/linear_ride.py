@@ -35,6 +35,7 @@ import numpy as np
 
 from flexpipe.errors import InputError
 from flexpipe.sweeps.iso2631 import comfort_reaction
+from flexpipe.vehicle.seats import seat_value, with_seats
 
 #: frequency samples of the spectra (log spaced over the road's band at the speed): a
 #: step of 0.2 % resolves a resonance of damping ratio 0.01 with 10 samples per
@@ -197,6 +198,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
     H = modes.frequency_response(f)
     H_same = modes.track_response(f, tracks="same", H=H)
     H_opposite = modes.track_response(f, tracks="opposite", H=H)
+    outputs, H_same, H_opposite = with_seats(modes, f, H_same, H_opposite)
     S = output_psd(G, H_same, H_opposite, gamma)
     rms = np.sqrt(np.trapezoid(S, f, axis=0))
     difference = S_d = None
@@ -208,21 +210,26 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
                              f"{reference.speed:g} m/s, {len(reference.outputs)} outputs",
                              key="reference")
         H_ref = reference.frequency_response(f)
-        S_d = output_psd(G, H_same - reference.track_response(f, tracks="same", H=H_ref),
-                         H_opposite - reference.track_response(f, tracks="opposite",
-                                                               H=H_ref), gamma)
+        _, R_same, R_opposite = with_seats(
+            reference, f, reference.track_response(f, tracks="same", H=H_ref),
+            reference.track_response(f, tracks="opposite", H=H_ref))
+        S_d = output_psd(G, H_same - R_same, H_opposite - R_opposite, gamma)
         difference = np.sqrt(np.trapezoid(S_d, f, axis=0))
     w_rms = np.full(rms.shape, np.nan)
-    for j, name in enumerate(modes.outputs):
+    for j, name in enumerate(outputs):
         if (wk := _weighting(name)) is not None:
             w_rms[j] = np.sqrt(np.trapezoid(np.abs(response(f, wk)) ** 2 * S[:, j], f))
     points = {}
-    for name in modes.outputs:
+    for name in outputs:
         if name.startswith("acc_") and name.endswith("_z"):
             point = name[4:-2]
-            idx = [modes.outputs.index(f"acc_{point}_{ax}") for ax in "xyz"]
+            idx = [outputs.index(f"acc_{point}_{ax}") for ax in "xyz"]
             a_v = float(np.sqrt(np.sum(w_rms[idx] ** 2)))
             points[point] = {"a_v_m/s^2": a_v, "reaction": comfort_reaction(a_v)}
+    for seat, floor, *_ in modes.info.get("seats", ()):
+        if seat in points:  # SEAT value: the seat's weighted vertical RMS over the floor's
+            points[seat]["SEAT_%"] = seat_value(w_rms[outputs.index(f"acc_{seat}_z")],
+                                                w_rms[outputs.index(f"acc_{floor}_z")])
     # the tyres' static loads are in the outputs' order (tire_<corner>_Fz, corners fl..rr)
     static = modes.info.get("tire_Fz_N")
     tyres = [j for j, name in enumerate(modes.outputs) if name.endswith("_Fz")]
@@ -231,7 +238,7 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
         for j, load in zip(tyres, static, strict=True)}
     return RideResponse(car=modes.car, body=modes.body, speed=v,
                         road_class=str(road_class).upper(), track_width=track_width,
-                        f_hz=f, road_psd=G, coherence=gamma, outputs=modes.outputs,
+                        f_hz=f, road_psd=G, coherence=gamma, outputs=outputs,
                         psd=S, rms=rms, weighted_rms=w_rms, points=points,
                         dynamic_load=dynamic,
                         difference_rms=difference, difference_psd=S_d,

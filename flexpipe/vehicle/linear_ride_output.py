@@ -53,7 +53,8 @@ def ride_text(ride) -> str:
     for point, val in ride.points.items():
         w = [ride.weighted_rms[ride.outputs.index(f"acc_{point}_{ax}")] for ax in "xyz"]
         lines.append(f"  {point:24s} a_w x {w[0]:.3f}  y {w[1]:.3f}  z {w[2]:.3f}  "
-                     f"a_v {val['a_v_m/s^2']:.3f} m/s^2: {val['reaction']}")
+                     f"a_v {val['a_v_m/s^2']:.3f} m/s^2: {val['reaction']}"
+                     + (f"; SEAT {val['SEAT_%']:.1f} %" if "SEAT_%" in val else ""))
     return "\n".join(lines)
 
 

@@ -53,6 +53,17 @@ class BodyMotion:
         object.__setattr__(self, "q", q)
         object.__setattr__(self, "mode_index", mi)
 
+    @classmethod
+    def from_rows(cls, t, rows, first_mode: int) -> BodyMotion | None:
+        """From a run's recorded ``(q, p, R)`` rows at the output times ``t`` (None when
+        the rows do not cover them); ``first_mode``: the body's first elastic mode."""
+        if not rows or len(rows) != len(t):
+            return None
+        q = np.array([r[0] for r in rows], dtype=float).reshape(len(t), -1)
+        return cls(t=t, q=q, position=np.array([r[1] for r in rows]),
+                   rotation=np.array([r[2] for r in rows]),
+                   mode_index=np.arange(first_mode, first_mode + q.shape[1]))
+
     @property
     def n_modes(self) -> int:
         """Number of elastic modal coordinates."""

@@ -41,7 +41,7 @@ from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
     linkage_statics,
     reduce_car_body,
 )
-from flexpipe.vehicle.result import Result
+from flexpipe.vehicle.result import BodyMotion, Result
 from flexpipe.vehicle.run_inputs import (  # noqa: F401 - BODIES, START_MARGIN_M re-exported
     BODIES,
     START_MARGIN_M,
@@ -49,6 +49,7 @@ from flexpipe.vehicle.run_inputs import (  # noqa: F401 - BODIES, START_MARGIN_M
     as_road,
     check_run,
 )
+from flexpipe.vehicle.seats import seat_channels
 from flexpipe.vehicle.settle import settled_start
 from flexpipe.vehicle.spec import Car
 
@@ -447,6 +448,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         status, message = 0, f"reached t_end = {t_end:g} s"
     ctrl.fill_from_sensors()
     ch = ctrl.rec.channels()
+    ch.update(seat_channels(car.body.seats, ctrl.rec.t[: ctrl.rec.rows], ch))
     if status != 0:  # flexpipe#14 (robust): say what diverged and which input is implausible
         from flexpipe.vehicle.diagnose import explain
 
@@ -457,6 +459,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         "output_step": every * h, "speed": speed, "t_end": t_end,
         "speed_profile": vprof.describe() if vprof is not None else None,
         "steering": steering.describe(), "speed_control": speed_pi.describe(),
+        "seats": {seat.name: seat.floor_point for seat in car.body.seats},
         "road": getattr(road_obj, "source", "") or getattr(road_obj, "name", ""),
         "path": getattr(path_obj, "source", "") or getattr(path_obj, "name", ""),
         "mass_body_kg": rb.mass, "mass_total_kg": total_mass,
@@ -484,17 +487,6 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     return Result(t=t_out, channels=ch, status=status,
                   message=message, body=body, cpu_time=cpu, wall_time=wall,
                   simulated_time=t_end if status == 0 else max(t_reached, 0.0), info=info,
-                  motion=_motion(t_out, ctrl.motion, fb))
+                  motion=BodyMotion.from_rows(t_out, ctrl.motion,
+                                              fb.n_rigid if fb is not None else 0))
 
-
-def _motion(t, rows, fb):
-    """BodyMotion from the recorded ``(q, p, R)`` rows (durability, feat/durability)."""
-    from flexpipe.vehicle.result import BodyMotion
-
-    if not rows or len(rows) != len(t):
-        return None
-    q = np.array([r[0] for r in rows], dtype=float).reshape(len(t), -1)
-    first = fb.n_rigid if fb is not None else 0
-    return BodyMotion(t=t, q=q, position=np.array([r[1] for r in rows]),
-                      rotation=np.array([r[2] for r in rows]),
-                      mode_index=np.arange(first, first + q.shape[1]))

@@ -19,6 +19,8 @@ File layout (see ``cars/sedan.toml`` for a complete example; defaults in bracket
     [[body.mass]]    name, mass_kg, position_m, spread_radius_m [0.3]
                      (non-structural masses: powertrain, trim, occupants)
     [body.points]    name = [x, y, z]  (named output points for accelerations)
+    [body.seats.<name>]  floor_point, natural_frequency_hz, damping_ratio: a seat on a
+                     named point (flexpipe.vehicle.seats: channels acc_<name>_x|y|z)
     [body.fatigue]   sigma_f_Pa, b, endurance_limit_Pa [0], name: Basquin S-N curve of the
                      body for fatigue damage (flexpipe.durability.fatigue)
     [corners.fl|fr|rl|rr]

@@ -1,0 +1,151 @@
+"""Seats: the vertical acceleration at the seat surface, from the floor's.
+
+ISO 2631-1 measures whole-body vibration where the occupant sits, on the seat cushion, and
+a car's floor vibration reaches the occupant through the seat.  A seat here is the
+occupant on the cushion as one vertical degree of freedom on the floor point it is
+mounted at (``[body.seats.<name>]`` in the car file, docs/car-file.md): natural frequency
+``f_n`` and damping ratio ``zeta``, the model behind a conventional car seat's
+transmissibility (a resonance near 4 Hz, attenuation above about 6 Hz).  Its absolute
+acceleration answers the floor's through the base-excitation transmissibility
+
+    T(s) = (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2),   w = 2 pi f_n,
+
+applied to the recorded floor acceleration after the run (one-way coupling: the
+occupant's mass is in the body's masses, the seat's dynamics do not load the floor).
+Fore-aft and lateral pass unchanged (a seat rigid in its plane).  The run's channels
+``acc_<seat>_x|y|z`` then enter the ride summary like a body point's, and the seat's
+SEAT value (seat effective amplitude transmissibility, the seat's Wk-weighted vertical RMS
+over the floor's, in %) is reported with it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Seat:
+    """A seat on a named floor point.
+
+    Parameters
+    ----------
+    name : str
+        The seat's name (its channels are ``acc_<name>_x|y|z``).
+    floor_point : str
+        The ``[body.points]`` entry the seat is mounted at.
+    natural_frequency_hz : float
+        Vertical resonance of the occupant on the cushion (Hz).
+    damping_ratio : float
+        Its damping ratio.
+    """
+
+    name: str
+    floor_point: str
+    natural_frequency_hz: float
+    damping_ratio: float
+
+    def transmissibility(self, f_hz) -> np.ndarray:
+        """``T(j 2 pi f)``, complex: seat over floor vertical acceleration."""
+        s = 2j * np.pi * np.asarray(f_hz, dtype=float)
+        w = 2 * np.pi * self.natural_frequency_hz
+        c = 2 * self.damping_ratio * w
+        return (c * s + w * w) / (s * s + c * s + w * w)
+
+    def vertical(self, t: np.ndarray, a_floor: np.ndarray) -> np.ndarray:
+        """The seat's vertical acceleration for the floor's ``a_floor`` at times ``t``
+        (uniform), the occupant starting at rest on the floor.
+
+        The relative motion ``z`` obeys ``z'' + 2 zeta w z' + w^2 z = -a_floor`` and the
+        seat's acceleration is ``a_floor + z'' = -(2 zeta w z' + w^2 z)``; SciPy's
+        :func:`~scipy.signal.lsim` integrates it exactly for an input linear between
+        samples.
+        """
+        from scipy.signal import lsim
+
+        t = np.asarray(t, dtype=float)
+        a = np.asarray(a_floor, dtype=float)
+        if len(t) < 2:
+            return a.copy()
+        w = 2 * np.pi * self.natural_frequency_hz
+        c = 2 * self.damping_ratio * w
+        system = (np.array([[0.0, 1.0], [-w * w, -c]]), np.array([[0.0], [-1.0]]),
+                  np.array([[-w * w, -c]]), np.zeros((1, 1)))
+        _, y, _ = lsim(system, a, t - t[0], X0=np.zeros(2))
+        return np.asarray(y, dtype=float).reshape(-1)
+
+    def describe(self) -> str:
+        """One line for ``flexpipe info``."""
+        return (f"seat {self.name} on {self.floor_point}: {self.natural_frequency_hz:g} Hz, "
+                f"damping ratio {self.damping_ratio:g}")
+
+
+def read_seats(table, points: dict) -> tuple[Seat, ...]:
+    """The ``[body.seats]`` sub-tables of a body table reader ``table`` (named floor
+    points ``points``); every error names the file, line and key."""
+    if not table.has("seats"):
+        return ()
+    st = table.sub("seats")
+    seats = []
+    for name in list(st.data):
+        s = st.sub(name)
+        floor = s.string("floor_point", doc="a [body.points] name: where the seat stands")
+        if floor not in points:
+            raise s.error("floor_point", f"'{floor}' is not a [body.points] name; valid: "
+                                         f"{sorted(points) or 'none defined'}")
+        if name in points:
+            raise s.error(None, f"the seat name '{name}' is also a [body.points] name; "
+                                "their channels acc_<name>_x|y|z would clash: rename one")
+        fn = s.number("natural_frequency_hz", lo=0.5, hi=20.0,
+                      doc="vertical seat-occupant resonance (car seats: about 4 Hz)")
+        zeta = s.number("damping_ratio", lo=0.0, hi=2.0, lo_open=True)
+        s.finish()
+        seats.append(Seat(name, floor, fn, zeta))
+    st.finish()
+    return tuple(seats)
+
+
+def seat_channels(seats, t, channels: dict) -> dict:
+    """``acc_<seat>_x|y|z`` from the floor points' channels (a run's, in place of
+    nothing when the floor channels are absent)."""
+    out = {}
+    for seat in seats:
+        key = f"acc_{seat.floor_point}_"
+        if key + "z" not in channels:
+            continue
+        out[f"acc_{seat.name}_x"] = np.array(channels[key + "x"], dtype=float)
+        out[f"acc_{seat.name}_y"] = np.array(channels[key + "y"], dtype=float)
+        az = np.asarray(channels[key + "z"], dtype=float)
+        ok = np.isfinite(az)
+        z = np.full_like(az, np.nan)
+        n = int(np.argmin(ok)) if not ok.all() else len(az)  # up to a failed run's end
+        z[:n] = seat.vertical(np.asarray(t)[:n], az[:n])
+        out[f"acc_{seat.name}_z"] = z
+    return out
+
+
+def seat_value(aw_seat_z: float, aw_floor_z: float) -> float:
+    """SEAT value (%): the seat's weighted vertical RMS over the floor's."""
+    return float(100.0 * aw_seat_z / aw_floor_z) if aw_floor_z > 0 else math.nan
+
+
+def with_seats(modes, f_hz, *responses):
+    """A linear model's outputs and frequency responses ``(len(f_hz), outputs)`` extended
+    by each seat's ``acc_<seat>_x|y|z`` (its floor point's, the vertical one times
+    :meth:`Seat.transmissibility`); ``modes.info["seats"]`` lists the car's seats as
+    ``(name, floor_point, natural_frequency_hz, damping_ratio)``."""
+    outputs = list(modes.outputs)
+    extra = []  # (name, column of the floor's output, factor)
+    for name, floor, fn, zeta in modes.info.get("seats", ()):
+        if f"acc_{floor}_z" not in outputs:
+            continue
+        T = Seat(name, floor, fn, zeta).transmissibility(f_hz)
+        extra += [(f"acc_{name}_{ax}", outputs.index(f"acc_{floor}_{ax}"),
+                   T if ax == "z" else 1.0) for ax in "xyz"]
+    if not extra:
+        return (tuple(outputs), *responses)
+    out = [np.concatenate([H, np.stack([H[:, j] * c for _, j, c in extra], axis=1)], axis=1)
+           for H in responses]
+    return (tuple(outputs + [n for n, _, _ in extra]), *out)
