@@ -67,8 +67,8 @@ class Seat:
 
         t = np.asarray(t, dtype=float)
         a = np.asarray(a_floor, dtype=float)
-        if len(t) < 2:
-            return a.copy()
+        if len(t) < 2:  # at rest on the floor: the cushion has not yet passed anything
+            return np.zeros_like(a)
         w = 2 * np.pi * self.natural_frequency_hz
         c = 2 * self.damping_ratio * w
         system = (np.array([[0.0, 1.0], [-w * w, -c]]), np.array([[0.0], [-1.0]]),
@@ -108,8 +108,8 @@ def read_seats(table, points: dict) -> tuple[Seat, ...]:
 
 
 def seat_channels(seats, t, channels: dict) -> dict:
-    """``acc_<seat>_x|y|z`` from the floor points' channels (a run's, in place of
-    nothing when the floor channels are absent)."""
+    """``acc_<seat>_x|y|z`` of each seat from its floor point's channels (a seat whose
+    floor point has no channels gets none); a failed run's NaN tail stays NaN."""
     out = {}
     for seat in seats:
         key = f"acc_{seat.floor_point}_"
