@@ -359,6 +359,21 @@ def test_a_sweep_over_a_linkage_spring_runs_different_cars(client, tmp_path):
         assert abs(tr[0]) < 3e-3 and abs(tr[1] - tr[0]) < 1e-5
         first[row[FRONT_RATE]] = mine["hub_fl_z"].to_numpy()
     assert np.abs(first[rates[0]] - first[rates[1]]).max() > 10.0  # N: different cars
+    # plumbing (the seat's physics is checked in test_seats.py): the sample's driver seat
+    # reaches the channel files as its floor channel through the seat, and the table's
+    # SEAT value is the ratio of the two weighted vertical RMS columns
+    from flexpipe.vehicle.seats import Seat
+
+    seat = Seat("driver_seat", "driver_floor", 4.0, 0.3)
+    for _, row in res.table.iterrows():
+        mine = ch[ch["run"].astype(str) == row["key"]].sort_values("t")
+        t = mine["t"].to_numpy()
+        np.testing.assert_allclose(mine["acc_driver_seat_z"].to_numpy(),
+                                   seat.vertical(t, mine["acc_driver_floor_z"].to_numpy()),
+                                   rtol=0, atol=1e-9)
+        assert row["seat_driver_seat_SEAT_pct"] == pytest.approx(
+            100 * row["aw_driver_seat_z_m_per_s2"] / row["aw_driver_floor_z_m_per_s2"],
+            rel=1e-12)
 
 
 def test_runs_moving_a_suspension_mount_get_their_own_body():

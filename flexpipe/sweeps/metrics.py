@@ -21,6 +21,9 @@ Every column name carries its unit.  For a corner ``c`` (fl, fr, rl, rr), an axi
 ``av_<p>_m_per_s2``
     Vibration total value ``sqrt(sum (k_i aw_i)^2)`` with the health factors
     kx = ky = 1.4, kz = 1 (ISO 2631-1 7.2.3).
+``seat_<s>_SEAT_pct``
+    A seat's SEAT value (:mod:`flexpipe.vehicle.seats`): its ``aw_<s>_z`` over its floor
+    point's, in % (added by :func:`flexpipe.sweeps.tasks.run_task`, which knows the seats).
 ``travel_<c>_max_m``, ``travel_<c>_min_m``, ``travel_absmax_m``
     Largest jounce (compression +) and rebound (-) per corner, largest magnitude overall.
 ``lateral_error_absmax_m``

@@ -86,6 +86,7 @@ def run_task(run, car, rigid=None, bodies=None):
         ``t`` and every output channel (None when the run raised before integrating).
     """
     from flexpipe.sweeps.metrics import centre_of_mass, manoeuvre_metrics, run_metrics
+    from flexpipe.vehicle.seats import seat_value
     from flexpipe.vehicle.simulation import prepare, simulate
 
     t0 = time.perf_counter()
@@ -105,6 +106,10 @@ def run_task(run, car, rigid=None, bodies=None):
         if "n_elastic_modes" in res.info:
             record["n_elastic_modes"] = int(res.info["n_elastic_modes"])
         record.update(run_metrics(res.t, res.channels, settle=run.settle))
+        for seat, floor in res.info.get("seats", {}).items():  # flexpipe.vehicle.seats
+            record[f"seat_{seat}_SEAT_pct"] = seat_value(
+                record.get(f"aw_{seat}_z_m_per_s2", np.nan),
+                record.get(f"aw_{floor}_z_m_per_s2", np.nan))
         figures, note = manoeuvre_metrics(res, cg=centre_of_mass(res, car, prep["rigid"]))
         record.update(figures)  # (none unless an open-loop step or sine-with-dwell run)
         if note:

@@ -128,7 +128,8 @@ def seat_channels(seats, t, channels: dict) -> dict:
 
 def seat_value(aw_seat_z: float, aw_floor_z: float) -> float:
     """SEAT value (%): the seat's weighted vertical RMS over the floor's."""
-    return float(100.0 * aw_seat_z / aw_floor_z) if aw_floor_z > 0 else math.nan
+    ok = aw_floor_z > 0  # False for NaN too (a run too short for its metrics)
+    return float(100.0 * aw_seat_z / aw_floor_z) if ok else math.nan
 
 
 def with_seats(modes, f_hz, *responses):
