@@ -80,14 +80,12 @@ def _variants(key: str, value: str):
         yield "array", f"[{v}]"
 
 
-def cases():
-    text = base_text()
-    yield "ok-sedan", "car.toml", text.encode(), "ok"
-    yield "ok-crlf", "car.toml", text.replace("\n", "\r\n").encode(), "ok"
-    yield "ok-no-comments", "car.toml", "\n".join(
-        ln for ln in text.splitlines() if not ln.strip().startswith("#")).encode(), "ok"
-    lines = text.splitlines()
+def _mutations(lines, *, sections=None, required=REQUIRED):
+    """Each distinct key of ``lines`` (of ``sections`` only, if given) mutated by
+    :func:`_variants`, and deleted where it is required."""
     for i, section, key, value in _key_lines(lines):
+        if sections is not None and section not in sections:
+            continue
         m = KEY_LINE.match(lines[i])
         for kind, new in _variants(key, value):
             mutated = list(lines)
@@ -97,9 +95,43 @@ def cases():
                 mutated[i] = f"{m.group(1)}{key}{m.group(3)}{new}"
             expect = "maybe" if (section, key, kind) in MAY_LOAD else "error"
             yield f"{section}.{key}-{kind}", "car.toml", "\n".join(mutated).encode(), expect
-        if key in REQUIRED:
+        if key in required:
             mutated = lines[:i] + lines[i + 1:]
             yield f"{section}.{key}-deleted", "car.toml", "\n".join(mutated).encode(), "error"
+
+
+#: a seat on the sample's driver floor point (flexpipe.vehicle.seats)
+SEAT = ('[body.seats.driver_seat]\nfloor_point = "driver_floor"\n'
+        'natural_frequency_hz = 4.0\ndamping_ratio = 0.3\n')
+
+
+def _seats():
+    """The sedan with a seat: each seat key mutated as the sample's are, deleted, and the
+    seat's own checks (a floor point that is not a named point, a seat named as a point,
+    values past the bounds, a seat that is not a table)."""
+    text = base_text() + "\n" + SEAT
+    yield "seat-ok", "car.toml", text.encode(), "ok"
+    yield from _mutations(text.splitlines(), sections={"body.seats.driver_seat"},
+                          required={"floor_point", "natural_frequency_hz", "damping_ratio"})
+    base = base_text() + "\n"
+    for name, seat in (
+            ("floor-point-unknown", SEAT.replace('"driver_floor"', '"nowhere"')),
+            ("named-as-a-point", SEAT.replace("driver_seat]", "rear_floor]")),
+            ("frequency-above-20-Hz", SEAT.replace("= 4.0", "= 25.0")),
+            ("frequency-below-0.5-Hz", SEAT.replace("= 4.0", "= 0.1")),
+            ("damping-zero", SEAT.replace("= 0.3", "= 0.0")),
+            ("damping-above-2", SEAT.replace("= 0.3", "= 2.5")),
+            ("not-a-table", "[body.seats]\ndriver_seat = 4.0\n")):
+        yield f"seat-{name}", "car.toml", (base + seat).encode(), "error"
+
+
+def cases():
+    text = base_text()
+    yield "ok-sedan", "car.toml", text.encode(), "ok"
+    yield "ok-crlf", "car.toml", text.replace("\n", "\r\n").encode(), "ok"
+    yield "ok-no-comments", "car.toml", "\n".join(
+        ln for ln in text.splitlines() if not ln.strip().startswith("#")).encode(), "ok"
+    yield from _mutations(text.splitlines())
     # whole-file and structure
     yield "empty", "car.toml", b"", "error"
     yield "binary", "car.toml", bytes(range(256)) * 8, "error"
@@ -143,6 +175,7 @@ def cases():
     yield from _powertrain_body()
     yield from _subframe()
     yield from _variants_of_base()
+    yield from _seats()
 
 
 def _bounds(text: str):
