@@ -115,3 +115,15 @@ def test_a_seat_named_as_a_point_is_refused(tmp_path):
                  'natural_frequency_hz = 4.0\ndamping_ratio = 0.3\n')
     with pytest.raises(InputError, match="seat name 'rear_floor' is also a \\[body.points\\]"):
         fp.load_car(p)
+
+
+def test_flexpipe_info_lists_the_seat_as_the_car_file_gives_it():
+    import tomllib
+
+    from flexpipe.vehicle.describe import car_text
+
+    table = tomllib.loads(SAMPLE.read_text())["body"]["seats"]["driver_seat"]
+    text = car_text(fp.load_car(SAMPLE))
+    assert (f"seat driver_seat on {table['floor_point']}: "
+            f"{table['natural_frequency_hz']:g} Hz, damping ratio "
+            f"{table['damping_ratio']:g}") in text, text
