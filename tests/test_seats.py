@@ -127,3 +127,14 @@ def test_flexpipe_info_lists_the_seat_as_the_car_file_gives_it():
     assert (f"seat driver_seat on {table['floor_point']}: "
             f"{table['natural_frequency_hz']:g} Hz, damping ratio "
             f"{table['damping_ratio']:g}") in text, text
+
+
+def test_a_still_floor_gives_no_seat_value_rather_than_nan():
+    from types import SimpleNamespace
+
+    t = np.arange(0.0, 4.0, 1e-3)
+    still = np.zeros_like(t)
+    ch = {f"acc_{p}_{k}": still for p in ("floor", "seat") for k in "xyz"}
+    run = SimpleNamespace(t=t, channels=ch, status=0, info={"seats": {"seat": "floor"}})
+    out = ride_summary({"rigid": run}, t_from=1.0)["ride_comfort"]["rigid"]["seat"]
+    assert out["SEAT_%"] is None  # 0 / 0: summary.json stays valid JSON

@@ -45,8 +45,8 @@ def ride_summary(results: dict, *, t_from: float) -> dict:
         seats = (getattr(r, "info", None) or {}).get("seats") or {}
         for seat, floor in seats.items():  # flexpipe.vehicle.seats
             if seat in points and floor in points:
-                points[seat]["SEAT_%"] = round(seat_value(
-                    points[seat]["aw_z_m/s^2"], points[floor]["aw_z_m/s^2"]), 2)
+                v = seat_value(points[seat]["aw_z_m/s^2"], points[floor]["aw_z_m/s^2"])
+                points[seat]["SEAT_%"] = round(v, 2) if math.isfinite(v) else None  # JSON
                 points[seat]["floor_point"] = floor
         comfort[body] = points
         keep = r.t >= t_from - 1e-12
