@@ -3,7 +3,8 @@
 The sample's mesh and tyre paths are made absolute so that each case loads from its own
 folder.  For every distinct key (the first ``[[body.mass]]`` entry stands for all of
 them, ``fl`` and ``rr`` for the corners): a typo in the key, a wrong type, NaN and
-infinity, a negative value, arrays of the wrong length, and deletion of required keys.
+infinity, a negative value, arrays of the wrong length, and deletion of required keys;
+the same for a seat added on the driver floor point, with the seat's own checks.
 """
 
 from __future__ import annotations
