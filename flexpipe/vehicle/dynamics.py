@@ -17,7 +17,7 @@ body origin (m/s^2, body axes, from its velocity), ``speed_target`` (m/s, the dr
 per corner ``c`` in ``fl, fr, rl, rr``: ``hub_c_x|y|z`` force the corner applies to the body
 at its hardpoint (N, body axes), ``tire_c_Fx|Fy|Fz`` contact force (N, tyre W-axes),
 ``travel_c`` suspension jounce (m, + compression), ``spin_c`` wheel spin rate (rad/s);
-per named point ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, without gravity);
+per named point or seat ``p``: ``acc_p_x|y|z`` acceleration (m/s^2, body axes, no gravity);
 linkage cars, per body mount ``m``: ``mount_m_x|y|z`` force the suspension applies to the
 body there (N, body axes; ``hub_c_*`` is the sum over the corner's own mounts; on the
 subframe for a mount a subframe carries), and the force on the body at every mount of a
