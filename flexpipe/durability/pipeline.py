@@ -29,7 +29,8 @@ DESCRIPTIONS = {
     "trajectory.png": "driven path of each run",
     "spectra.png": "PSDs (Welch, 2 s segments, after the start-up) of the front-left "
                    "vertical hub force with rigid minus flexible, and of the first body "
-                   "point's vertical acceleration with its ISO 2631-1 Wk weighting",
+                   "point's and the first seat's vertical acceleration with their ISO "
+                   "2631-1 Wk weighting",
     "handling.png": "circle paths: understeer angle and steer against lateral acceleration "
                     "with the understeer gradient of each run (summary.json 'handling')",
     "steer_response.png": "open-loop steering inputs: steering-wheel angle, yaw rate and "

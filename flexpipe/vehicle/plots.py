@@ -76,8 +76,9 @@ def spectra(results: dict, path, *, t_from: float, corner: str = "fl",
             point: str | None = None, title: str = "") -> Path:
     """Where the runs differ in frequency: power spectral densities (Welch, 2 s Hann
     segments, half overlap, samples from ``t_from``) of a corner's vertical hub force
-    with the PSD of each run's difference from the rigid one, and of a body point's
-    vertical acceleration (``point``: the first named point by default) with its ISO
+    with the PSD of each run's difference from the rigid one, of a body point's
+    vertical acceleration (``point``: the first named point by default) and of the
+    first seat's (:mod:`flexpipe.vehicle.seats`, if the car has one), each with its ISO
     2631-1 Wk weighting dotted."""
     from scipy.signal import welch
 
@@ -85,9 +86,12 @@ def spectra(results: dict, path, *, t_from: float, corner: str = "fl",
     from flexpipe.sweeps.metrics import points_of
 
     first = next(iter(results.values()))
-    point = point or next(iter(points_of(first.channels)), None)
-    plt, fig = _figure((9, 7.5 if point else 4.5))
-    axes = fig.subplots(2 if point else 1, 1, sharex=True, squeeze=False)[:, 0]
+    seats = (getattr(first, "info", None) or {}).get("seats") or {}
+    point = point or next((p for p in points_of(first.channels) if p not in seats), None)
+    seat = next((s for s in seats if f"acc_{s}_z" in first.channels), None)
+    panels = [p for p in (point, seat) if p]
+    plt, fig = _figure((9, 4.5 + 3.0 * len(panels)))
+    axes = fig.subplots(1 + len(panels), 1, sharex=True, squeeze=False)[:, 0]
     name = f"hub_{corner}_z"
 
     def psd(r, x):
@@ -105,14 +109,15 @@ def spectra(results: dict, path, *, t_from: float, corner: str = "fl",
             axes[0].semilogy(f, p, label=f"rigid - {label}", color="tab:orange", lw=1.0)
     axes[0].set_ylabel(f"vertical hub force {corner.upper()}\nPSD [N^2/Hz]")
     axes[0].set_title(title or "Spectra of the runs", fontsize=10)
-    if point:
+    for ax, pt in zip(axes[1:], panels, strict=True):
         for label, r in results.items():
-            f, p = psd(r, r[f"acc_{point}_z"])
+            f, p = psd(r, r[f"acc_{pt}_z"])
             style = STYLE.get(label, {})
-            line, = axes[1].semilogy(f, p, label=f"{label} body", **style)
-            axes[1].semilogy(f, np.abs(response(f, "Wk")) ** 2 * p, lw=0.8, ls=":",
-                             color=line.get_color(), label=f"{label}, Wk weighted")
-        axes[1].set_ylabel(f"vertical acceleration, {point}\nPSD [(m/s^2)^2/Hz]")
+            line, = ax.semilogy(f, p, label=f"{label} body", **style)
+            ax.semilogy(f, np.abs(response(f, "Wk")) ** 2 * p, lw=0.8, ls=":",
+                        color=line.get_color(), label=f"{label}, Wk weighted")
+        where = f"{pt} (seat on {seats[pt]})" if pt in seats else pt
+        ax.set_ylabel(f"vertical acceleration, {where}\nPSD [(m/s^2)^2/Hz]")
     for ax in axes:
         ax.set_xlim(0.0, min(60.0, ax.get_xlim()[1]))
         shown = [ln.get_ydata()[(ln.get_xdata() > 0.5) & (ln.get_xdata() <= 60.0)]
