@@ -160,17 +160,22 @@ def _time_run(m, road, *, dt=1e-3, histories=False):
         U[:, 2 * n_w + i] = (at(road.left, s) - at(road.right, s)) / abs(np.diff(y[axle])[0])
     _, out, _ = lsim((m.A, m.B, m.C, m.D), U, t)
     names = list(m.outputs)
-    # each seat: its floor point's motion through the seat's own ODE,
-    # z'' + 2 zeta w z' + w^2 z = -a_floor, the seat's acceleration -(2 zeta w z' + w^2 z)
-    for seat, floor, fn, zeta in m.info.get("seats", ()):
-        w = 2 * np.pi * fn
-        a = out[:, names.index(f"acc_{floor}_z")]
-        _, a_seat, _ = lsim(([[0, 1], [-w * w, -2 * zeta * w]], [[0], [-1]],
-                             [[-w * w, -2 * zeta * w]], [[0]]), a, t)
-        cols = [out[:, names.index(f"acc_{floor}_x")], out[:, names.index(f"acc_{floor}_y")],
-                a_seat]
-        out = np.column_stack([out, *cols])
-        names += [f"acc_{seat}_{ax}" for ax in "xyz"]
+    # each seat: its floor point's motion through the seat's own ODE per axis that has a
+    # resonance, z'' + 2 zeta w z' + w^2 z = -a_floor, the seat's acceleration
+    # -(2 zeta w z' + w^2 z); the floor's along an axis without one
+    for seat in m.info.get("seats", ()):
+        floor = seat["floor_point"]
+        modes_of = {"x": seat["fore_aft"], "y": seat["lateral"],
+                    "z": (seat["natural_frequency_hz"], seat["damping_ratio"])}
+        for ax in "xyz":
+            a = out[:, names.index(f"acc_{floor}_{ax}")]
+            if modes_of[ax] is not None:
+                fn, zeta = modes_of[ax]
+                w = 2 * np.pi * fn
+                _, a, _ = lsim(([[0, 1], [-w * w, -2 * zeta * w]], [[0], [-1]],
+                                [[-w * w, -2 * zeta * w]], [[0]]), a, t)
+            out = np.column_stack([out, a])
+            names.append(f"acc_{seat['name']}_{ax}")
     out = out[steps:] - out[steps:].mean(axis=0)
     if histories:
         return out

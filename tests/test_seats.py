@@ -44,6 +44,19 @@ def test_a_sine_through_the_seat_has_the_closed_form_transmissibility(f):
     assert np.arctan2(c, s) == pytest.approx(np.angle(T), abs=2e-3)
 
 
+@pytest.mark.parametrize("f", [1.0, 3.0, 9.0])
+def test_an_in_plane_resonance_filters_its_axis_and_an_axis_without_one_passes(f):
+    seat = Seat("s", "floor", 4.0, 0.3, fore_aft=(3.0, 0.2))
+    dt = 2.5e-4
+    t = np.arange(int(round(30.0 / dt))) * dt
+    a = np.sin(2 * np.pi * f * t)
+    steady = t >= 15.0
+    x = seat.acceleration(t, a, "x")[steady]
+    assert np.sqrt(2 * np.mean(x**2)) == pytest.approx(_closed_form(f, 3.0, 0.2), rel=5e-4)
+    assert np.array_equal(seat.acceleration(t, a, "y"), a)  # lateral: the floor's
+    assert abs(seat.transmissibility(f, "y")) == 1.0
+
+
 def test_a_constant_floor_acceleration_reaches_the_seat_unchanged():
     seat = Seat("s", "floor", 4.0, 0.3)
     t = np.arange(0, 5.0, 1e-3)
@@ -99,6 +112,12 @@ def test_the_seat_of_a_run_answers_its_floor_as_its_transmissibility_says(run):
      "body.seats.s.damping_ratio", "must be > 0"),
     ('floor_point = "driver_floor"\nnatural_frequency_hz = 4.0\ndamping_ratio = 0.3\n'
      'stiffness_N_per_m = 1e4', "stiffness_N_per_m", "unknown key"),
+    ('floor_point = "driver_floor"\nnatural_frequency_hz = 4.0\ndamping_ratio = 0.3\n'
+     'fore_aft_frequency_hz = 3.0', "body.seats.s.fore_aft_frequency_hz",
+     "give both fore_aft_frequency_hz and fore_aft_damping_ratio"),
+    ('floor_point = "driver_floor"\nnatural_frequency_hz = 4.0\ndamping_ratio = 0.3\n'
+     'lateral_frequency_hz = 30.0\nlateral_damping_ratio = 0.2',
+     "body.seats.s.lateral_frequency_hz", "must be <= 20"),
 ])
 def test_a_bad_seat_is_named_by_file_and_key(tmp_path, table, key, words):
     p = tmp_path / "variant.toml"
@@ -127,6 +146,27 @@ def test_flexpipe_info_lists_the_seat_as_the_car_file_gives_it():
     assert (f"seat driver_seat on {table['floor_point']}: "
             f"{table['natural_frequency_hz']:g} Hz, damping ratio "
             f"{table['damping_ratio']:g}") in text, text
+
+
+def test_an_in_plane_resonance_reaches_the_runs_channel_and_flexpipe_info(tmp_path):
+    from flexpipe.vehicle.describe import car_text
+    from flexpipe.vehicle.seats import seat_channels
+
+    p = tmp_path / "variant.toml"
+    p.write_text(f'base = "{SAMPLE}"\n[body.seats.driver_seat]\nfore_aft_frequency_hz = 3.0\n'
+                 'fore_aft_damping_ratio = 0.2\n')
+    car = fp.load_car(p)
+    (seat,) = car.body.seats
+    assert (seat.natural_frequency_hz, seat.fore_aft, seat.lateral) == (4.0, (3.0, 0.2), None)
+    assert "fore-aft 3 Hz, 0.2" in car_text(car)
+    t = np.arange(0.0, 2.0, 1e-3)
+    floor = {f"acc_driver_floor_{k}": np.sin(2 * np.pi * (2 + i) * t)
+             for i, k in enumerate("xyz")}
+    out = seat_channels(car.body.seats, t, floor)
+    for k in "xyz":
+        assert np.array_equal(out[f"acc_driver_seat_{k}"],
+                              seat.acceleration(t, floor[f"acc_driver_floor_{k}"], k))
+    assert np.array_equal(out["acc_driver_seat_y"], floor["acc_driver_floor_y"])
 
 
 def test_a_still_floor_gives_no_seat_value_rather_than_nan():

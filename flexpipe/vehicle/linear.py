@@ -27,7 +27,7 @@ nonlinear run of the same car released from a disturbed state.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -230,8 +230,7 @@ def linear_modes(car, *, body: str = "flexible", speed: float = 0.0, road=None,
     modes = simulate(car, road=road, speed=speed, t_end=1.0, body=body, f_max=f_max,
                      max_mode_hz=max_mode_hz, cache=cache, log=log, prewarp=False,
                      probe=lambda system, ctrl: _analyse(system, ctrl, speed=speed))
-    modes["info"]["seats"] = [(s.name, s.floor_point, s.natural_frequency_hz, s.damping_ratio)
-                              for s in car.body.seats]  # flexpipe.ride_response's seats
+    modes["info"]["seats"] = [asdict(s) for s in car.body.seats]  # ride_response
     return LinearModes(car=car.name, body=body, speed=float(speed), **modes)
 
 

@@ -226,7 +226,8 @@ def ride_response(modes, road_class: str = "C", *, coherence="isotropic",
             idx = [outputs.index(f"acc_{point}_{ax}") for ax in "xyz"]
             a_v = float(np.sqrt(np.sum(w_rms[idx] ** 2)))
             points[point] = {"a_v_m/s^2": a_v, "reaction": comfort_reaction(a_v)}
-    for seat, floor, *_ in modes.info.get("seats", ()):
+    for fields in modes.info.get("seats", ()):
+        seat, floor = fields["name"], fields["floor_point"]
         if seat in points:  # SEAT value: the seat's weighted vertical RMS over the floor's
             points[seat]["SEAT_%"] = seat_value(w_rms[outputs.index(f"acc_{seat}_z")],
                                                 w_rms[outputs.index(f"acc_{floor}_z")])

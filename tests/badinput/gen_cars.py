@@ -103,7 +103,8 @@ def _mutations(lines, *, sections=None, required=REQUIRED):
 
 #: a seat on the sample's driver floor point (flexpipe.vehicle.seats)
 SEAT = ('[body.seats.driver_seat]\nfloor_point = "driver_floor"\n'
-        'natural_frequency_hz = 4.0\ndamping_ratio = 0.3\n')
+        'natural_frequency_hz = 4.0\ndamping_ratio = 0.3\n'
+        'fore_aft_frequency_hz = 3.0\nfore_aft_damping_ratio = 0.2\n')
 
 
 def _seats():
@@ -122,6 +123,8 @@ def _seats():
             ("frequency-below-0.5-Hz", SEAT.replace("= 4.0", "= 0.1")),
             ("damping-zero", SEAT.replace("= 0.3", "= 0.0")),
             ("damping-above-2", SEAT.replace("= 0.3", "= 2.5")),
+            ("fore-aft-frequency-alone", SEAT.replace("fore_aft_damping_ratio = 0.2\n", "")),
+            ("fore-aft-damping-alone", SEAT.replace("fore_aft_frequency_hz = 3.0\n", "")),
             ("not-a-table", "[body.seats]\ndriver_seat = 4.0\n")):
         yield f"seat-{name}", "car.toml", (base + seat).encode(), "error"
 
