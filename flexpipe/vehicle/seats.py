@@ -1,4 +1,4 @@
-"""Seats: the vertical acceleration at the seat surface, from the floor's.
+"""Seats: the acceleration at the seat surface, from the floor's.
 
 ISO 2631-1 measures whole-body vibration where the occupant sits, on the seat cushion, and
 a car's floor vibration reaches the occupant through the seat.  A seat here is the
