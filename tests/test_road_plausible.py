@@ -122,10 +122,15 @@ def test_bound_is_two_metres_within_one_metre(tmp_path, rise, ok):
     """A ramp of ``rise`` over 1 m: at most 2 m within 1 m is accepted, more is not."""
     path = tmp_path / "ramp.csv"
     path.write_text(f"0,0\n10,0\n10.99,{rise}\n20,{rise}\n")
+    _loads_or_is_named(path, ok, "ramp.csv, line 3")
+
+
+def _loads_or_is_named(path, ok: bool, match: str):
+    """``read_csv(path)`` loads when ``ok``, else raises an InputError matching ``match``."""
     if ok:
         read_csv(path)
     else:
-        with pytest.raises(InputError, match="ramp.csv, line 3"):
+        with pytest.raises(InputError, match=match):
             read_csv(path)
 
 
@@ -143,3 +148,62 @@ def test_reference_crg_roads_load(name):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")    # header notes of the measured files
         load_road(path)
+
+
+def _exact_rise(x, h, width):
+    """Brute force: the largest height range of the piecewise-linear profile over any
+    ``width`` of road.  The range of a window moves linearly with its start between the
+    starts at which a sample enters or leaves it, so its maximum is at one of those."""
+    a = np.concatenate([x, x - width])
+    a = np.unique(a[(a >= x[0]) & (a <= x[-1] - width)])
+    best = 0.0
+    for s in a:
+        inside = h[(x >= s) & (x <= s + width)]
+        ends = np.interp([s, s + width], x, h)
+        v = np.r_[inside, ends]
+        best = max(best, float(v.max() - v.min()))
+    return best
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_local_rise_with_long_straight_stretches_is_bounded_by_brute_force(seed):
+    """Profiles with samples both closer and much farther apart than the 1 m window: the
+    largest rise reported lies between the brute-force largest rise within 0.5 m and
+    within 1 m (what local_rise promises), where the windows now follow the samples."""
+    from flexpipe.roads._plausible import WINDOW, local_rise
+
+    rng = np.random.default_rng(seed)
+    gaps = np.where(rng.random(60) < 0.3, rng.uniform(1.5, 8.0, 60), rng.uniform(0.05, 0.9, 60))
+    x = np.r_[0.0, np.cumsum(gaps)]
+    h = np.cumsum(rng.normal(0.0, 0.4, x.size))
+    _, rise = local_rise(x, h)
+    got = float(rise.max())
+    assert _exact_rise(x, h, WINDOW / 2) - 1e-12 <= got <= _exact_rise(x, h, WINDOW) + 1e-12
+
+
+@pytest.mark.parametrize("slope, ok", [(1.5, True), (2.5, False)])
+def test_straight_line_over_a_megametre_checks_its_slope(tmp_path, slope, ok):
+    """Two samples 1,000 km apart: every 1 m of the line rises by the slope (closed form),
+    without one bin per half metre of road."""
+    from flexpipe.roads._plausible import WINDOW, local_rise
+
+    start, rise = local_rise(np.array([0.0, 1e6]), np.array([0.0, slope * 1e6]))
+    assert start.size <= 8
+    assert float(rise.max()) == pytest.approx(slope * WINDOW, rel=1e-9)
+    path = tmp_path / "line.csv"
+    path.write_text(f"0,0\n1000000,{slope * 1e6:g}\n")
+    _loads_or_is_named(path, ok, "line.csv")
+
+
+def test_a_far_damaged_distance_loads_in_memory_of_the_samples(tmp_path):
+    """roads/bump.csv with its last distance damaged to 9e8 m: a flat road that is very
+    long.  It used to need 27 GB (one bin per half metre; a CI worker was killed for a
+    hypothesis-damaged file like it); it now loads, with its bumps."""
+    lines = (REPO / "roads" / "bump.csv").read_text().splitlines()
+    lines[-1] = "900000000.0,0.0,0.0"
+    path = tmp_path / "far.csv"
+    path.write_text("\n".join(lines) + "\n")
+    road, bump = read_csv(path), read_csv(REPO / "roads" / "bump.csv")
+    assert road.x[-1] == 9e8
+    for name in ("left", "right"):  # the bumps as in the undamaged file
+        np.testing.assert_array_equal(getattr(road, name)[:-1], getattr(bump, name)[:-1])
