@@ -231,3 +231,13 @@ def test_misspelt_header_key_is_an_error(tmp_path):
                   extra="REFERENCE_LINE_STRAT_B = 0.05")
     with pytest.raises(InputError, match="did you mean REFERENCE_LINE_START_B"):
         read_crg(f)
+
+
+def test_road_shorter_than_one_increment_is_named(tmp_path):
+    """END_U - START_U below one increment gave one cross section and a raw IndexError (a
+    damaged header found by probing the reader with extreme values)."""
+    f = _text_crg(tmp_path, [" 0.0100000 0.0200000 0.0300000"] * 3)
+    f.write_text(f.read_text().replace("END_U = 1.0", "END_U = 1e-9"))
+    with pytest.raises(InputError, match=r"key 'REFERENCE_LINE_END_U'.*less than one "
+                                         r"increment \(0\.5 m\).*at least 2 cross sections"):
+        read_crg(f)

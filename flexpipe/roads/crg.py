@@ -380,6 +380,11 @@ def _u_axis(p, u_channel, path, section_line):
                          "gives more than 1e8 cross sections; check both values", file=path,
                          line=line("REFERENCE_LINE_END_U"))
     n_u = int(round((u1 - u0) / du)) + 1
+    if n_u < 2:
+        raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is less than one "
+                         f"increment ({du:g} m): a road needs at least 2 cross sections",
+                         file=path, line=line("REFERENCE_LINE_END_U"),
+                         key="REFERENCE_LINE_END_U")
     if abs(u0 + (n_u - 1) * du - u1) > 1e-6 * max(1.0, abs(u1)):
         raise InputError(f"REFERENCE_LINE_END_U - START_U = {u1 - u0:g} m is not a multiple "
                          f"of the increment {du:g} m", file=path,
