@@ -39,9 +39,11 @@ CHECKED_TESTS = tests/test_brackets.py tests/test_exudyn_body.py tests/test_forc
 
 # the suite runs on TEST_WORKERS pytest-xdist processes (a test file stays on one), each
 # held to one BLAS / MKL / Numba thread so that the workers do not oversubscribe the cores
+# (a worker that crashes ends the run at once, naming its test: xdist's restart of a
+# crashed worker once left a run hanging; tests/conftest.py caps each worker's memory)
 TEST_WORKERS ?= 2
 PYTEST = OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 NUMBA_NUM_THREADS=1 \
-	$(PY) -m pytest -q -n $(TEST_WORKERS) --dist loadfile
+	$(PY) -m pytest -q -n $(TEST_WORKERS) --dist loadfile --max-worker-restart=0
 
 test: setup
 	$(PYTEST)
