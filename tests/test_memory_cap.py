@@ -8,7 +8,6 @@ import resource
 
 import numpy as np
 import pytest
-
 from conftest import MEMORY_CAP_GB
 
 
