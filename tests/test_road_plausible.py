@@ -166,14 +166,17 @@ def _exact_rise(x, h, width):
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_local_rise_with_long_straight_stretches_is_bounded_by_brute_force(seed):
-    """Profiles with samples both closer and much farther apart than the 1 m window: the
-    largest rise reported lies between the brute-force largest rise within 0.5 m and
-    within 1 m (what local_rise promises), where the windows now follow the samples."""
+@pytest.mark.parametrize("far", [0.3, 0.95])
+def test_local_rise_with_long_straight_stretches_is_bounded_by_brute_force(seed, far):
+    """Profiles with samples both closer and much farther apart than the 1 m window (a
+    fraction ``far`` of the gaps long: all bins formed, or, for 0.95, only those near a
+    sample): the largest rise reported lies between the brute-force largest rise within
+    0.5 m and within 1 m, which is what local_rise promises."""
     from flexpipe.roads._plausible import WINDOW, local_rise
 
     rng = np.random.default_rng(seed)
-    gaps = np.where(rng.random(60) < 0.3, rng.uniform(1.5, 8.0, 60), rng.uniform(0.05, 0.9, 60))
+    gaps = np.where(rng.random(60) < far, rng.uniform(1.5, 8.0, 60),
+                    rng.uniform(0.05, 0.9, 60))
     x = np.r_[0.0, np.cumsum(gaps)]
     h = np.cumsum(rng.normal(0.0, 0.4, x.size))
     _, rise = local_rise(x, h)

@@ -35,11 +35,11 @@ def local_rise(x, h):
     """Height range of every window of two consecutive ``WINDOW / 2`` bins along ``x``.
 
     Memory and time grow with the number of samples, not with the road's length: where
-    two samples are more than ``WINDOW`` apart the profile between them is one straight
-    line, so the samples on either side are checked as separate stretches, each reaching
-    ``WINDOW`` into the line (every window inside the line has the rise of that
-    piece).  A damaged distance (``9e8`` m after a flat 30 m road) used to ask for one
-    bin per half metre of the whole length (27 GB).
+    most bins would be empty, only the bins that hold a sample or neighbour one are
+    formed.  Two bins neither of which does lie on one straight piece of the profile, more
+    than ``WINDOW`` long, whose rise within any window is its slope times ``WINDOW``: one
+    window per such piece stands for them.  A damaged distance (``9e8`` m after a flat
+    30 m road) used to ask for one bin per half metre of the whole length (27 GB).
 
     Parameters
     ----------
@@ -51,7 +51,7 @@ def local_rise(x, h):
     Returns
     -------
     start : ndarray, shape (k,)
-        Start of each window (m); each window is ``WINDOW`` long.
+        Start of each window (m), ascending; each window is ``WINDOW`` long.
     rise : ndarray, shape (k, m)
         Largest minus smallest height in the window, of the piecewise-linear profile
         sampled at its samples and the bin edges.  Any two points less than ``WINDOW/2``
@@ -59,46 +59,53 @@ def local_rise(x, h):
     """
     x = np.asarray(x, dtype=float)
     h = np.asarray(h, dtype=float).reshape(x.size, -1)
-    long_gap = np.flatnonzero(np.diff(x) > WINDOW)
-    if not long_gap.size:
-        return _binned_rise(x, h)
-    starts, rises = [], []
-    for a, b in zip(np.r_[0, long_gap + 1], np.r_[long_gap, x.size - 1], strict=True):
-        xs, hs = x[a:b + 1], h[a:b + 1]
-        if a > 0:  # the last WINDOW of the straight line before the stretch
-            t = 1.0 - WINDOW / (x[a] - x[a - 1])
-            xs = np.r_[x[a] - WINDOW, xs]
-            hs = np.vstack([h[a - 1] + t * (h[a] - h[a - 1]), hs])
-        if b < x.size - 1:  # the first WINDOW of the line after it
-            t = WINDOW / (x[b + 1] - x[b])
-            xs = np.r_[xs, x[b] + WINDOW]
-            hs = np.vstack([hs, h[b] + t * (h[b + 1] - h[b])])
-        s, r = _binned_rise(xs, hs)
-        starts.append(s)
-        rises.append(r)
-    return np.concatenate(starts), np.concatenate(rises)
-
-
-def _binned_rise(x, h):
-    """:func:`local_rise` of samples no more than ``WINDOW`` apart (bins over their span)."""
     half = 0.5 * WINDOW
     nb = int((x[-1] - x[0]) // half) + 1
     b = np.minimum(((x - x[0]) // half).astype(np.intp), nb - 1)
-    hi = np.full((nb, h.shape[1]), -np.inf)
-    lo = np.full((nb, h.shape[1]), np.inf)
-    np.maximum.at(hi, b, h)
-    np.minimum.at(lo, b, h)
-    # heights at the bin edges, so a bin between two far-apart samples sees the slope
-    edges = np.minimum(x[0] + half * np.arange(nb + 1), x[-1])
-    i = np.clip(np.searchsorted(x, edges, side="right") - 1, 0, x.size - 2)
-    t = ((edges - x[i]) / (x[i + 1] - x[i]))[:, None]
-    he = h[i] * (1.0 - t) + h[i + 1] * t
-    hi = np.maximum(hi, np.maximum(he[:-1], he[1:]))
-    lo = np.minimum(lo, np.minimum(he[:-1], he[1:]))
-    if nb > 1:
-        hi, lo = np.maximum(hi[:-1], hi[1:]), np.minimum(lo[:-1], lo[1:])
-    start = x[0] + half * np.arange(hi.shape[0])
-    return start, hi - lo
+    sparse = nb > 4 * x.size + 16  # most bins empty: keep those near a sample only
+    if sparse:
+        occupied = b[np.r_[True, np.diff(b) > 0]]  # b is non-decreasing
+        kept = np.unique(np.clip(np.concatenate([occupied - 1, occupied, occupied + 1]),
+                                 0, nb - 1))
+        at = np.searchsorted(kept, b)
+    else:
+        kept, at = np.arange(nb), b
+    hi = np.full((kept.size, h.shape[1]), -np.inf)
+    lo = np.full((kept.size, h.shape[1]), np.inf)
+    np.maximum.at(hi, at, h)
+    np.minimum.at(lo, at, h)
+    # heights at both edges of each bin: a bin between two far-apart samples sees the slope
+    def at_edges(k):
+        return _heights_at(x, h, np.minimum(x[0] + half * k, x[-1]))
+
+    if sparse:
+        left, right = at_edges(kept), at_edges(kept + 1)
+    else:  # every bin: each inner edge is shared by two
+        he = at_edges(np.arange(nb + 1))
+        left, right = he[:-1], he[1:]
+    hi = np.maximum(hi, np.maximum(left, right))
+    lo = np.minimum(lo, np.minimum(left, right))
+    if nb > 1:  # windows: two neighbouring bins, both kept
+        pair = np.flatnonzero(np.diff(kept) == 1)
+        start = x[0] + half * kept[pair]
+        rise = np.maximum(hi[pair], hi[pair + 1]) - np.minimum(lo[pair], lo[pair + 1])
+    else:
+        start, rise = x[:1].copy(), hi - lo
+    gap = np.diff(x)
+    line = np.flatnonzero(gap > WINDOW) if sparse else []  # straight pieces > a window
+    if len(line):
+        start = np.concatenate([start, x[line] + 0.5 * (gap[line] - WINDOW)])
+        rise = np.vstack([rise, np.abs(h[line + 1] - h[line]) * (WINDOW / gap[line])[:, None]])
+        order = np.argsort(start, kind="stable")
+        start, rise = start[order], rise[order]
+    return start, rise
+
+
+def _heights_at(x, h, xe):
+    """Heights of the piecewise-linear profile ``(x, h)`` at ``xe`` (within ``x``)."""
+    i = np.clip(np.searchsorted(x, xe, side="right") - 1, 0, x.size - 2)
+    t = ((xe - x[i]) / (x[i + 1] - x[i]))[:, None]
+    return h[i] * (1.0 - t) + h[i + 1] * t
 
 
 def check_heights(x, h, *, file, labels=None, lines=None, key=None,
