@@ -386,3 +386,17 @@ def test_point_m_away_from_the_hardpoint_is_refused(tmp_path, offset_mm, ok):
     assert str(p) in msg and "key 'body.mounts.front_lower_arm_front_l.point_m'" in msg
     assert f"line {_line_of(p, '[body.mounts.front_lower_arm_front_l]')}" in msg
     assert f"is {offset_mm:.1f} mm from the suspension's point" in msg
+
+
+def test_car_with_one_axle_suspension_is_named(tmp_path):
+    """A car file cut after [suspension.front] (found by damaging the sample at random)
+    raised a raw KeyError 'rl'; a car needs both axles, a K&C file may give one."""
+    from flexpipe.vehicle import load_car
+
+    text = SAMPLE.read_text().replace('"../', f'"{SAMPLE.parents[1].as_posix()}/')
+    p = _write(tmp_path, text[:text.index("[suspension.rear]")])
+    with pytest.raises(InputError, match=r"key 'suspension\.rear'.*no \[suspension\.rear\]: a "
+                                         r"car needs a suspension on both axles \(this file "
+                                         r"gives front"):
+        load_car(p)
+    assert set(load_suspension(p).axles) == {"front"}  # what flexpipe kc reads

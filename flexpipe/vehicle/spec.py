@@ -432,6 +432,7 @@ def _read_car(doc: Table) -> Car:
         from flexpipe.vehicle.suspension.spec import read_suspension
 
         suspension = read_suspension(doc)
+        suspension.require_both_axles()
         links = suspension.corners()
         corners = tuple(_wheel_corner(corners_t, n, base, links[n],
                                       suspension.wheels.get(n)) for n in CORNERS)

@@ -48,6 +48,15 @@ class Suspension:
     mode: str = "compliant"
     wheels: dict = field(default_factory=dict)
 
+    def require_both_axles(self) -> None:
+        """Refuse a car with one axle's suspension (a K&C file may give one only)."""
+        for axle in AXLES:
+            if axle not in self.axles:
+                raise InputError(f"no [suspension.{axle}]: a car needs a suspension on both "
+                                 f"axles (this file gives {', '.join(self.axles) or 'none'}; "
+                                 "a file with one axle is for flexpipe kc only); see "
+                                 "docs/car-file.md", file=self.file, key=f"suspension.{axle}")
+
     def corners(self) -> dict:
         """``{"fl": CornerLinkage, "fr": ..., "rl": ..., "rr": ...}``."""
         out = {}
