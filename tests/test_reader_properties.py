@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 hypothesis = pytest.importorskip("hypothesis")
-from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import HealthCheck, example, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from flexpipe.errors import FlexpipeError  # noqa: E402
@@ -174,6 +174,30 @@ def test_other_damaged_files_load_or_raise_flexpipe_error(tmp_path, name, base, 
         f.write_bytes(data)
         try:
             _load_quietly(loader, f)
+        except FlexpipeError as exc:
+            assert f.name in str(exc)
+
+    check()
+
+
+def test_damaged_car_file_loads_or_raises_flexpipe_error(tmp_path):
+    """The linkage sample car under the same damage (a car file cut after its front
+    suspension once raised a raw KeyError); its relative paths made absolute, so that the
+    damage, not the folder, decides."""
+    from flexpipe.vehicle import load_car
+
+    car = REPO / "cars" / "sedan_linkage.toml"
+    text = car.read_text().replace('"../', f'"{REPO.as_posix()}/')
+
+    @settings(max_examples=60, deadline=None,
+              suppress_health_check=[HealthCheck.function_scoped_fixture])
+    @given(data=damaging_edits(text.encode()))
+    @example(data=text[:text.index("[suspension.rear]")].encode())  # the KeyError case
+    def check(data):
+        f = tmp_path / "damaged_car.toml"
+        f.write_bytes(data)
+        try:
+            _load_quietly(load_car, f)
         except FlexpipeError as exc:
             assert f.name in str(exc)
 
