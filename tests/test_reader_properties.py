@@ -170,14 +170,18 @@ def test_other_damaged_files_load_or_raise_flexpipe_error(tmp_path, name, base, 
               suppress_health_check=[HealthCheck.function_scoped_fixture])
     @given(data=damaging_edits(base.read_bytes()))
     def check(data):
-        f = tmp_path / f"damaged_{name}"
-        f.write_bytes(data)
-        try:
-            _load_quietly(loader, f)
-        except FlexpipeError as exc:
-            assert f.name in str(exc)
+        _loads_or_names_itself(loader, tmp_path / f"damaged_{name}", data)
 
     check()
+
+
+def _loads_or_names_itself(loader, f, data: bytes) -> None:
+    """Write ``data`` to ``f``: ``loader(f)`` loads, or raises a FlexpipeError naming ``f``."""
+    f.write_bytes(data)
+    try:
+        _load_quietly(loader, f)
+    except FlexpipeError as exc:
+        assert f.name in str(exc)
 
 
 def test_damaged_car_file_loads_or_raises_flexpipe_error(tmp_path):
@@ -194,11 +198,6 @@ def test_damaged_car_file_loads_or_raises_flexpipe_error(tmp_path):
     @given(data=damaging_edits(text.encode()))
     @example(data=text[:text.index("[suspension.rear]")].encode())  # the KeyError case
     def check(data):
-        f = tmp_path / "damaged_car.toml"
-        f.write_bytes(data)
-        try:
-            _load_quietly(load_car, f)
-        except FlexpipeError as exc:
-            assert f.name in str(exc)
+        _loads_or_names_itself(load_car, tmp_path / "damaged_car.toml", data)
 
     check()
