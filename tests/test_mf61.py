@@ -126,6 +126,21 @@ def test_a_bad_pressure_value_is_refused_before_reading(bad):
         tire_from_file(MF61, pressure=bad)
 
 
+@pytest.mark.parametrize("key", ["PCFX3", "PCFY1", "LATERAL_STIFFNESS"])
+def test_a_structural_value_that_is_no_number_names_line_and_key(tmp_path, key):
+    """A damaged [STRUCTURAL] value ('0.3  PCFX3 = 0.3', text run together) raised a raw
+    ValueError when the MF 6.1 pressure terms read it (found by damaging the sample at
+    random); a carcass stiffness that is no number was taken as absent."""
+    lines = MF61.read_text().splitlines()
+    n = next(i for i, s in enumerate(lines) if s.split("=")[0].strip() == key)
+    lines[n] = lines[n].replace("=", "= 0.3  junk  ", 1).split("$")[0]
+    path = tmp_path / "damaged.tir"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(InputError, match=rf"damaged\.tir, line {n + 1}, key '{key}': "
+                                         rf"\[STRUCTURAL\] {key} must be a number"):
+        tire_from_file(path)
+
+
 def test_pressure_terms_without_operating_conditions_are_an_error(tmp_path):
     text = re.sub(r"\[OPERATING_CONDITIONS\]\n(.*\n){2}", "", MF61.read_text())
     path = tmp_path / "no_pressure.tir"

@@ -119,7 +119,7 @@ class FialaTire(TireModel):
             sk, sa = mf.relaxation_lengths(fn)
             p = FialaParameters(
                 c_slip=float(kx), c_alpha=float(abs(ky)), mu_x=float(mux), mu_y=float(muy),
-                rolling_resistance=float(props.get("ROLLING_COEFFICIENTS", "QSY1", 0.0)),
+                rolling_resistance=props.number("ROLLING_COEFFICIENTS", "QSY1", 0.0),
                 relax_length_x=None if np.isnan(sk) else float(sk),
                 relax_length_y=None if np.isnan(sa) else float(sa))
         else:
@@ -132,7 +132,7 @@ class FialaTire(TireModel):
             params=p, vertical=VerticalModel.from_properties(props, law=vertical_law),
             unloaded_radius=props.unloaded_radius,
             relaxation=props.relaxation if relaxation is None else relaxation,
-            vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
+            vxlow=props.number("MODEL", "VXLOW", 1.0) or 1.0,
             tyre_side="SYMMETRIC", mirror_all=False)
 
     def effective_rolling_radius(self, deflection):

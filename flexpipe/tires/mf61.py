@@ -121,18 +121,16 @@ class MagicFormula61(MagicFormula):
                     file=props.path, key="pressure" if pressure is not None else "INFLPRES",
                     line=None if pressure is not None else
                     props.lines.get(("OPERATING_CONDITIONS", "INFLPRES")))
-        st = props.coefficients("STRUCTURAL")
-
-        def stiff(key):
-            v = st.get(key)
-            return float(v) if isinstance(v, float) and v > 0 else math.nan
+        def stiff(key):  # a carcass stiffness; absent or not positive: none given
+            v = props.number("STRUCTURAL", key, math.nan)
+            return v if v > 0 else math.nan
 
         fields = {f: getattr(base, f) for f in base.__dataclass_fields__}
         return cls(**fields, version=int(props.fittyp), pressure=p, nominal_pressure=p0,
                    fz_min=props.number("VERTICAL_FORCE_RANGE", "FZMIN", 0.0),
                    cx0=stiff("LONGITUDINAL_STIFFNESS"), cy0=stiff("LATERAL_STIFFNESS"),
-                   pcfx=tuple(float(st.get(f"PCFX{i}", 0.0) or 0.0) for i in (1, 2, 3)),
-                   pcfy=tuple(float(st.get(f"PCFY{i}", 0.0) or 0.0) for i in (1, 2, 3)))
+                   pcfx=tuple(props.number("STRUCTURAL", f"PCFX{i}", 0.0) for i in (1, 2, 3)),
+                   pcfy=tuple(props.number("STRUCTURAL", f"PCFY{i}", 0.0) for i in (1, 2, 3)))
 
     @property
     def dpi(self) -> float:

@@ -107,7 +107,7 @@ class Pac2002Tire(TireModel):
             mf=mf, vertical=vertical,
             unloaded_radius=props.unloaded_radius,
             relaxation=props.relaxation if relaxation is None else relaxation,
-            vxlow=float(props.get("MODEL", "VXLOW", 1.0)) or 1.0,
+            vxlow=props.number("MODEL", "VXLOW", 1.0) or 1.0,
             tyre_side=props.tyre_side, mirror_all=props.use_mode < 0,
             breff=(refs[0] or 0.0) if have else None, dreff=(refs[1] or 0.0) if have else None,
             freff=(refs[2] or 0.0) if have else None)

@@ -120,7 +120,7 @@ class VerticalModel:
                              "[DEFLECTION_LOAD_CURVE] {pen fz} table", file=props.path,
                              key="DEFLECTION_LOAD_CURVE")
         k, k3 = fit_duffing(table.column("pen"), table.column("fz"))
-        lcz = float(props.get("SCALING_COEFFICIENTS", "LCZ", 1.0))
+        lcz = props.number("SCALING_COEFFICIENTS", "LCZ", 1.0)
         d_max = float(np.max(table.column("pen")))
         k_file = props.get("VERTICAL", "VERTICAL_STIFFNESS")
         if isinstance(k_file, float) and abs(k * lcz - k_file * lcz) > 0.05 * k_file * lcz:
