@@ -158,13 +158,15 @@ def _other_readers():
             ("road.toml", REPO / "roads" / "iso_c_200m.toml", load_road),
             ("path.csv", REPO / "paths" / "sample_xy.csv", read_path),
             ("path.toml", REPO / "paths" / "slalom_18m.toml", read_path),
-            ("driver.toml", REPO / "paths" / "driver.toml", read_driver)]
+            ("driver.toml", REPO / "paths" / "driver.toml", read_driver),
+            ("mf61.tir", REPO / "tires" / "sedan_205_55R16_mf61.tir", tire_from_file)]
 
 
 @pytest.mark.parametrize("name, base, loader", _other_readers(),
                          ids=[f"{n}-{b.name}" for n, b, _ in _other_readers()])
 def test_other_damaged_files_load_or_raise_flexpipe_error(tmp_path, name, base, loader):
-    """Road, path and driver readers under the same damage as the .tir and CRG files."""
+    """Road, path and driver readers, and the MF 6.1 tyre, under the same damage as the
+    .tir and CRG files."""
 
     @settings(max_examples=60, deadline=None,
               suppress_health_check=[HealthCheck.function_scoped_fixture])
