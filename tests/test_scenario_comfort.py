@@ -101,7 +101,7 @@ def test_spectra_plot_shows_the_seat_under_its_floor(tmp_path, monkeypatch):
 
     t = np.arange(0.0, 60.0, 1e-3)
     floor = np.random.default_rng(3).standard_normal(t.size)
-    seat = Seat("driver_seat", "floor", 4.0, 0.3).vertical(t, floor)
+    seat = Seat("driver_seat", "floor", 4.0, 0.3).acceleration(t, floor)
     ch = {"hub_fl_z": 3500.0 + floor, **{f"acc_floor_{k}": floor for k in "xyz"},
           "acc_driver_seat_x": floor, "acc_driver_seat_y": floor, "acc_driver_seat_z": seat}
     info = {"seats": {"driver_seat": "floor"}}

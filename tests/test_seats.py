@@ -33,7 +33,7 @@ def test_a_sine_through_the_seat_has_the_closed_form_transmissibility(f):
     dt = 2.5e-4
     t = np.arange(int(round(30.0 / dt))) * dt
     a = np.sin(2 * np.pi * f * t)
-    y = seat.vertical(t, a)
+    y = seat.acceleration(t, a)
     steady = t >= 15.0  # the start's transient has decayed (time constant 0.13 s)
     # amplitude and phase of the steady response: least squares on sin and cos
     basis = np.column_stack([np.sin(2 * np.pi * f * t[steady]), np.cos(2 * np.pi * f * t[steady])])
@@ -60,7 +60,7 @@ def test_an_in_plane_resonance_filters_its_axis_and_an_axis_without_one_passes(f
 def test_a_constant_floor_acceleration_reaches_the_seat_unchanged():
     seat = Seat("s", "floor", 4.0, 0.3)
     t = np.arange(0, 5.0, 1e-3)
-    y = seat.vertical(t, np.full_like(t, 2.0))
+    y = seat.acceleration(t, np.full_like(t, 2.0))
     assert y[0] == 0.0  # at rest on the floor: the cushion takes the step first
     assert y[-1] == pytest.approx(2.0, rel=1e-9)
 

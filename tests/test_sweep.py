@@ -369,7 +369,7 @@ def test_a_sweep_over_a_linkage_spring_runs_different_cars(client, tmp_path):
         mine = ch[ch["run"].astype(str) == row["key"]].sort_values("t")
         t = mine["t"].to_numpy()
         np.testing.assert_allclose(mine["acc_driver_seat_z"].to_numpy(),
-                                   seat.vertical(t, mine["acc_driver_floor_z"].to_numpy()),
+                                   seat.acceleration(t, mine["acc_driver_floor_z"].to_numpy()),
                                    rtol=0, atol=1e-9)
         assert row["seat_driver_seat_SEAT_pct"] == pytest.approx(
             100 * row["aw_driver_seat_z_m_per_s2"] / row["aw_driver_floor_z_m_per_s2"],

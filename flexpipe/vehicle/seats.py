@@ -98,10 +98,6 @@ class Seat:
         m = self.mode(axis)
         return a.copy() if m is None else _sdof_response(np.asarray(t, dtype=float), a, *m)
 
-    def vertical(self, t: np.ndarray, a_floor: np.ndarray) -> np.ndarray:
-        """:meth:`acceleration` along z."""
-        return self.acceleration(t, a_floor, "z")
-
     def describe(self) -> str:
         """One line for ``flexpipe info``."""
         extra = "".join(f"; {key.replace('_', '-')} {m[0]:g} Hz, {m[1]:g}"
