@@ -59,7 +59,7 @@ def test_a_run_after_the_warm_up_compiles_nothing(tmp_path):
     after = _run(AFTER, env)
     assert not after["pending"] and not after["said"]
     assert set(after["misses"]) == {"correct_group", "predict_group", "applied_force",
-                                    "element", "node_states"}
+                                    "element", "node_states", "contact"}
     assert all(n == 0 for n in after["misses"].values()), after
     assert all(n > 0 for n in after["hits"].values()), after
 

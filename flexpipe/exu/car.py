@@ -277,6 +277,8 @@ class CarSystem:
         self._reader = NodeReader(mbs, list(self.wheel_node) + [self.body_node],
                                   self.spin_node)
         self.wheel_ref = self._reader.ref[:4]  # carriers' reference coordinates (4, 7)
+        #: the tyre element's kernel, chosen once per run as the state reader's
+        self._element = element if jit_enabled() else element_numpy
         # Newton's relative tolerance: at 1e-3 the lateral hub forces of the rigid linkage
         # car converged at first order in h (ISO C 100 km/h, worst corner y against
         # 0.125 ms: 1.9 / 0.9 % at 1 / 0.5 ms), at 1e-4 at second order (0.9 / 0.2 %;
@@ -458,9 +460,7 @@ class CarSystem:
         args = [np.ascontiguousarray(a, dtype=float)
                 for a in (ep, ts.r, ts.spin_axis, qt, st.wheel_q, *ts.lin6,
                           self.spec.spin_inertia)]  # J: the spin's gyroscopic moment
-        kernel = element if jit_enabled() else element_numpy
-        D, K, f = kernel(*args)
-        return D, K, f
+        return self._element(*args)
 
     # ------------------------------------------------------------------ time loop
     def run(self, step, *, t_end: float, h: float, spectral_radius: float,

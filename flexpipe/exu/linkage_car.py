@@ -159,7 +159,7 @@ class LinkageCarSystem(CarSystem):
         return CarState(t=t, body_p=body_p, body_R=body_R, body_v=body_v, body_w=body_w,
                         wheel_p=wp, wheel_v=wv, wheel_R=wR, wheel_w=ww, spin_rate=spin,
                         jounce=jounce, jounce_rate=rate, joint_force=None,
-                        mount_R=np.broadcast_to(body_R, (4, 3, 3)), wheel_q=wq, wheel_qt=wqt)
+                        mount_R=body_R[None].repeat(4, axis=0), wheel_q=wq, wheel_qt=wqt)
 
     def apply(self, loads, mount_R, st) -> None:
         """Tyre elements, spin torques, rack travel (the springs, dampers and stops need

@@ -182,8 +182,9 @@ def ackermann_angles(delta: float, *, wheelbase: float, track: float, steered) -
     tan_d = math.tan(delta)
     left = math.atan(L * tan_d / (L - half * tan_d))
     right = math.atan(L * tan_d / (L + half * tan_d))
-    for i in np.flatnonzero(steered):
-        out[i] = left if CORNERS[i][1] == "l" else right
+    for i, on in enumerate(steered):
+        if on:
+            out[i] = left if CORNERS[i][1] == "l" else right
     return out
 
 

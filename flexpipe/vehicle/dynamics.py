@@ -31,6 +31,7 @@ import math
 import numpy as np
 
 from flexpipe.driver.control import FirstOrderLag
+from flexpipe.roads._contact_fast import for_road as contact_for_road
 from flexpipe.tires._fast import enabled as _jit_enabled
 from flexpipe.vehicle import mounted_motion, sensor_rows, watch
 from flexpipe.vehicle._tire_coupling_fast import applied_force
@@ -42,10 +43,6 @@ from flexpipe.vehicle.tire_coupling import ImplicitTires, applied_force_referenc
 
 #: half the base of the road normal's central differences (m): the slope a tyre meets
 ROAD_NORMAL_HALF_BASE_M = 0.05
-#: offsets (in units of the finite-difference step) of the road-normal stencil
-_DX = np.array([0.0, 1.0, -1.0, 0.0, 0.0])
-_DY = np.array([0.0, 0.0, 0.0, 1.0, -1.0])
-
 #: sign that turns the GenericJoint's ForceLocal into the force on the body (checked against
 #: the wheel carriers' Newton law, which gives the hub force after the first step)
 JOINT_FORCE_SIGN = 1.0
@@ -131,6 +128,10 @@ class CarController:
         self.linkage = linkage  # LinkageModel of a linkage car (None: prismatic corners)
         self.weight_N = weight_N  # the car's weight, for the tyre-load stop (watch)
         self._compiled = _jit_enabled()  # chosen once per run, as the state reader does
+        self._contact = contact_for_road(road, ROAD_NORMAL_HALF_BASE_M, compiled=self._compiled)
+        from flexpipe.exu.car import CarLoads  # (Exudyn is imported only for a run)
+
+        self._loads = CarLoads
         self.driver_dt = float(driver_dt)
         self._next_driver_t = 0.0
         self.points = list(points)
@@ -160,6 +161,7 @@ class CarController:
         self.tires = ImplicitTires(tires, self.mirror)
         st = car.steering
         self.steered = np.array([car.corners[i].axle == st.axle for i in range(4)])
+        self._steered = self.steered.tolist()  # (Python bools: cheaper to loop over)
         self.max_angle = st.max_wheel_angle
         self.max_rate = st.max_rate
         self.ratio = st.ratio
@@ -217,21 +219,14 @@ class CarController:
 
     # ------------------------------------------------------------------ pieces
     def road_contact(self, P: np.ndarray):
-        """Road height (n,) and upward unit normal (n, 3) under points P (n, 3)."""
-        e = ROAD_NORMAL_HALF_BASE_M
-        x = (P[:, 0] + _DX[:, None] * e).ravel()  # the points and +-e in x, then in y
-        y = (P[:, 1] + _DY[:, None] * e).ravel()
-        z = np.asarray(self.road.height_xy(x, y), dtype=float).reshape(5, -1)
-        n = np.empty((P.shape[0], 3))
-        n[:, 0] = (z[2] - z[1]) / (2 * e)
-        n[:, 1] = (z[4] - z[3]) / (2 * e)
-        n[:, 2] = 1.0
-        return z[0], n / np.sqrt(n[:, 0] ** 2 + n[:, 1] ** 2 + 1.0)[:, None]
+        """Road height (n,) and upward unit normal (n, 3) under points P (n, 3)
+        (:mod:`flexpipe.roads._contact_fast`: compiled for a road along x, else NumPy)."""
+        return self._contact(P)
 
     def wheel_angles(self, delta: float) -> np.ndarray:
         """Road-wheel angles (4,) of an Ackermann steering for the bicycle angle ``delta``."""
         return ackermann_angles(delta, wheelbase=self.wheelbase, track=self.track,
-                                steered=self.steered)
+                                steered=self._steered)
 
     def driver(self, st, yaw: float) -> None:
         """Update steering command and drive torque (every ``driver_dt`` seconds).
@@ -328,7 +323,7 @@ class CarController:
         Fw = np.column_stack([now["Fx"], now["Fy"], now["Fz"]])
         F_applied = self._applied_tire_force(st, s_axis, omega)
         ts = self.tires.predict(dict(kin, n_road=n_ahead), self.h, road_ahead)
-        if not (np.all(np.isfinite(ts.F0)) and np.all(np.isfinite(ts.Dv))):
+        if not math.isfinite(float(ts.F0.sum()) + float(ts.Dv.sum())):
             return self._fail(st.t, "tyre forces became non-finite")
         share = self.drive_share if self.torque >= 0 else self.brake_share
         T = self.torque * share
@@ -339,20 +334,18 @@ class CarController:
         if self.parked:  # parking brake: viscous, at half the explicit limit
             T = -0.5 * self.spin_inertia / self.h * rel
         # the tyre's own moments are in the implicit element: only drive and brake here
-        spin_torque = np.broadcast_to(np.asarray(T, dtype=float), (4,)).copy()
+        spin_torque = np.array(T, dtype=float) if np.ndim(T) else np.full(4, float(T))
         drive = spin_torque if self.torque > 0.0 and self.body_reaction else None
         if self.reaction is not None:  # the couple on the body (global), as exu.car applies
             self._tau = np.zeros(3) if drive is None else \
                 -(drive[:, None] * st.wheel_R[:, :, 1]).sum(axis=0)
-
-        from flexpipe.exu.car import CarLoads
 
         if self.linkage is not None:  # the linkage's force elements linearize themselves
             rk = self.car.suspension.rack
             s_rack = None
             if rk is not None:
                 s_rack = -self.delta * self.ratio * rk.travel_per_rev / (2 * math.pi)
-            loads = CarLoads(suspension=np.zeros(4), damper_c=np.zeros(4), tire=ts,
+            loads = self._loads(suspension=np.zeros(4), damper_c=np.zeros(4), tire=ts,
                              spin_torque=spin_torque, drive_torque=drive,
                              steer=steer, rack_travel=s_rack)
             self._tire_lin = (ts, st, omega)
@@ -389,7 +382,7 @@ class CarController:
         k_t = self.c.stiffness(st.jounce)
         f0 = Fs_own - k_t * st.jounce - c_step * st.jounce_rate
 
-        loads = CarLoads(suspension=F_arb, damper_c=c_step, tire=ts,
+        loads = self._loads(suspension=F_arb, damper_c=c_step, tire=ts,
                          spin_torque=spin_torque, drive_torque=drive, steer=steer,
                          suspension_k=k_t, suspension_f0=f0)
         self._tire_lin = (ts, st, omega)

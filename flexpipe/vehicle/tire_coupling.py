@@ -43,6 +43,7 @@ import numpy as np
 
 from flexpipe.tires import _fast
 from flexpipe.tires.contact import SlipState, _cross
+from flexpipe.vehicle._tire_coupling_fast import correct_group, predict_group
 
 #: finite-difference steps: velocity (m/s), spin rate (rad/s), height (m), rotation (rad)
 DV, DW, DZ, DTH = 1e-3, 1e-2, 1e-5, 1e-5
@@ -152,8 +153,6 @@ class ImplicitTires:
         return out
 
     def _correct_compiled(self, tire, ix, kin, prev, h, out):
-        from flexpipe.vehicle._tire_coupling_fast import correct_group
-
         st = self.state[id(tire)]
         kappa, tan_a = st.kappa.astype(float), st.tan_alpha.astype(float)
         a = [self._take(kin[k], ix) for k in _TRACKED]
@@ -245,8 +244,6 @@ class ImplicitTires:
                         lin6=(np.concatenate([F0, M], axis=1), Dv, dw, A, S))
 
     def _predict_compiled(self, tire, ix, kin, h, road_ahead, full):
-        from flexpipe.vehicle._tire_coupling_fast import predict_group
-
         st = self.state[id(tire)]
         g = {k: self._take(kin[k], ix) for k in ("C", "s", "v", "w", "omega", "n_road")}
         m = len(g["C"])

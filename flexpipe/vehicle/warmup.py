@@ -26,7 +26,8 @@ import time
 RUN_KERNELS = {"flexpipe.vehicle._tire_coupling_fast": ("correct_group", "predict_group",
                                                         "applied_force"),
                "flexpipe.exu._tire_element": ("element",),
-               "flexpipe.exu._node_state": ("node_states",)}
+               "flexpipe.exu._node_state": ("node_states",),
+               "flexpipe.roads._contact_fast": ("contact",)}
 MESSAGE = ("compiling flexpipe's Numba kernels (tyre model and coupling): the first run "
            "after installing or updating takes about 25 s longer; they are cached after it")
 
