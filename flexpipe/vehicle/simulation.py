@@ -260,7 +260,9 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         module times only the total, split into the Python step and ``exudyn`` (see
         :mod:`flexpipe.exu`, ``FLEXPIPE_EXUDYN``).  ``info["newton_iterations_per_step"]``
         and ``info["newton_jacobians"]`` (Jacobians computed and factorized: modified
-        Newton keeps one while Newton converges) are there in every run.
+        Newton keeps one until the body has turned by
+        :data:`flexpipe.exu.timeloop.JACOBIAN_RENEW_DEG` or Newton stalls) are there in
+        every run.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
