@@ -11,7 +11,8 @@ Exudyn's range-checked module has those timers, so that run is made in a process
 own on it (``FLEXPIPE_EXUDYN=checked``; its total, printed too, is that module's); the
 timed runs use the module flexpipe loads by default (``exudyn_module`` in the output).  The
 linkage car is also run at 2 ms (the default before the step was halved for convergence)
-as the peer of the default step.
+as the peer of the default step, and on ``make slalom``'s run (60 km/h, ISO B, 8 cones):
+a turning car, whose Newton Jacobian the time loop renews as the body turns.
 
 This virtual machine's speed changes by 20-55 % from minute to minute (other machines
 share its cores and caches), and a slow spell hits the flexible car's run harder than
@@ -32,12 +33,13 @@ import sys
 from pathlib import Path
 
 from flexpipe.exu import compiled_module
-from flexpipe.scenarios.runner import _straight_road
+from flexpipe.scenarios.runner import _slalom_path, _slalom_road, _straight_road
 from flexpipe.vehicle import load_car, simulate
 from flexpipe.vehicle.simulation import DEFAULT_STEP, prepare
 
 ROOT = Path(__file__).resolve().parents[1]
 SPEED = 70.0 / 3.6
+SLALOM_SPEED = 60.0 / 3.6  # make slalom's
 T_RUN = 10.0
 T_PROFILE = 2.0
 #: alternating runs of the linkage car at the default step (best of them is the figure)
@@ -87,6 +89,7 @@ def run() -> dict:
             pairs = [f / r for r, f in zip(cpu["rigid"], cpu["flexible"], strict=True)]
             out[f"{tag}_cpu_ratio_flexible_to_rigid{suffix}_pairs"] = [
                 round(min(pairs), 3), round(max(pairs), 3)]
+    _slalom(out, linkage)
     out["linkage_over_prismatic_cpu_flexible"] = round(
         out["linkage_flexible_cpu_s"] / out["prismatic_flexible_cpu_s"], 3)
     out["target_flexible_rtf_at_least_3"] = out["linkage_flexible_realtime_factor"] >= 3.0
@@ -100,6 +103,23 @@ def run() -> dict:
     for k, v in out.items():
         print(f"{k:44s} {v}")
     return out
+
+
+def _slalom(out: dict, path) -> None:
+    """The linkage car on ``make slalom``'s run (a turning car: the time loop renews its
+    Newton Jacobian as the body turns, flexpipe.exu.timeloop.JACOBIAN_RENEW_DEG)."""
+    car = load_car(path)
+    for body in ("rigid", "flexible"):
+        r = simulate(car, road=_slalom_road(), path=_slalom_path(), speed=SLALOM_SPEED,
+                     t_end=T_RUN, body=body)
+        key = f"slalom_{body}"
+        out[f"{key}_status"] = r.status
+        out[f"{key}_cpu_s"] = round(r.cpu_time, 3)
+        out[f"{key}_realtime_factor"] = round(r.realtime_factor, 3)
+        out[f"{key}_newton_iterations_per_step"] = r.info.get("newton_iterations_per_step")
+        out[f"{key}_newton_jacobians"] = r.info.get("newton_jacobians")
+    out["slalom_cpu_ratio_flexible_to_rigid"] = round(
+        out["slalom_flexible_cpu_s"] / out["slalom_rigid_cpu_s"], 3)
 
 
 PROFILE_RUN = """
