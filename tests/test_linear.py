@@ -32,12 +32,16 @@ LINKAGE = ROOT / "cars" / "sedan_linkage.toml"
 
 
 @pytest.mark.parametrize("initial_swing", [0.0, 0.3])
-def test_compound_pendulum_closed_form(initial_swing):
+def test_compound_pendulum_closed_form(initial_swing, tmp_path, monkeypatch):
     """At rest, hanging.  With ``initial_swing`` the initial configuration is the
     pendulum swung about x (rad): the current state, where it is linearized, is still the
     one hanging at rest (Exudyn's solver initialization copies the initial configuration
-    into the current one; a car run to a steady state is far from its initial state)."""
+    into the current one; a car run to a steady state is far from its initial state).
+    The linearization writes nothing into the working directory (Exudyn's solver, left
+    to its defaults, writes solution/coordinatesSolution.txt there)."""
     from flexpipe.exu.linearize import linearize
+
+    monkeypatch.chdir(tmp_path)
 
     mbs = exu.SystemContainer().AddSystem()
     g = 9.81
@@ -63,6 +67,7 @@ def test_compound_pendulum_closed_form(initial_swing):
         sd.SetODE2Coordinates(list(q), configuration=C.Initial)
     here, start = sd.GetSystemState(C.Current), sd.GetSystemState(C.Initial)
     lin = linearize(mbs)
+    assert list(tmp_path.iterdir()) == []
     assert np.allclose(lin.q, sd.GetODE2Coordinates(), atol=0.0)
     assert np.allclose(lin.q, 0.0, atol=0.0)  # hanging at rest, the reference
     # both configurations as they were

@@ -57,6 +57,10 @@ class _Access:
         self.mbs = mbs
         self.sd = mbs.systemData
         self.ss = exu.SimulationSettings()
+        # no solution file: Exudyn's default writes solution/coordinatesSolution.txt into
+        # the working directory when a solver is initialized
+        self.ss.solution.file.write = False
+        self.ss.solution.sensors.active = False
         self.solver = exu.MainSolverImplicitSecondOrder()
         # Exudyn's solver initialization (and ComputeLinearizedSystem) copies the
         # initial configuration into the current one: the state to linearize at is kept
