@@ -107,3 +107,16 @@ def test_roads_left_to_numpy(monkeypatch):
     assert not isinstance(for_road(r, E, compiled=False), FastContact)
     monkeypatch.setenv("FLEXPIPE_NO_JIT", "1")
     assert not isinstance(for_road(r, E), FastContact)
+
+
+def test_one_machine_code_for_every_road():
+    """Two-track and grid roads, and read-only query points, share one compiled signature,
+    so the set-up's warm-up (a two-track road) leaves nothing to compile for a grid road."""
+    from flexpipe.roads._contact_fast import contact
+
+    rng = np.random.default_rng(5)
+    P = _points(_two_track(rng, True), rng, k=40)
+    P.flags.writeable = False
+    for road in (_two_track(rng, True), _two_track(rng, False), _grid_road(rng, True)):
+        for_road(road, E)(P)
+    assert len(contact.signatures) == 1

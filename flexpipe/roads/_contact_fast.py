@@ -97,20 +97,27 @@ class FastContact:
 
     def __init__(self, road, half_base: float):
         grid = road.z is not None
-        self._args = (np.ascontiguousarray(road.x, dtype=float), float(road._dx),
-                      np.ascontiguousarray(road.left, dtype=float),
-                      np.ascontiguousarray(road.right, dtype=float), float(road.track_width),
-                      np.ascontiguousarray(road.y if grid else np.zeros(2), dtype=float),
-                      np.ascontiguousarray(road.z if grid else np.zeros((2, 2)), dtype=float),
-                      grid)
+        # read-only copies throughout (a Road's own arrays are read-only, and Numba
+        # compiles read-only and writable arrays apart): one machine code for every road
+        self._args = (_frozen(road.x), float(road._dx), _frozen(road.left),
+                      _frozen(road.right), float(road.track_width),
+                      _frozen(road.y if grid else np.zeros(2)),
+                      _frozen(road.z if grid else np.zeros((2, 2))), grid)
         self.e = float(half_base)
 
     def __call__(self, P: np.ndarray):
         """Heights (n,) and unit normals (n, 3) under the points ``P`` (n, 3)."""
         n = P.shape[0]
         heights, normals = np.empty(n), np.empty((n, 3))
-        contact(*self._args, np.ascontiguousarray(P, dtype=float), self.e, heights, normals)
+        contact(*self._args, np.array(P, dtype=float, order="C"), self.e, heights, normals)
         return heights, normals
+
+
+def _frozen(a) -> np.ndarray:
+    """A read-only C-contiguous float copy of ``a``."""
+    out = np.array(a, dtype=float, order="C")
+    out.flags.writeable = False
+    return out
 
 
 def for_road(road, half_base: float, *, compiled: bool | None = None):
