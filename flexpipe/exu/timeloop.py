@@ -30,6 +30,7 @@ from flexpipe.reduction._threads import openblas_single_threaded
 #: Jacobian per run and 2.91 with this renewal (76 Jacobians in 10 s), 12.93 -> 10.01 s
 #: of CPU (1 deg: 2.73 iterations, 156 Jacobians, 10.27 s; 3 deg: 3.17, 49, 10.07 s;
 #: 2026-12-04).  On a straight road the body turns less and keeps its one Jacobian.
+#: ``math.inf``: one Jacobian per run while Newton converges (Exudyn's modified Newton).
 JACOBIAN_RENEW_DEG = 2.0
 #: Exudyn's computation timers reported by :func:`solver_stats` (its names -> ours)
 TIMERS = {"reactionForces": "constraint_reaction_forces", "AERHS": "constraint_equations",
@@ -93,17 +94,13 @@ def solver_info(stats: dict, python_s: float, *, cpu_s: float) -> dict:
 
 def run(system, step, *, t_end: float, h: float, spectral_radius: float,
         progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
-        timers: bool = False, renew_deg: float | None = None) -> RunOutcome:
+        timers: bool = False) -> RunOutcome:
     """Integrate ``system`` (a :class:`~flexpipe.exu.car.CarSystem`) to ``t_end`` with step
     ``h``; ``step(state) -> CarLoads | None`` runs before every step.
 
     Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
 
     ``timers``: switch on Exudyn's computation timers (``RunOutcome.stats``).
-
-    ``renew_deg``: a new Newton Jacobian once the body has turned by this angle (deg)
-    since the last one (default :data:`JACOBIAN_RENEW_DEG`; ``math.inf``: one per run
-    while Newton converges, Exudyn's modified Newton).
 
     ``step`` returns ``None`` to stop (e.g. divergence).
     """
@@ -122,9 +119,8 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     system.apply(loads, st.mount_R, st)
     last = {"t": 0.0, "n": 0, "cpu": 0.0, "wall": 0.0,  # the Python step's CPU and wall s
             "R": None}  # the body's rotation where the kept Jacobian was computed
-    deg = JACOBIAN_RENEW_DEG if renew_deg is None else float(renew_deg)
-    renew_cos = None if jacobian_every_step or not math.isfinite(deg) else \
-        math.cos(math.radians(min(deg, 180.0)))
+    renew_cos = None if jacobian_every_step or not math.isfinite(JACOBIAN_RENEW_DEG) else \
+        math.cos(math.radians(min(JACOBIAN_RENEW_DEG, 180.0)))
 
     def prestep(mbs_, t):
         t0 = t - h  # the state is at the start of the step

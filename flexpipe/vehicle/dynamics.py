@@ -160,8 +160,7 @@ class CarController:
             self.mirror[ix] = t.mirror_for([sides[i] for i in ix])
         self.tires = ImplicitTires(tires, self.mirror)
         st = car.steering
-        self.steered = np.array([car.corners[i].axle == st.axle for i in range(4)])
-        self._steered = self.steered.tolist()  # (Python bools: cheaper to loop over)
+        self.steered = [car.corners[i].axle == st.axle for i in range(4)]
         self.max_angle = st.max_wheel_angle
         self.max_rate = st.max_rate
         self.ratio = st.ratio
@@ -226,7 +225,7 @@ class CarController:
     def wheel_angles(self, delta: float) -> np.ndarray:
         """Road-wheel angles (4,) of an Ackermann steering for the bicycle angle ``delta``."""
         return ackermann_angles(delta, wheelbase=self.wheelbase, track=self.track,
-                                steered=self._steered)
+                                steered=self.steered)
 
     def driver(self, st, yaw: float) -> None:
         """Update steering command and drive torque (every ``driver_dt`` seconds).
