@@ -11,8 +11,10 @@ Exudyn's range-checked module has those timers, so that run is made in a process
 own on it (``FLEXPIPE_EXUDYN=checked``; its total, printed too, is that module's); the
 timed runs use the module flexpipe loads by default (``exudyn_module`` in the output).  The
 linkage car is also run at 2 ms (the default before the step was halved for convergence)
-as the peer of the default step, and on ``make slalom``'s run (60 km/h, ISO B, 8 cones):
-a turning car, whose Newton Jacobian the time loop renews as the body turns.
+as the peer of the default step, on ``make slalom``'s run (60 km/h, ISO B, 8 cones):
+a turning car, whose Newton Jacobian the time loop renews as the body turns, and on
+two of Exudyn's threads against one (``threads*`` keys: wall-clock time, its peer the
+one-thread run made alternately in the same bench).
 
 This virtual machine's speed changes by 20-55 % from minute to minute (other machines
 share its cores and caches), and a slow spell hits the flexible car's run harder than
@@ -90,6 +92,7 @@ def run() -> dict:
             out[f"{tag}_cpu_ratio_flexible_to_rigid{suffix}_pairs"] = [
                 round(min(pairs), 3), round(max(pairs), 3)]
     _slalom(out, linkage)
+    _two_threads(out, preps, linkage, road)
     out["linkage_over_prismatic_cpu_flexible"] = round(
         out["linkage_flexible_cpu_s"] / out["prismatic_flexible_cpu_s"], 3)
     out["target_flexible_rtf_at_least_3"] = out["linkage_flexible_realtime_factor"] >= 3.0
@@ -122,14 +125,41 @@ def _slalom(out: dict, path) -> None:
         out["slalom_flexible_cpu_s"] / out["slalom_rigid_cpu_s"], 3)
 
 
+def _two_threads(out: dict, preps: dict, path, road) -> None:
+    """The linkage car at the default step on one and on two of Exudyn's threads
+    (``simulate(threads=...)``, :mod:`flexpipe.exu.threads`), alternating, best of
+    :data:`REPEATS` (the rigid car once): wall-clock time, the real-time factor on it, and
+    the two-thread run's CPU (both threads, the second spinning while it waits)."""
+    for body, repeats in (("flexible", REPEATS), ("rigid", 1)):
+        car, prep = preps[path, body]
+        wall = {1: [], 2: []}
+        for _ in range(repeats):
+            for n in (1, 2):
+                r = simulate(car, road=road, speed=SPEED, t_end=T_RUN, body=body,
+                             prepared=prep, threads=n)
+                key = f"threads{n}_{body}"
+                out[f"{key}_status"] = min(out.get(f"{key}_status", 0), r.status)
+                out[f"{key}_threads_used"] = r.info.get("threads")
+                wall[n].append(r.wall_time)
+                if r.wall_time <= min(wall[n]):
+                    out[f"{key}_wall_s"] = round(r.wall_time, 3)
+                    out[f"{key}_wall_realtime_factor"] = round(r.wall_realtime_factor, 3)
+                    out[f"{key}_cpu_s"] = round(r.cpu_time, 3)
+        for n in (1, 2):
+            out[f"threads{n}_{body}_wall_s_runs"] = [round(w, 2) for w in wall[n]]
+        out[f"threads_{body}_wall_2_over_1"] = round(
+            out[f"threads2_{body}_wall_s"] / out[f"threads1_{body}_wall_s"], 3)
+
+
 PROFILE_RUN = """
 import json, sys
 from flexpipe.scenarios.runner import _straight_road
 from flexpipe.vehicle import load_car, simulate
 car, road = load_car(sys.argv[1]), _straight_road()
-print(json.dumps({body: simulate(car, road=road, speed=float(sys.argv[2]), t_end=float(sys.argv[3]),
-                                 body=body, profile=True).info["profile_ms_per_step"]
-                  for body in ("rigid", "flexible")}))
+print(json.dumps({f"{body}{tag}": simulate(
+    car, road=road, speed=float(sys.argv[2]), t_end=float(sys.argv[3]), body=body,
+    profile=True, threads=n).info["profile_ms_per_step"]
+    for body, n, tag in (("rigid", 1, ""), ("flexible", 1, ""), ("flexible", 2, "_2threads"))}))
 """
 
 

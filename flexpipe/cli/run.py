@@ -100,11 +100,28 @@ def add_arguments(parser) -> None:
                              "printed and written to summary.json (profile_ms_per_step). "
                              "Uses Exudyn's range-checked module, which has these timers "
                              "(FLEXPIPE_EXUDYN=checked; slower than the default fast one)")
+    parser.add_argument("--threads", default="auto", type=_threads_arg,
+                        help="Exudyn's threads per run: a number, or auto (default: 2 for "
+                             "the flexible body when a second core is free, else 1); the "
+                             "results equal one thread's to rounding")
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "
                              "(MATLAB); default csv")
     parser.add_argument("-q", "--quiet", action="store_true",
                         help="no progress messages (errors and warnings only)")
+
+
+def _threads_arg(text: str):
+    """``--threads``: ``auto`` or a whole number (range checked by ``check_run``)."""
+    if text == "auto":
+        return text
+    try:
+        return int(text)
+    except ValueError:
+        import argparse
+
+        raise argparse.ArgumentTypeError(f"'{text}': give auto or a whole number of "
+                                         "threads, e.g. 2") from None
 
 
 def run(args) -> int:
@@ -138,7 +155,7 @@ def run(args) -> int:
                        log=(lambda *a: None) if args.quiet else print,
                        progress=not args.quiet, prewarp=not args.no_prewarp,
                        inertia_coupling=args.inertia_coupling, profile=args.profile,
-                       f_max=args.f_max, driver=args.driver)
+                       f_max=args.f_max, driver=args.driver, threads=args.threads)
     if args.profile and not args.quiet:
         _print_profile(summary)
     if summary["status"] != 0:

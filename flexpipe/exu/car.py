@@ -465,8 +465,8 @@ class CarSystem:
     # ------------------------------------------------------------------ time loop
     def run(self, step, *, t_end: float, h: float, spectral_radius: float,
             progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
-            timers: bool = False):
+            timers: bool = False, threads: int = 1):
         """Integrate to ``t_end`` with step ``h`` (:func:`flexpipe.exu.timeloop.run`)."""
         return timeloop.run(self, step, t_end=t_end, h=h, spectral_radius=spectral_radius,
                             progress=progress, jacobian_every_step=jacobian_every_step,
-                            output_step=output_step, timers=timers)
+                            output_step=output_step, timers=timers, threads=threads)

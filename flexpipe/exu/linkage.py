@@ -103,6 +103,9 @@ class LinkageModel:
         self.knuckle_node, self.part_nodes = [], []  # part_nodes: per
         # corner (object, mass, centre of mass in the part's frame)
         self._laws = []  # the force elements' symbolic laws (flexpipe.exu.force_laws)
+        #: connectors with a symbolic law, added after every other object
+        #: (:meth:`add_law_connectors`): (item, body_links slot, bushings slot or None)
+        self._deferred = []
         self.to_other = []  # (corner, connector, sign): links from a corner to rack or bar
         self._pos_markers = {}
         #: body-side connections: (mount, object, kind, body is marker 0, joint frame A)
@@ -205,11 +208,11 @@ class LinkageModel:
             ma = self._marker(own(f.part), f.point, False)
             law = symbolic_law(mbs, *group)  # evaluated by Exudyn in every Newton iteration
             self._laws.append(law)  # keeps the expression tree alive
-            co = mbs.AddObject(eii.ObjectConnectorSpringDamper(
+            self._defer(eii.ObjectConnectorSpringDamper(
                 markerNumbers=[mb, ma], referenceLength=f.design_length, stiffness=0.0,
                 damping=0.0, force=0.0, springForceUserFunction=law,
-                visualization=eii.VObjectConnectorSpringDamper(show=False)))
-            self.body_links.append((f.mount, co, "vector", (mb, ma), None))
+                visualization=eii.VObjectConnectorSpringDamper(show=False)),
+                (f.mount, None, "vector", (mb, ma), None))
 
     def _joint(self, j, a, b):
         """Joint ``j`` between owners ``a`` and ``b`` (see module docstring)."""
@@ -257,12 +260,48 @@ class LinkageModel:
             law = bushing_law(mbs, bu)
             self._laws.append(law)
             kw["springForceTorqueUserFunction"] = law
-        co = mbs.AddObject(eii.ObjectConnectorRigidBodySpringDamper(
+        item = eii.ObjectConnectorRigidBodySpringDamper(
             markerNumbers=[m0, m1], stiffness=np.diag(bu.stiffness),
             damping=np.diag(bu.damping),
-            visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw))
-        self.body_links.append((mount, co, "local", (m0, m1), _I3))
+            visualization=eii.VObjectConnectorRigidBodySpringDamper(show=False), **kw)
+        link = (mount, None, "local", (m0, m1), _I3)
+        if kw:
+            self._defer(item, link, bushing=mount)
+            return
+        co = mbs.AddObject(item)
+        self.body_links.append((mount, co, *link[2:]))
         self.bushings.append((mount, co))
+
+    def _defer(self, item, link, *, bushing=None) -> None:
+        """Queue connector ``item`` (its force law a symbolic user function) for
+        :meth:`add_law_connectors`, keeping its places in ``body_links`` (entry ``link``,
+        object index to come) and, for a ``bushing`` at that mount, in ``bushings``."""
+        self.body_links.append(link)
+        slot_b = None
+        if bushing is not None:
+            self.bushings.append((bushing, None))
+            slot_b = len(self.bushings) - 1
+        self._deferred.append((item, len(self.body_links) - 1, slot_b))
+
+    def add_law_connectors(self) -> None:
+        """Add the queued connectors whose force law is a symbolic user function; call
+        it after every other object of the system.
+
+        Exudyn evaluates such connectors serially after the other objects of a
+        multi-threaded residual, but its parallel loop takes the first objects of the
+        full list, not those without a user function (``CSystem::ComputeSystemODE2RHS``,
+        Exudyn 1.13): an object with a law placed among them is counted twice and the
+        last objects without one not at all.  Placed last, they are evaluated once,
+        serially, and a two-thread run equals a one-thread one
+        (``tests/test_threads.py``).
+        """
+        for item, slot, slot_b in self._deferred:
+            co = self.mbs.AddObject(item)
+            mount, _, *rest = self.body_links[slot]
+            self.body_links[slot] = (mount, co, *rest)
+            if slot_b is not None:
+                self.bushings[slot_b] = (self.bushings[slot_b][0], co)
+        self._deferred = []
 
     def bushing_deflections(self) -> dict:
         """Per body-mount bushing: displacement (m) and rotation (rad) of its outer end
@@ -392,7 +431,9 @@ class LinkageModel:
         return out
 
     def add_mount_sensors(self, body_node) -> None:
-        """Exudyn sensors for the per-mount forces (:mod:`flexpipe.exu.mount_sensors`)."""
+        """Exudyn sensors for the per-mount forces (:mod:`flexpipe.exu.mount_sensors`);
+        adds the queued connectors first (:meth:`add_law_connectors`) if still queued."""
+        self.add_law_connectors()
         mount_sensors.add(self, body_node)
 
     def mount_force_history(self, t: np.ndarray):

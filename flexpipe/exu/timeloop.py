@@ -21,6 +21,7 @@ import exudyn as exu
 
 from flexpipe._signals import Interrupted, deferred_interrupts
 from flexpipe.exu import MODULES, compiled_module
+from flexpipe.exu.threads import solver_threads
 from flexpipe.reduction._threads import openblas_single_threaded
 
 #: angle (deg) the car body may turn, from where the kept Newton Jacobian was computed,
@@ -77,13 +78,17 @@ def solver_info(stats: dict, python_s: float, *, cpu_s: float) -> dict:
     Exudyn's timers measure wall-clock time (on a loaded machine they include the time
     the process waited for a core).  Its fast module (:mod:`flexpipe.exu`) keeps only its
     total timer: the profile is then CPU time throughout, ``python_step`` (flexpipe's own
-    timing), ``exudyn`` (the rest of the run) and ``total`` (the run's CPU time).
+    timing), ``exudyn`` (the rest of the run) and ``total`` (the run's CPU time; with two
+    threads the process's, which includes the second thread spinning while it waits).
     """
     n = stats.get("steps", 0)
     if not n:
         return {}
     out = {"newton_iterations_per_step": round(stats["newton_iterations"] / n, 3),
-           "newton_jacobians": stats["jacobians"]}  # computed and factorized
+           "newton_jacobians": stats["jacobians"],  # computed and factorized
+           "threads": stats.get("threads", 1)}
+    if stats.get("threads_note"):
+        out["threads_note"] = stats["threads_note"]
     if "timers_s" in stats:
         timers = stats["timers_s"]
         if compiled_module() == MODULES["fast"]:  # no part timers in that module
@@ -94,13 +99,18 @@ def solver_info(stats: dict, python_s: float, *, cpu_s: float) -> dict:
 
 def run(system, step, *, t_end: float, h: float, spectral_radius: float,
         progress=None, jacobian_every_step: bool = False, output_step: float | None = None,
-        timers: bool = False) -> RunOutcome:
+        timers: bool = False, threads: int = 1) -> RunOutcome:
     """Integrate ``system`` (a :class:`~flexpipe.exu.car.CarSystem`) to ``t_end`` with step
     ``h``; ``step(state) -> CarLoads | None`` runs before every step.
 
     Exudyn's sensors (if any) store a sample every ``output_step`` (default ``h``).
 
     ``timers``: switch on Exudyn's computation timers (``RunOutcome.stats``).
+
+    ``threads``: Exudyn's threads (:func:`flexpipe.exu.threads.solver_threads` may grant
+    fewer; ``stats["threads"]`` is what ran).  With one thread the CPU time is the
+    calling thread's (a sweep's other in-process workers are not counted); with more,
+    the process's.
 
     ``step`` returns ``None`` to stop (e.g. divergence).
     """
@@ -182,7 +192,10 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     # 3 s, identical hub forces, two interleaved pairs of runs: Exudyn CPU 5.6-6.3 ->
     # 4.2-4.3 s flexible, 0.9 -> 0.5 s rigid (2026-12-01)
     s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
-    cpu0, wall0 = time.thread_time(), time.perf_counter()
+    threads, threads_note = solver_threads(mbs, int(threads))
+    s.parallel.numberOfThreads = threads
+    clock = time.thread_time if threads == 1 else time.process_time  # workers' CPU too
+    cpu0, wall0 = clock(), time.perf_counter()
     message = ""
     stats: dict = {}
     printing = exu.config.printToConsole
@@ -200,12 +213,13 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     finally:
         exu.config.printToConsole = printing
         stats = solver_stats(mbs, timers=timers)
+        stats.update(threads=threads, threads_note=threads_note)
     if sig.signum is not None:  # flexpipe#14: an interrupt, not a solver failure
         raise Interrupted(sig.signum, t=last["t"])
     if "interrupt" in last:
         last["interrupt"].t = last["t"]
         raise last["interrupt"]
-    cpu = time.thread_time() - cpu0
+    cpu = clock() - cpu0
     wall = time.perf_counter() - wall0
     completed = ok and last["t"] >= t_end - 1.5 * h
     if completed:  # the state at t_end: its output row (the steps record their start)

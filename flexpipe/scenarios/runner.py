@@ -83,12 +83,14 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
              h: float | None = None, notes=None, name: str = "run", log=print,
              format: str = "csv", progress: bool = True,  # noqa: A002
              prewarp: bool = True, inertia_coupling: str = "auto",
-             profile: bool = False, f_max: float | None = None, driver=None) -> dict:
+             profile: bool = False, f_max: float | None = None, driver=None,
+             threads: int | str = 1) -> dict:
     """Simulate ``car`` with each body kind, write channel files, plots and ``summary.json``.
 
     ``f_max`` (Hz) is the flexible body's band (``simulate``'s; default from the road and
-    speed, :func:`flexpipe.vehicle.bodymodel.choose_band`); ``driver`` is ``simulate``'s
-    (a driver file, or the controllers; default the car's).
+    speed, :func:`flexpipe.vehicle.bodymodel.choose_band`); ``driver`` and ``threads``
+    are ``simulate``'s (a driver file, or the controllers; default the car's; Exudyn's
+    threads, ``"auto"`` chosen per body).
 
     The run is a transaction.  Every argument (numbers, body kinds, car, road and path
     files, road and path lengths) and the output folder are checked first
@@ -151,7 +153,7 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         kw["driver"] = driver
     for body in bodies:  # every argument checked before the output folder is touched
         check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
-                  prewarp=prewarp, inertia_coupling=inertia_coupling, **kw)
+                  prewarp=prewarp, inertia_coupling=inertia_coupling, threads=threads, **kw)
     out = check_run_folder(out)  # after the arguments, so their errors come first
     stage = stage_directory(out)
     results, files, output_errors = {}, [], []
@@ -164,11 +166,16 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
             r = simulate(car, road=road, path=path, speed=speed, t_end=t_end, body=body,
                          progress=progress, cache=cache, log=lambda m: log("      " + m),
                          prewarp=prewarp, inertia_coupling=inertia_coupling,
-                         profile=profile, **kw)
+                         profile=profile, threads=threads, **kw)
             results[body] = r
             files.append(_save_channels(r, stage, body, fmt, output_errors, log=log))
-            log(f"      {r.message}; CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s "
-                f"simulated (real-time factor {r.realtime_factor:.2f})")
+            n_thr = r.info.get("threads", 1)
+            log(f"      {r.message}; " + (
+                f"CPU {r.cpu_time:.2f} s for {r.simulated_time:.2f} s simulated (real-time "
+                f"factor {r.realtime_factor:.2f})" if n_thr == 1 else
+                f"{r.wall_time:.2f} s wall-clock time on {n_thr} threads for "
+                f"{r.simulated_time:.2f} s simulated (real-time factor "
+                f"{r.wall_realtime_factor:.2f}; CPU {r.cpu_time:.2f} s)"))
         summary = _summary(base, results, path=path, speed=speed)
         files += _plots(results, stage, plots=plots, path=path, title=title)
         files += _handling(results, stage, summary, car=car, title=title)
@@ -200,9 +207,19 @@ def run_pair(car, *, road, path, speed: float, t_end: float, out, title: str,
         log(f"front-left vertical hub force, rigid vs flexible: RMS difference "
             f"{d['rms_diff_N']:.1f} N ({100 * d['rel_rms_diff_dynamic']:.1f} % of the rigid "
             f"force's fluctuation, {100 * d['rel_rms_diff']:.2f} % of its RMS), peak "
-            f"{d['peak_diff_N']:.1f} N; CPU flexible/rigid "
-            f"{summary['cpu_ratio_flexible_to_rigid']:.2f}")
+            f"{d['peak_diff_N']:.1f} N; " + _time_ratio(summary))
     return summary
+
+
+def _time_ratio(summary: dict) -> str:
+    """The flexible / rigid time of the closing line: CPU on one thread each, else
+    wall-clock time with the threads named (two threads' CPU counts the spinning one)."""
+    thr = summary.get("threads", {})
+    if thr.get("flexible", 1) == thr.get("rigid", 1) == 1:
+        return f"CPU flexible/rigid {summary['cpu_ratio_flexible_to_rigid']:.2f}"
+    return (f"wall-clock time flexible/rigid {summary['wall_ratio_flexible_to_rigid']:.2f} "
+            f"(threads {thr.get('flexible', 1)} / {thr.get('rigid', 1)}; CPU "
+            f"{summary['cpu_ratio_flexible_to_rigid']:.2f})")
 
 
 def _kept(out: Path) -> str:
@@ -230,6 +247,9 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
         "cpu_time_s": {b: round(r.cpu_time, 3) for b, r in results.items()},
         "wall_time_s": {b: round(r.wall_time, 3) for b, r in results.items()},
         "realtime_factor": {b: round(r.realtime_factor, 3) for b, r in results.items()},
+        "wall_realtime_factor": {b: round(r.wall_realtime_factor, 3)
+                                 for b, r in results.items()},
+        "threads": {b: r.info.get("threads", 1) for b, r in results.items()},
         "time_step_s": next(iter(results.values())).info["h"],
         "driver": {k: next(iter(results.values())).info.get(k)
                    for k in ("steering", "speed_control")},
@@ -252,6 +272,8 @@ def _summary(base: dict, results: dict, *, path, speed) -> dict:
     if "rigid" in results and "flexible" in results:
         ra, rb = results["rigid"], results["flexible"]
         summary["cpu_ratio_flexible_to_rigid"] = round(rb.cpu_time / max(ra.cpu_time, 1e-9), 3)
+        summary["wall_ratio_flexible_to_rigid"] = round(rb.wall_time / max(ra.wall_time, 1e-9),
+                                                        3)
         if ra.status == 0 and rb.status == 0:
             t_from = _t_from(ra.simulated_time)
             diff = compare(ra, rb, t_from=t_from)
@@ -440,12 +462,15 @@ def _durability(out, results, summary, *, car, road, log, progress=False, final=
     summary["file_descriptions"] = dict(sorted(desc.items()))
 
 
-def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print) -> dict:
-    """Run the named scenario (see :data:`SCENARIOS`)."""
+def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print,
+                 threads: int | str = "auto") -> dict:
+    """Run the named scenario (see :data:`SCENARIOS`); ``threads`` as :func:`run_pair`'s
+    (``"auto"``: two for the flexible body where a second core is free)."""
     if name not in SCENARIOS:
         raise InputError(f"unknown scenario {name!r}; valid: {sorted(SCENARIOS)}", key="name")
     sc = SCENARIOS[name]
     path = sc.path() if sc.path is not None else None
     return run_pair(car or DEFAULT_CAR, road=sc.road(), path=path, speed=sc.speed_kmh / 3.6,
                     t_end=sc.t_end if t_end is None else t_end, out=out, title=sc.title,
-                    plots=sc.plots, cache=cache, notes=sc.notes, name=name, log=log)
+                    plots=sc.plots, cache=cache, notes=sc.notes, name=name, log=log,
+                    threads=threads)

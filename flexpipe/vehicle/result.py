@@ -175,8 +175,14 @@ class Result:
 
     @property
     def realtime_factor(self) -> float:
-        """Simulated time per CPU second (> 1: faster than real time)."""
+        """Simulated time per CPU second (> 1: faster than real time); with two threads
+        (``info["threads"]``) the CPU of both, see :attr:`wall_realtime_factor`."""
         return self.simulated_time / self.cpu_time if self.cpu_time > 0 else float("inf")
+
+    @property
+    def wall_realtime_factor(self) -> float:
+        """Simulated time per second of wall-clock time of the time integration."""
+        return self.simulated_time / self.wall_time if self.wall_time > 0 else float("inf")
 
     def to_csv(self, path, *, channels=None) -> Path:
         """Write ``t`` and the channels (all, or the names given) to a CSV file atomically.

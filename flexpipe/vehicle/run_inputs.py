@@ -111,12 +111,13 @@ class RunArguments:
     steering: object
     speed_pi: object
     profile: object = None  # SpeedProfile of a run whose speed varies (speed: its first)
+    threads: int = 1  # Exudyn's threads (check_threads)
 
 
 def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
               h: float = 1e-3, output_step: float | None = None, driver=None, f_max=None,
               max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), prewarp: bool = True,
-              inertia_coupling: str = "auto") -> RunArguments:
+              inertia_coupling: str = "auto", threads: int | str = 1) -> RunArguments:
     """Check the arguments of :func:`~flexpipe.vehicle.simulation.simulate` (same meaning,
     same units: speed in m/s, times in s) without reducing or integrating anything: the
     numbers, the body model, the car, road, path and driver files, that the path is long
@@ -163,6 +164,7 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     if inertia_coupling not in ("auto", "constant", "full"):
         raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: auto, constant, full",
                          key="inertia_coupling")
+    threads = check_threads(threads, body)
     if max_mode_hz is not None:  # flexpipe#14 (robust)
         max_mode_hz = checked_number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
     every = max(1, int(round(output_step / h)))
@@ -220,7 +222,23 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     return RunArguments(car=car, body=body, speed=speed, t_end=t_end, h=h, every=every,
                         max_mode_hz=max_mode_hz, f_max=f_max, rates=rates, start=start,
                         road=road_obj, path=path_obj, steering=steering, speed_pi=speed_pi,
-                        profile=profile)
+                        profile=profile, threads=threads)
+
+
+def check_threads(threads, body: str) -> int:
+    """Exudyn's threads for a run of ``body``: a whole number from 1 to the cores this
+    process may use, or ``"auto"`` (:func:`flexpipe.exu.threads.auto_threads`: 2 for a
+    flexible or full body where a second core is free, else 1)."""
+    from flexpipe.exu.threads import auto_threads, usable_cores
+
+    cores = usable_cores()
+    if isinstance(threads, str) and threads == "auto":
+        return auto_threads(body)
+    if isinstance(threads, (bool, np.bool_)) or not isinstance(threads, (int, np.integer)) \
+            or not 1 <= threads <= cores:
+        raise InputError(f"threads must be 'auto' or a whole number from 1 to {cores} (the "
+                         f"cores this process may use), got {threads!r}", key="threads")
+    return int(threads)
 
 
 def speed_summary(speed) -> dict:

@@ -172,7 +172,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
              cache: bool = True, log=None, prepared=None, settle: bool = True,
              prewarp: bool = True, inertia_coupling: str = "auto",
-             profile: bool = False, probe=None) -> Result:
+             profile: bool = False, probe=None, threads: int | str = 1) -> Result:
     """Simulate the car on a road following a path at a target speed or speed profile.
 
     Parameters
@@ -263,6 +263,12 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Newton keeps one until the body has turned by
         :data:`flexpipe.exu.timeloop.JACOBIAN_RENEW_DEG` or Newton stalls) are there in
         every run.
+    threads : int or "auto"
+        Exudyn's threads for the run (:mod:`flexpipe.exu.threads`; ``"auto"``: 2 for a
+        flexible or full body when a second core is free, else 1).  The result equals the
+        one-thread run's to rounding; two threads keep two cores busy (spinning), so
+        sweeps run one per worker.  ``Result.info["threads"]``; see the README for
+        the measured gain.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
@@ -289,7 +295,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     a = check_run(car, road=road, path=path, speed=speed, t_end=t_end, body=body, h=h,
                   output_step=output_step, driver=driver, f_max=f_max,
                   max_mode_hz=max_mode_hz, initial_rates=initial_rates, prewarp=prewarp,
-                  inertia_coupling=inertia_coupling)
+                  inertia_coupling=inertia_coupling, threads=threads)
     car, speed, t_end, h, every = a.car, a.speed, a.t_end, a.h, a.every
     max_mode_hz, f_max, rates, start = a.max_mode_hz, a.f_max, a.rates, a.start
     road_obj, path_obj, steering, speed_pi = a.road, a.path, a.steering, a.speed_pi
@@ -428,7 +434,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         completed, t_reached, cpu, wall, solver_msg, python_cpu, stats, python_wall = system.run(
             ctrl, t_end=t_end, h=h, spectral_radius=SPECTRAL_RADIUS,
             progress=bar.update if bar is not None else None, output_step=every * h,
-            timers=bool(profile))
+            timers=bool(profile), threads=a.threads)
     finally:
         if bar is not None:
             bar.close()

@@ -1,0 +1,79 @@
+"""Exudyn's threads for a car run: how many, and whether the system allows more than one.
+
+With ``parallel.numberOfThreads = 2`` Exudyn evaluates the constraint equations, the
+constraint reaction forces and the body and connector terms of each Newton residual on
+two threads.  Objects whose force law is a user function (flexpipe's symbolic force laws,
+:mod:`flexpipe.exu.force_laws`) are meant to be evaluated serially, after the others;
+but Exudyn 1.13's parallel loop over the body and connector terms
+(``CSystem::ComputeSystemODE2RHS``) takes the first *n* objects of the full list, *n*
+being the number of objects *without* a user function.  A law object among those first
+*n* is then counted twice and the last objects without a law not at all: flexpipe's
+linkage car, its laws built corner by corner among the other objects, drifted in body
+height by 24 m in 2 s (measured 2026-12-01, docs/performance-history.md).  Placing every
+law object after all other objects
+(:meth:`flexpipe.exu.linkage.LinkageModel.add_law_connectors`) makes the first *n*
+objects exactly those without a law; a two-thread run then equals a one-thread one to rounding
+(``tests/test_threads.py``).  :func:`solver_threads` checks that order before it grants a
+second thread.
+
+Exudyn's worker threads wait by spinning: a two-thread run keeps two cores busy for its
+whole length, so it pays only where nothing else wants the second core (a single run, not
+a sweep's workers).  Measured gains are in :func:`flexpipe.vehicle.simulation.simulate`'s
+``threads`` and the README.
+"""
+
+from __future__ import annotations
+
+import os
+
+
+def usable_cores() -> int:
+    """Cores this process may run on (its CPU affinity; ``os.cpu_count()`` elsewhere)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def auto_threads(body: str) -> int:
+    """``threads="auto"``: 2 for a flexible or full body when this process may use two
+    cores and the machine's load leaves the second one free (1-minute load average,
+    this run included, below cores - 0.5), else 1.  A rigid car runs slower on two
+    threads (README, "Two threads")."""
+    cores = usable_cores()
+    if body not in ("flexible", "full") or cores < 2:
+        return 1
+    try:
+        load = os.getloadavg()[0]
+    except OSError:  # no load average on this system
+        load = 0.0
+    return 2 if load < cores - 0.5 else 1
+
+
+def _has_user_function(item: dict) -> bool:
+    """An object's parameter dictionary sets a computation user function (Exudyn puts
+    ``0`` where none is set; ``V...`` keys are drawing functions)."""
+    return any(k.endswith(("UserFunction", "UserFunction_t")) and not k.startswith("V")
+               and not isinstance(v, int) for k, v in item.items())
+
+
+def user_functions_last(mbs) -> bool:
+    """True when every object with a user function comes after every object without one
+    (the order under which Exudyn's multi-threaded residual is right, module docstring)."""
+    seen_law = False
+    for i in range(mbs.systemData.NumberOfObjects()):
+        law = _has_user_function(mbs.GetObject(i))
+        if seen_law and not law:
+            return False
+        seen_law = seen_law or law
+    return True
+
+
+def solver_threads(mbs, requested: int) -> tuple[int, str]:
+    """Threads Exudyn may use for ``mbs``: ``requested``, or 1 with the reason when the
+    objects are not in the order :func:`user_functions_last` requires."""
+    if requested > 1 and not user_functions_last(mbs):
+        return 1, ("one thread: an object with a user function precedes one without, "
+                   "which Exudyn's multi-threaded residual counts wrongly "
+                   "(flexpipe.exu.threads)")
+    return requested, ""
