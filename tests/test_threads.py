@@ -11,6 +11,7 @@ symbolic force laws after every other object; these tests hold the car to that o
 and show what goes wrong without it.
 """
 
+import os
 from pathlib import Path
 
 import exudyn as exu
@@ -20,8 +21,9 @@ import pytest
 from exudyn.advancedUtilities import CreateSymbolicUserFunction
 
 import flexpipe as fp
+import flexpipe.exu.threads as threads_mod
 from flexpipe.errors import InputError
-from flexpipe.exu.threads import solver_threads, usable_cores, user_functions_last
+from flexpipe.exu.threads import auto_threads, solver_threads, usable_cores, user_functions_last
 from flexpipe.roads import iso8608
 from flexpipe.vehicle.run_inputs import check_threads
 from tests._carfiles import absolute_text
@@ -134,9 +136,39 @@ def test_threads_beyond_the_cores_refused():
         check_threads(usable_cores() + 1, "flexible")
 
 
-def test_auto_threads():
-    assert check_threads("auto", "rigid") == 1  # a rigid car runs slower on two
-    assert check_threads("auto", "flexible") in ((1, 2) if usable_cores() >= 2 else (1,))
+def test_auto_threads(monkeypatch):
+    assert check_threads("auto", "flexible") == "auto"  # resolved as the run starts
+    assert auto_threads("rigid") == 1  # a rigid car gains nothing on two
+    monkeypatch.setattr(threads_mod, "usable_cores", lambda: 2)
+    monkeypatch.setattr(threads_mod, "idle_cores", lambda: 1.9)
+    assert auto_threads("flexible") == 2 and auto_threads("full") == 2
+    monkeypatch.setattr(threads_mod, "idle_cores", lambda: 1.2)  # another job running
+    assert auto_threads("flexible") == 1
+    monkeypatch.setattr(threads_mod, "usable_cores", lambda: 1)
+    monkeypatch.setattr(threads_mod, "idle_cores", lambda: 1.9)
+    assert auto_threads("flexible") == 1
+
+
+def test_idle_cores_sees_a_busy_core():
+    """With a busy-looping process on one core the idle cores drop by about one."""
+    import multiprocessing as mp
+
+    if usable_cores() < 2 or threads_mod.idle_cores(0.05) is None:
+        pytest.skip("needs /proc/stat and two cores")
+    stop = mp.Event()
+    p = mp.Process(target=_spin, args=(stop,))
+    p.start()
+    try:
+        busy = threads_mod.idle_cores(0.3)
+    finally:
+        stop.set()
+        p.join()
+    assert busy <= (os.cpu_count() or 1) - 0.7
+
+
+def _spin(stop):
+    while not stop.is_set():
+        pass
 
 
 def test_cli_threads_not_a_number(tmp_path, capsys):

@@ -102,7 +102,7 @@ def add_arguments(parser) -> None:
                              "(FLEXPIPE_EXUDYN=checked; slower than the default fast one)")
     parser.add_argument("--threads", default="auto", type=_threads_arg,
                         help="Exudyn's threads per run: a number, or auto (default: 2 for "
-                             "the flexible body when a second core is free, else 1); the "
+                             "the flexible body when two cores are idle, else 1); the "
                              "results equal one thread's to rounding")
     parser.add_argument("--format", default="csv", choices=("csv", "hdf5", "mat"),
                         help="channel files: csv (units in the header), hdf5 (h5py) or mat "

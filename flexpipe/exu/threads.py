@@ -25,6 +25,7 @@ a sweep's workers).  Measured gains are in :func:`flexpipe.vehicle.simulation.si
 from __future__ import annotations
 
 import os
+import time
 
 
 def usable_cores() -> int:
@@ -35,19 +36,39 @@ def usable_cores() -> int:
         return os.cpu_count() or 1
 
 
+def idle_cores(seconds: float = 0.2) -> float | None:
+    """Cores the whole machine left idle over the next ``seconds`` (``/proc/stat``; this
+    process sleeps meanwhile, so its own core counts as idle); None where there is no
+    ``/proc/stat``."""
+    def sample():
+        with open("/proc/stat") as f:
+            v = [int(x) for x in f.readline().split()[1:9]]
+        return v[3] + v[4], sum(v)  # idle + iowait, all
+    try:
+        i0, t0 = sample()
+        time.sleep(seconds)
+        i1, t1 = sample()
+    except (OSError, ValueError, IndexError):
+        return None
+    return (i1 - i0) / max(t1 - t0, 1) * (os.cpu_count() or 1)
+
+
 def auto_threads(body: str) -> int:
     """``threads="auto"``: 2 for a flexible or full body when this process may use two
-    cores and the machine's load leaves the second one free (1-minute load average,
-    this run included, below cores - 0.5), else 1.  A rigid car runs slower on two
-    threads (README, "Two threads")."""
+    cores and two are idle right now (:func:`idle_cores` at least 1.75; without
+    ``/proc/stat``: a 1-minute load average below cores - 1.5), else 1.  A rigid car
+    gains nothing on two threads (README, "Two threads")."""
     cores = usable_cores()
     if body not in ("flexible", "full") or cores < 2:
         return 1
+    idle = idle_cores()
+    if idle is not None:
+        return 2 if idle >= 1.75 else 1
     try:
         load = os.getloadavg()[0]
-    except OSError:  # no load average on this system
-        load = 0.0
-    return 2 if load < cores - 0.5 else 1
+    except OSError:  # no load average either
+        return 1
+    return 2 if load < cores - 1.5 else 1
 
 
 def _has_user_function(item: dict) -> bool:

@@ -465,7 +465,7 @@ def _durability(out, results, summary, *, car, road, log, progress=False, final=
 def run_scenario(name: str, *, out, car=None, t_end=None, cache: bool = True, log=print,
                  threads: int | str = "auto") -> dict:
     """Run the named scenario (see :data:`SCENARIOS`); ``threads`` as :func:`run_pair`'s
-    (``"auto"``: two for the flexible body where a second core is free)."""
+    (``"auto"``: two for the flexible body when two cores are idle)."""
     if name not in SCENARIOS:
         raise InputError(f"unknown scenario {name!r}; valid: {sorted(SCENARIOS)}", key="name")
     sc = SCENARIOS[name]

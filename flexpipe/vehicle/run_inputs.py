@@ -111,7 +111,7 @@ class RunArguments:
     steering: object
     speed_pi: object
     profile: object = None  # SpeedProfile of a run whose speed varies (speed: its first)
-    threads: int = 1  # Exudyn's threads (check_threads)
+    threads: int | str = 1  # Exudyn's threads or "auto" (check_threads)
 
 
 def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
@@ -225,15 +225,16 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
                         profile=profile, threads=threads)
 
 
-def check_threads(threads, body: str) -> int:
+def check_threads(threads, body: str) -> int | str:
     """Exudyn's threads for a run of ``body``: a whole number from 1 to the cores this
-    process may use, or ``"auto"`` (:func:`flexpipe.exu.threads.auto_threads`: 2 for a
-    flexible or full body where a second core is free, else 1)."""
-    from flexpipe.exu.threads import auto_threads, usable_cores
+    process may use, or ``"auto"``, returned as it is: ``simulate`` resolves it just
+    before the time integration (:func:`flexpipe.exu.threads.auto_threads`: 2 for a
+    flexible or full body when two cores are idle, else 1)."""
+    from flexpipe.exu.threads import usable_cores
 
     cores = usable_cores()
     if isinstance(threads, str) and threads == "auto":
-        return auto_threads(body)
+        return threads
     if isinstance(threads, (bool, np.bool_)) or not isinstance(threads, (int, np.integer)) \
             or not 1 <= threads <= cores:
         raise InputError(f"threads must be 'auto' or a whole number from 1 to {cores} (the "

@@ -264,11 +264,10 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         :data:`flexpipe.exu.timeloop.JACOBIAN_RENEW_DEG` or Newton stalls) are there in
         every run.
     threads : int or "auto"
-        Exudyn's threads for the run (:mod:`flexpipe.exu.threads`; ``"auto"``: 2 for a
-        flexible or full body when a second core is free, else 1).  The result equals the
-        one-thread run's to rounding; two threads keep two cores busy (spinning), so
-        sweeps run one per worker.  ``Result.info["threads"]``; see the README for
-        the measured gain.
+        Exudyn's threads (:mod:`flexpipe.exu.threads`; ``"auto"``: 2 for a flexible or
+        full body when two cores are idle as the run starts).  Results equal one
+        thread's to rounding; two keep two cores busy (spinning), so sweeps use one.
+        ``Result.info["threads"]``; the measured gain is in the README.
     cache : bool
         Use and fill the on-disk cache of reduced bodies.
     log : callable, optional
@@ -351,6 +350,7 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
 
     from flexpipe.exu import compiled_module
     from flexpipe.exu.car import CarBuild, CarSystem
+    from flexpipe.exu.threads import auto_threads
     from flexpipe.exu.timeloop import solver_info
     from flexpipe.vehicle.dynamics import CarController
 
@@ -434,7 +434,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         completed, t_reached, cpu, wall, solver_msg, python_cpu, stats, python_wall = system.run(
             ctrl, t_end=t_end, h=h, spectral_radius=SPECTRAL_RADIUS,
             progress=bar.update if bar is not None else None, output_step=every * h,
-            timers=bool(profile), threads=a.threads)
+            timers=bool(profile), threads=auto_threads(body) if a.threads == "auto"
+            else a.threads)
     finally:
         if bar is not None:
             bar.close()
