@@ -302,7 +302,7 @@ def _check_step(args, body: str, out: Path) -> int:
         t_end=args.t_end, body=body, h=args.h, refinements=(2, 4), t_from=args.t_from,
         cache=not args.no_cache, prewarp=not args.no_prewarp,
         inertia_coupling=args.inertia_coupling, title=title, f_max=args.f_max,
-        driver=args.driver,
+        driver=args.driver, threads=args.threads,
         log=(lambda *a: None) if args.quiet else print, progress=not args.quiet,
         report=print)
     if summary["status"] != 0:  # as a run that stops early: exit 1, out unchanged

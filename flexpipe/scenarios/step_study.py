@@ -41,7 +41,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
                    t_from: float | None = None, cache: bool = True, prewarp: bool = True,
                    inertia_coupling: str = "auto", title: str = "", log=print,
                    progress: bool = True, report=None, f_max: float | None = None,
-                   driver=None):
+                   driver=None, threads: int | str = 1):
     """Step-convergence study of one run into the run folder ``out`` (see module notes).
 
     Parameters
@@ -49,7 +49,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
     car : Car or path
     out : str or Path
         Output folder: absent, empty or a previous flexpipe run (or study).
-    road, path, speed, t_end, body, h, cache, prewarp, inertia_coupling, f_max, driver
+    road, path, speed, t_end, body, h, cache, prewarp, inertia_coupling, f_max, driver, threads
         As for :func:`~flexpipe.vehicle.simulation.simulate` (speed in m/s).
     refinements, t_from
         As for :func:`~flexpipe.vehicle.convergence.check_step` (``t_from`` default
@@ -89,7 +89,7 @@ def run_step_check(car, *, out, road=None, path=None, speed: float, t_end: float
     t_from = DEFAULT_T_FROM if t_from is None else t_from
     car = as_car(car)
     kw = {"road": road, "path": path, "speed": speed, "t_end": t_end, "body": body,
-          "prewarp": prewarp, "inertia_coupling": inertia_coupling}
+          "prewarp": prewarp, "inertia_coupling": inertia_coupling, "threads": threads}
     if f_max is not None:
         kw["f_max"] = f_max
     if driver is not None:
