@@ -99,7 +99,9 @@ def test_exudyn_counts_interleaved_laws_wrongly_on_two_threads():
     z1, ordered, mbs = _springs("interleaved", 1)
     z2, _, _ = _springs("interleaved", 2)
     assert not ordered
-    assert solver_threads(mbs, 2)[0] == 1  # flexpipe would not grant the second thread
+    n, note = solver_threads(mbs, 2)  # flexpipe would not grant the second thread
+    assert n == 1 and "object 2 (ConnectorSpringDamper) has a user function" in note
+    assert "object 3 (MassPoint) without one" in note
     np.testing.assert_allclose(z1, z_ref, atol=1e-9)  # the order alone changes nothing
     assert np.abs(z2 - z1).max() > 0.1 * np.abs(z1).max()
 
@@ -187,3 +189,27 @@ def test_cli_threads_out_of_range(tmp_path, capsys):
                  "--out", str(tmp_path / "run")]) == 2
     assert "threads must be 'auto' or a whole number from 1 to" in capsys.readouterr().err
     assert not (tmp_path / "run").exists()
+
+
+@two_cores
+def test_misordered_car_runs_on_one_thread_and_says_why(monkeypatch):
+    """A car whose laws sit among the other objects (the order before the fix) is not
+    given the second thread: a warning, ``info["threads_note"]``, the one-thread result."""
+    import flexpipe.exu.linkage as linkage
+
+    def add_now(self, item, link, *, bushing=None):
+        co = self.mbs.AddObject(item)
+        self.body_links.append((link[0], co, *link[2:]))
+        if bushing is not None:
+            self.bushings.append((bushing, co))
+
+    car = fp.load_car(CAR)
+    road = iso8608("C", length=60.0, dx=0.05, seed=1, track_width=1.6)
+    kw = dict(road=road, speed=70 / 3.6, t_end=0.3, body="rigid")
+    ref = fp.simulate(car, threads=1, **kw)
+    monkeypatch.setattr(linkage.LinkageModel, "_defer", add_now)
+    with pytest.warns(UserWarning, match="one thread instead of 2"):
+        r = fp.simulate(car, threads=2, **kw)
+    assert r.status == 0 and r.info["threads"] == 1
+    assert "precedes object" in r.info["threads_note"]
+    np.testing.assert_allclose(r["hub_fl_z"], ref["hub_fl_z"], rtol=0, atol=1e-6)

@@ -78,23 +78,34 @@ def _has_user_function(item: dict) -> bool:
                and not isinstance(v, int) for k, v in item.items())
 
 
+def misplaced_user_function(mbs) -> tuple | None:
+    """The first object with a user function that precedes an object without one, and
+    that object: ``((index, type), (index, type))``; None when the order is right."""
+    law = None
+    for i in range(mbs.systemData.NumberOfObjects()):
+        item = mbs.GetObject(i)
+        if _has_user_function(item):
+            law = law or (i, item["objectType"])
+        elif law is not None:
+            return law, (i, item["objectType"])
+    return None
+
+
 def user_functions_last(mbs) -> bool:
     """True when every object with a user function comes after every object without one
     (the order under which Exudyn's multi-threaded residual is right, module docstring)."""
-    seen_law = False
-    for i in range(mbs.systemData.NumberOfObjects()):
-        law = _has_user_function(mbs.GetObject(i))
-        if seen_law and not law:
-            return False
-        seen_law = seen_law or law
-    return True
+    return misplaced_user_function(mbs) is None
 
 
 def solver_threads(mbs, requested: int) -> tuple[int, str]:
     """Threads Exudyn may use for ``mbs``: ``requested``, or 1 with the reason when the
     objects are not in the order :func:`user_functions_last` requires."""
-    if requested > 1 and not user_functions_last(mbs):
-        return 1, ("one thread: an object with a user function precedes one without, "
-                   "which Exudyn's multi-threaded residual counts wrongly "
-                   "(flexpipe.exu.threads)")
+    if requested > 1:
+        bad = misplaced_user_function(mbs)
+        if bad is not None:
+            (i, a), (j, b) = bad
+            return 1, (f"one thread instead of {requested}: object {i} ({a}) has a user "
+                       f"function and precedes object {j} ({b}) without one, which "
+                       "Exudyn's multi-threaded residual would count wrongly; add objects "
+                       "with user functions last (flexpipe.exu.threads)")
     return requested, ""

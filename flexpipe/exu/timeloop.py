@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from typing import NamedTuple
 
 import exudyn as exu
@@ -193,6 +194,8 @@ def run(system, step, *, t_end: float, h: float, spectral_radius: float,
     # 4.2-4.3 s flexible, 0.9 -> 0.5 s rigid (2026-12-01)
     s.linearSolver.solverType = exu.LinearSolverType.EigenSparse
     threads, threads_note = solver_threads(mbs, int(threads))
+    if threads_note:
+        warnings.warn(threads_note, stacklevel=2)
     s.parallel.numberOfThreads = threads
     clock = time.thread_time if threads == 1 else time.process_time  # workers' CPU too
     cpu0, wall0 = clock(), time.perf_counter()
