@@ -431,9 +431,10 @@ class LinkageModel:
         return out
 
     def add_mount_sensors(self, body_node) -> None:
-        """Exudyn sensors for the per-mount forces (:mod:`flexpipe.exu.mount_sensors`);
-        adds the queued connectors first (:meth:`add_law_connectors`) if still queued."""
-        self.add_law_connectors()
+        """Exudyn sensors for the per-mount forces (:mod:`flexpipe.exu.mount_sensors`),
+        after :meth:`add_law_connectors` (the sensors need every connector's index)."""
+        if self._deferred:
+            raise RuntimeError("add_law_connectors() must come before add_mount_sensors()")
         mount_sensors.add(self, body_node)
 
     def mount_force_history(self, t: np.ndarray):

@@ -120,7 +120,7 @@ class LinkageCarSystem(CarSystem):
             self._add_wheel(self.wheel_node[i], spec, i)
         if spec.chassis == "flexible" and spec.reaction_mounts:
             self._add_reaction_mounts(h, spec.reaction_mounts)
-        lk.add_law_connectors()  # after every other object (LinkageModel.add_law_connectors)
+        lk.add_law_connectors()  # after every other object (flexpipe.exu.threads)
         lk.add_mount_sensors(self.body_node)
         order = spec.suspension.corners()
         self.design_wheel = np.array([order[c].wheel_center for c in ("fl", "fr", "rl", "rr")])

@@ -61,9 +61,9 @@ from flexpipe.vehicle.spec import Car
 #: 0.3 at 0.5, 2.32 / 0.94 / 0.22 at 0.7 (2026-12-01)
 SPECTRAL_RADIUS = 0.7
 #: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
-#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 2.3 %,
-#: ``bench/bench_convergence.py``, 2026-12-02); 2 ms leaves x at 6.0 % (flexible) and
-#: 6.6 % (rigid) at 100 km/h (README)
+#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 2.8 %,
+#: ``bench/bench_convergence.py``, 2026-12-04 13:13 UTC); 2 ms leaves x at 6.8 %
+#: (flexible) and 8.3 % (rigid) at 100 km/h (README)
 DEFAULT_STEP = 1e-3
 
 
@@ -202,12 +202,11 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
     h : float
         Time step, s (1e-5 .. 5e-3; default :data:`DEFAULT_STEP`, 1e-3).  Measured
         against h/8 on ISO class C at 70/100 km/h and on the slalom, 4 s, output every
-        step (``bench/bench_convergence.py``, README, worst corner and axis, percent of
-        the fluctuating part): the linkage car rigid 0.1-0.2 % (z), 0.1-2.3 % (x, y),
-        flexible 0.1-0.2 % (z), 0.1-2.3 % (x, y); the prismatic car rigid within 1.6 %,
-        flexible 0.0-0.2 % (z) and 1.1-3.7 % (x, y) (2026-12-02, the 40 Hz body, the
-        driver's commands through a first-order hold).  At 2 ms the linkage car is within
-        6.6 % (rigid) and 6.0 % (flexible).  Check any run with
+        step (``bench/bench_convergence.py``, README, worst corner, percent of the
+        fluctuating part, x / y / z): the linkage car rigid within 2.8 / 0.9 / 0.2 %,
+        flexible 2.5 / 0.7 / 0.2 %; the prismatic car rigid 1.8 / 0.3 / 0.2 %, flexible
+        1.8 / 3.5 / 0.2 % (2026-12-04, 13:13-13:17 UTC).  At 2 ms the linkage car is
+        within 8.3 % (rigid) and 6.8 % (flexible).  Check any run with
         :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
