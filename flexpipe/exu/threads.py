@@ -12,9 +12,9 @@ linkage car, its laws built corner by corner among the other objects, drifted in
 height by 24 m in 2 s (measured 2026-12-01, docs/performance-history.md).  Placing every
 law object after all other objects
 (:meth:`flexpipe.exu.linkage.LinkageModel.add_law_connectors`) makes the first *n*
-objects exactly those without a law; a two-thread run then equals a one-thread one to rounding
-(``tests/test_threads.py``).  :func:`solver_threads` checks that order before it grants a
-second thread.
+objects exactly those without a law; a two-thread run then equals a one-thread one to
+rounding (``tests/test_threads.py``).  :func:`solver_threads` checks that order before
+it grants a second thread.
 
 Exudyn's worker threads wait by spinning: a two-thread run keeps two cores busy for its
 whole length, so it pays only where nothing else wants the second core (a single run, not
