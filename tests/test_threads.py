@@ -129,17 +129,17 @@ def test_linkage_car_on_two_threads_equals_one(tmp_path, body):
 @pytest.mark.parametrize("bad", [0, -1, 1.5, True, "two", None])
 def test_bad_threads_named(bad):
     with pytest.raises(InputError) as e:
-        check_threads(bad, "flexible")
+        check_threads(bad)
     assert e.value.key == "threads" and "auto" in str(e.value)
 
 
 def test_threads_beyond_the_cores_refused():
     with pytest.raises(InputError, match="cores"):
-        check_threads(usable_cores() + 1, "flexible")
+        check_threads(usable_cores() + 1)
 
 
 def test_auto_threads(monkeypatch):
-    assert check_threads("auto", "flexible") == "auto"  # resolved as the run starts
+    assert check_threads("auto") == "auto"  # resolved as the run starts
     assert auto_threads("rigid") == 1  # a rigid car gains nothing on two
     monkeypatch.setattr(threads_mod, "usable_cores", lambda: 2)
     monkeypatch.setattr(threads_mod, "idle_cores", lambda: 1.9)

@@ -164,7 +164,7 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     if inertia_coupling not in ("auto", "constant", "full"):
         raise InputError(f"inertia_coupling {inertia_coupling!r}; valid: auto, constant, full",
                          key="inertia_coupling")
-    threads = check_threads(threads, body)
+    threads = check_threads(threads)
     if max_mode_hz is not None:  # flexpipe#14 (robust)
         max_mode_hz = checked_number(max_mode_hz, "max_mode_hz", lo=0.0, hi=1e6, lo_closed=True)
     every = max(1, int(round(output_step / h)))
@@ -225,16 +225,16 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
                         profile=profile, threads=threads)
 
 
-def check_threads(threads, body: str) -> int | str:
-    """Exudyn's threads for a run of ``body``: a whole number from 1 to the cores this
-    process may use, or ``"auto"``, returned as it is: ``simulate`` resolves it just
-    before the time integration (:func:`flexpipe.exu.threads.auto_threads`: 2 for a
-    flexible or full body when two cores are idle, else 1)."""
+def check_threads(threads) -> int | str:
+    """Exudyn's threads for a run: a whole number from 1 to the cores this process may
+    use, or ``"auto"``, returned as it is: ``simulate`` resolves it just before the time
+    integration (:func:`flexpipe.exu.threads.auto_threads`: 2 for a flexible or full body
+    when two cores are idle, else 1)."""
+    if isinstance(threads, str) and threads == "auto":
+        return threads
     from flexpipe.exu.threads import usable_cores
 
     cores = usable_cores()
-    if isinstance(threads, str) and threads == "auto":
-        return threads
     if isinstance(threads, (bool, np.bool_)) or not isinstance(threads, (int, np.integer)) \
             or not 1 <= threads <= cores:
         raise InputError(f"threads must be 'auto' or a whole number from 1 to {cores} (the "
