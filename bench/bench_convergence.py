@@ -2,7 +2,7 @@
 
 For both sample cars (prismatic corners ``cars/sedan.toml`` and linkage suspensions
 ``cars/sedan_linkage.toml``), rigid and flexible body, on ISO 8608 class C at 70 and
-100 km/h and on the slalom (class B, 60 km/h): the run at the default step h = 1 ms
+100 km/h and on the slalom (class B, 60 km/h): the run at the default step h = 1.25 ms
 (:data:`flexpipe.vehicle.simulation.DEFAULT_STEP`) against the same run at h/8, 4 s
 each, output every step of the coarse run (``simulate``'s default).  Printed per case:
 the worst corner's RMS difference after 0.5 s in percent of the fluctuating part

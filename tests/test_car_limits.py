@@ -173,8 +173,8 @@ def test_bushing_free_directions_and_bounds_load(tmp_path):
 
 
 def test_stiffest_valid_bushings_act_as_the_joints_they_surround(tmp_path):
-    """Every bushing at the translational bound (1e8 N/m) in the compliant mode, at the
-    default step on ISO class C: the hub loads are those of the kinematic mode, in which
+    """Every bushing at the translational bound (1e8 N/m) in the compliant mode, at 1 ms
+    on ISO class C: the hub loads are those of the kinematic mode, in which
     the bushings are the joints (the audit's 1e13 N/m made the car hop on a flat road)."""
     from flexpipe.roads import iso8608
     from flexpipe.vehicle import simulate

@@ -227,7 +227,7 @@ def test_a_car_on_the_mf61_sample_drives_as_on_the_mf52_sample(tmp_path):
 
     road = _straight_road()
     runs = [simulate(load_car(p), road=road, speed=70 / 3.6, t_end=6.0, body="rigid",
-                     output_step=0.002)
+                     output_step=0.0025)
             for p in (LINKAGE, linkage_with(tmp_path, f'tire = "{MF61}"'))]
     assert all(r.status == 0 for r in runs), [r.message for r in runs]
     sel = runs[0].t > 0.5

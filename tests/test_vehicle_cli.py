@@ -257,8 +257,8 @@ def _no_simulation(*a, **k):
 
 @pytest.mark.parametrize("args, words", [
     (["--check-step", "--t-end", "0.3"], ["--t-from 0.5 s (the default)", "--t-end 0.3 s",
-                                          "--t-from <= 0.299 s"]),
-    (["--check-step", "--t-end", "1", "--t-from", "1"], ["--t-from 1 s", "<= 0.999 s"]),
+                                          "--t-from <= 0.29875 s"]),
+    (["--check-step", "--t-end", "1", "--t-from", "1"], ["--t-from 1 s", "<= 0.99875 s"]),
     (["--check-step", "--t-from", "-1"], ["--t-from", "[0, 3600] s"]),
     (["--check-step", "--h", "2e-5"], ["--h", "h/4 = 5e-06 s", "1e-05 s", "4e-05 s"]),
     (["--t-from", "0.2"], ["--t-from", "--check-step", "min(0.5 s, 0.25 x --t-end)"]),
@@ -345,16 +345,16 @@ def test_check_step_writes_a_run_folder_and_respects_quiet(tmp_path, capsys):
     cap = capsys.readouterr()
     assert cap.err == ""
     lines = cap.out.splitlines()
-    assert lines[0].startswith("step convergence: h = 0.001 s") and "t_from = 0.1 s" in lines[0]
+    assert lines[0].startswith("step convergence: h = 0.00125 s") and "t_from = 0.1 s" in lines[0]
     assert lines[-1].startswith("CPU s per run") and not any("wrote" in ln for ln in lines)
     assert any(ln.startswith("hub_rl_y") and "n/a" in ln for ln in lines)  # flat road
     assert sorted(p.name for p in out.iterdir()) == ["step_check.csv", "summary.json"]
     header = (out / "step_check.csv").read_text().splitlines()[0]
-    assert "std_reference [N]" in header and "rms_diff h=0.001 s [N]" in header
+    assert "std_reference [N]" in header and "rms_diff h=0.00125 s [N]" in header
     summary = json.loads((out / "summary.json").read_text())
     assert summary["scenario"] == "check_step" and summary["state"] == "completed"
     assert summary["t_from_s"] == 0.1 and summary["t_end_s"] == pytest.approx(0.3)
-    assert summary["steps_s"] == [1e-3, 5e-4, 2.5e-4] and summary["refinements"] == [2, 4]
+    assert summary["steps_s"] == [1.25e-3, 6.25e-4, 3.125e-4] and summary["refinements"] == [2, 4]
     assert summary["files"] == ["step_check.csv", "summary.json"]
     assert set(summary["file_descriptions"]) == {"step_check.csv", "summary.json"}
     assert summary["channels"]["hub_rl_y"]["relative_meaningful"] is False
@@ -421,7 +421,7 @@ def test_check_step_run_that_stops_early_is_reported_like_a_run(tmp_path, capsys
     real = S.simulate
 
     def second_stops(car, *, h, **k):
-        if h < 1e-3:
+        if h < 1.25e-3:
             return SimpleNamespace(status=-1, message="stopped at t = 0.1 s: diverged",
                                    info={"h": h})
         return real(car, h=h, **k)
@@ -432,12 +432,12 @@ def test_check_step_run_that_stops_early_is_reported_like_a_run(tmp_path, capsys
     assert main(["run", str(SEDAN), "--speed", "70", "--t-end", "0.2", "--t-from", "0.1",
                  "--body", "rigid", "--check-step", "--out", str(out), "-q"]) == 1
     err = capsys.readouterr().err.strip()
-    assert "stopped early" in err and "h = 0.0005 s" in err and "study.failed" in err
+    assert "stopped early" in err and "h = 0.000625 s" in err and "study.failed" in err
     assert "\n" not in err and _files(out) == before
     summary = json.loads((tmp_path / "study.failed" / "summary.json").read_text())
     assert summary["state"] == "stopped early" and summary["status"] == -1
-    assert list(summary["completed_runs"]) == ["h = 0.001 s"]
-    assert "h = 0.0005 s" in summary["message"] and "diverged" in summary["message"]
+    assert list(summary["completed_runs"]) == ["h = 0.00125 s"]
+    assert "h = 0.000625 s" in summary["message"] and "diverged" in summary["message"]
 
 
 def test_f_max_reaches_every_flexible_run_and_the_step_study(tmp_path, monkeypatch):

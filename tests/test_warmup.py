@@ -22,7 +22,7 @@ import json, sys
 from flexpipe.vehicle import load_car, simulate, warmup
 pending = warmup.pending()
 logs = []
-simulate(load_car(sys.argv[1]), speed=10.0, t_end=0.003, body="rigid", log=logs.append)
+simulate(load_car(sys.argv[1]), speed=10.0, t_end=0.005, body="rigid", log=logs.append)
 warmup.warm_up(sys.argv[1:])
 print(json.dumps({"pending": pending, "said": warmup.MESSAGE in logs,
                   "pending_after": warmup.pending()}))
@@ -34,7 +34,7 @@ from flexpipe.vehicle import load_car, simulate, warmup
 pending = warmup.pending()
 logs = []
 for path in sys.argv[1:]:
-    simulate(load_car(path), speed=10.0, t_end=0.003, body="rigid", log=logs.append)
+    simulate(load_car(path), speed=10.0, t_end=0.005, body="rigid", log=logs.append)
 misses = {k.py_func.__name__: sum(k.stats.cache_misses.values()) for k in warmup.kernels()}
 hits = {k.py_func.__name__: sum(k.stats.cache_hits.values()) for k in warmup.kernels()}
 print(json.dumps({"pending": pending, "said": warmup.MESSAGE in logs, "misses": misses,

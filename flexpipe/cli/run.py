@@ -67,7 +67,9 @@ def add_arguments(parser) -> None:
     parser.add_argument("--body", default="rigid,flexible",
                         help="comma-separated body models: rigid, flexible, full "
                              "(default: rigid,flexible)")
-    parser.add_argument("--h", type=float, default=None, help="time step, s (default 1e-3)")
+    parser.add_argument("--h", type=float, default=None,
+                        help="time step, s (default 1.25e-3; 2.5e-4 for a linkage suspension "
+                             "in compliant mode)")
     parser.add_argument("--out", default=None,
                         help="output directory (default: out/<car>-<road>-<speed>kmh); "
                              "replaced only by a completed run, see 'outputs' below")
@@ -180,9 +182,8 @@ def check_arguments(args) -> tuple[str, ...]:
     InputError
         Naming the option, its unit and the valid range.
     """
-    from flexpipe.errors import InputError
-    from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, T_END_MAX, checked_number
-    from flexpipe.vehicle.simulation import DEFAULT_STEP
+    from flexpipe.errors import FlexpipeError, InputError
+    from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, T_END_MAX, checked_number, default_step
 
     bodies = tuple(b.strip() for b in args.body.split(",") if b.strip())
     bad = [b for b in bodies if b not in ("rigid", "flexible", "full")]
@@ -192,8 +193,12 @@ def check_arguments(args) -> tuple[str, ...]:
     _check_speed(args)
     t_end = checked_number(args.t_end, "--t-end", lo=0.0, hi=T_END_MAX, unit="s",
                            key="t_end")
-    h = DEFAULT_STEP
-    if args.h is not None:
+    if args.h is None:
+        try:  # the car's default step; a bad car file is named by the run's own checks
+            h = default_step(args.car)
+        except FlexpipeError:
+            from flexpipe.vehicle.run_inputs import DEFAULT_STEP as h
+    else:
         h = checked_number(args.h, "--h", lo=H_MIN, hi=H_MAX, lo_closed=True, unit="s",
                            key="h")
     if h > t_end:

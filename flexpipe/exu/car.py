@@ -26,9 +26,10 @@ Model (per corner ``fl, fr, rl, rr``)
   :data:`flexpipe.vehicle.simulation.SPECTRAL_RADIUS` (0.7; ``run``; figures there).
   With the code of an earlier round 0.5 was better at the then 2 ms default (rigid
   linkage car, ISO C 70 km/h, front-left hub force against h/8, RMS in % of the
-  fluctuation, x / y: 4.2 / 6.5 at 0.7, 3.7 / 4.5 at 0.5, 4.3 / 5.3 at 0.3); at the
-  present 1 ms default 0.7 is the better one (figures at ``SPECTRAL_RADIUS``, measured on
-  the 30 Hz body, 2026-12-01); at 2 ms the two have not been compared on the present code.
+  fluctuation, x / y: 4.2 / 6.5 at 0.7, 3.7 / 4.5 at 0.5, 4.3 / 5.3 at 0.3); at 1 ms
+  (the default until 2026-12-04; now 1.25 ms) 0.7 is the better one (figures at
+  ``SPECTRAL_RADIUS``, measured on the 30 Hz body, 2026-12-01); at 2 ms the two have not
+  been compared on the present code.
   The flexible body's modal masses and damping are pre-warped to the step and this
   spectral radius (``CarBuild.modal_prewarp``, :mod:`flexpipe.exu.prewarp`): flexible
   linkage car, ISO C 70 km/h, worst corner x / y 26.6 / 12.6 % plain, 8.3 / 6.7 %

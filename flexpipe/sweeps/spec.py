@@ -10,7 +10,8 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     speed_kmh = 60.0                # or speed_profile = "../paths/speed_brake_100_40.toml"
     driver = "../paths/driver_step_steer.toml"   # default: the car's own driver
     t_end_s = 10.0
-    h_s = 0.001                     # time step (default: simulate's, 1 ms)
+    h_s = 0.00125                   # time step (default: simulate's for the car, 1.25 ms
+                                    # or 0.25 ms for a compliant linkage suspension)
     output_step_s = 0.002           # default: h_s (every step)
     settle_s = 0.0                  # metrics leave out samples before this time
     design = "grid"                 # grid | list | lhs
@@ -50,8 +51,8 @@ from pathlib import Path
 from flexpipe.errors import InputError
 from flexpipe.sweeps import manoeuvres
 from flexpipe.sweeps.metrics import MIN_SAMPLES
-from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX
-from flexpipe.vehicle.simulation import DEFAULT_STEP
+from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, SPEED_MAX, T_END_MAX, default_step
+from flexpipe.vehicle.spec import load_car
 
 SETTINGS = ("speed_kmh", "t_end_s", "h_s", "body", "path", "road", "driver", "speed_profile",
             "car")
@@ -220,7 +221,10 @@ class SweepSpec:
             extra.update(driver=driver, driver_sha=sha)
         t_end = _num(s["t_end_s"], key("t_end_s"), where, lo=0.0, open_=True, hi=T_END_MAX,
                      unit="s")
-        h = _num(s["h_s"], key("h_s"), where, lo=H_MIN, hi=H_MAX, unit="s")
+        if s["h_s"] is None:  # the run's car's default step (compliant suspensions: finer)
+            h = default_step(load_car(car, overrides=car_over or None))
+        else:
+            h = _num(s["h_s"], key("h_s"), where, lo=H_MIN, hi=H_MAX, unit="s")
         if h > t_end:
             raise InputError(f"h_s = {h:g} s is longer than t_end_s = {t_end:g} s "
                              f"({key('t_end_s')}); choose h_s <= t_end_s", file=where,
@@ -415,7 +419,7 @@ def load_sweep(spec, *, base_dir=None) -> SweepSpec:
     base = {"speed_kmh": sw.get("speed_kmh", None if "speed_profile" in sw else 60.0),
             "speed_profile": sw.get("speed_profile"), "driver": sw.get("driver"),
             "t_end_s": sw.get("t_end_s", 10.0),
-            "h_s": sw.get("h_s", DEFAULT_STEP), "output_step_s": sw.get("output_step_s"),
+            "h_s": sw.get("h_s"), "output_step_s": sw.get("output_step_s"),
             "settle_s": sw.get("settle_s", 0.0), "body": sw.get("body", "rigid"),
             "path": sw.get("path", "straight")}
     params = _parameters(doc.get("parameters", {}), design, where)

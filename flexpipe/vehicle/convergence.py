@@ -238,10 +238,17 @@ def check_step_inputs(car, *, h: float | None = None, refinements=(2, 4),
     """
     import inspect
 
-    from flexpipe.vehicle.run_inputs import T_END_MAX, check_run, checked_number
-    from flexpipe.vehicle.simulation import DEFAULT_STEP
+    from flexpipe.vehicle.run_inputs import (
+        T_END_MAX,
+        as_car,
+        check_run,
+        checked_number,
+        default_step,
+    )
 
-    h = DEFAULT_STEP if h is None else h
+    if h is None:
+        car = as_car(car)
+        h = default_step(car)
     refinements = tuple(int(r) for r in refinements)
     if not refinements or any(r < 2 for r in refinements) or list(refinements) != sorted(
             set(refinements)):
@@ -279,8 +286,8 @@ def check_step(car, *, h: float | None = None, refinements=(2, 4), channels=DEFA
     ----------
     car : Car or path
     h : float, optional
-        Coarsest step, s (default: :data:`~flexpipe.vehicle.simulation.DEFAULT_STEP`,
-        the default of ``simulate``).
+        Coarsest step, s (default: the car's
+        :func:`~flexpipe.vehicle.run_inputs.default_step`, the default of ``simulate``).
     refinements : sequence of int
         Divisors of ``h``, increasing; the largest gives the reference run.
     channels : sequence of str

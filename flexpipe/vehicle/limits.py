@@ -73,7 +73,7 @@ LENGTH_SLIPS = ((1e-3, "mm"),)
 #: Rubber bushings: about 1e5 (axial, voided) to 2e7 N/m (radial; the sample 6e5-8e6).  At
 #: 1e4 N/m a bushing in the load path would deflect 0.4 m under a 4 kN wheel load; above
 #: 1e8 N/m it is a metal joint, which the kinematic mode models as such.  Verified on
-#: cars/sedan_linkage.toml in compliant mode at the default step (1 ms, ISO C, 20 m/s): every
+#: cars/sedan_linkage.toml in compliant mode at h = 1 ms (ISO C, 20 m/s): every
 #: bushing at 1e8 N/m runs and gives the kinematic mode's vertical hub forces within 5 % of
 #: their fluctuation (tests/test_car_limits.py
 #: ``test_stiffest_valid_bushings_act_as_the_joints_they_surround``).  A value in N/mm or

@@ -24,8 +24,8 @@ BODIES = ("flexible", "rigid", "full")
 #: highest target speed, m/s (288 km/h): faster than a road car is driven in any ride,
 #: durability or handling run; a larger number is most likely km/h given as m/s
 SPEED_MAX = 80.0
-#: longest simulated time, s: one hour of driving (3.6 million steps at 1 ms); more is
-#: most likely milliseconds given as seconds
+#: longest simulated time, s: one hour of driving (2.9 million steps at the default
+#: 1.25 ms); more is most likely milliseconds given as seconds
 T_END_MAX = 3600.0
 #: time step range, s, that :func:`~flexpipe.vehicle.simulation.simulate` documents: at
 #: 2 ms the hub forces are already 6-7 % off in x (README, step convergence), so
@@ -34,6 +34,26 @@ T_END_MAX = 3600.0
 H_MIN, H_MAX = 1e-5, 5e-3
 #: distance along the path of the body origin at t = 0, beyond the wheelbase, m
 START_MARGIN_M = 3.0
+#: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
+#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 3.8 %,
+#: ``bench/bench_convergence.py``, 2026-12-04 16:44 UTC); 1 ms, the default until then,
+#: took 25 % more CPU for a worst 2.8 %, and 2 ms leaves x at 6.8 % (flexible) and 8.3 %
+#: (rigid) at 100 km/h (README, "Step convergence")
+DEFAULT_STEP = 1.25e-3
+#: default time step of a car whose linkage suspension runs in compliant mode (every
+#: bushing as given), s: its light arms on stiff bushings ring at roughly 70-350 Hz; the
+#: sample's hub forces in that mode (rigid body, ISO C 70 km/h, worst corner, x / y / z
+#: against h/8) are 1.9 / 0.4 / 0.1 % off at 0.25 ms, but 44 / 7.0 / 1.2 % at 1.25 ms and
+#: 7.4 % (x) at 0.5 ms (against 0.0625 ms) (``bench/bench_compliant.py``, 2026-12-04)
+COMPLIANT_STEP = 2.5e-4
+
+
+def default_step(car) -> float:
+    """The step a run of ``car`` (a Car or car file) takes when none is given, s:
+    :data:`COMPLIANT_STEP` for a linkage suspension in compliant mode, else
+    :data:`DEFAULT_STEP`."""
+    mode = getattr(as_car(car).suspension, "mode", None)
+    return COMPLIANT_STEP if mode == "compliant" else DEFAULT_STEP
 
 
 def as_road(road, needed: float):
@@ -115,7 +135,7 @@ class RunArguments:
 
 
 def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
-              h: float = 1e-3, output_step: float | None = None, driver=None, f_max=None,
+              h: float | None = None, output_step: float | None = None, driver=None, f_max=None,
               max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), prewarp: bool = True,
               inertia_coupling: str = "auto", threads: int | str = 1) -> RunArguments:
     """Check the arguments of :func:`~flexpipe.vehicle.simulation.simulate` (same meaning,
@@ -125,7 +145,7 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
     path starts at the road's first sample, :func:`as_path`, so a road starting at 100 m
     is driven from 100 m on as one starting at 0 is from 0), and for a flexible or full
     body that the car file's mount ``node_ids`` are nodes of the body mesh (which reads
-    the mesh when a mount gives ids).
+    the mesh when a mount gives ids).  ``h=None`` takes the car's :func:`default_step`.
 
     Raises
     ------
@@ -139,7 +159,7 @@ def check_run(car, *, road=None, path=None, speed, t_end, body: str = "flexible"
         raise InputError(f"prewarp must be True or False, got {prewarp!r}", key="prewarp")
     speed, profile = _speed(speed)
     t_end = checked_number(t_end, "t_end", lo=0.0, hi=T_END_MAX)
-    h = checked_number(h, "h", lo=0.0, hi=H_MAX)
+    h = checked_number(default_step(car) if h is None else h, "h", lo=0.0, hi=H_MAX)
     if h < H_MIN:
         raise InputError(f"h must be >= {H_MIN:g} s, got {h}", key="h")
     if output_step is None:

@@ -19,7 +19,7 @@ Bodies
     exactly.  This is what "unreduced"
     can mean for an FFRF multibody body at acceptable cost: it differs from the full FE
     model only by the *dynamics* of modes far above the road and ride excitation (and
-    above what the default 1 ms step resolves).  Meant for short validation runs.
+    above what the default 1.25 ms step resolves).  Meant for short validation runs.
 """
 
 from __future__ import annotations
@@ -42,8 +42,10 @@ from flexpipe.vehicle.linkage_setup import (  # noqa: F401 - re-exported
     reduce_car_body,
 )
 from flexpipe.vehicle.result import BodyMotion, Result
-from flexpipe.vehicle.run_inputs import (  # noqa: F401 - BODIES, START_MARGIN_M re-exported
+from flexpipe.vehicle.run_inputs import (  # noqa: F401 - re-exported: BODIES, START_MARGIN_M, the steps
     BODIES,
+    COMPLIANT_STEP,
+    DEFAULT_STEP,
     START_MARGIN_M,
     as_car,
     as_road,
@@ -54,17 +56,13 @@ from flexpipe.vehicle.settle import settled_start
 from flexpipe.vehicle.spec import Car
 
 #: generalized-alpha spectral radius of the runs (see :mod:`flexpipe.exu.car`); the
-#: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`).  At the
-#: 1 ms default, flexible linkage car, ISO C 70 km/h, worst corner x / y / z against h/8:
+#: flexible body's modes are pre-warped for it (:mod:`flexpipe.exu.prewarp`).  At 1 ms
+#: (the default before 2026-12-04), flexible linkage car, ISO C 70 km/h, worst corner
+#: x / y / z against h/8:
 #: 4.42 / 1.90 / 0.35 % at 0.4, 4.43 / 1.79 / 0.29 at 0.5, 3.97 / 1.63 / 0.26 at 0.6,
 #: 3.74 / 1.54 / 0.23 at 0.7, 3.66 / 1.52 / 0.21 at 0.8; rigid, 100 km/h: 2.4 / 0.9 /
 #: 0.3 at 0.5, 2.32 / 0.94 / 0.22 at 0.7 (2026-12-01)
 SPECTRAL_RADIUS = 0.7
-#: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
-#: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 2.8 %,
-#: ``bench/bench_convergence.py``, 2026-12-04 13:13 UTC); 2 ms leaves x at 6.8 %
-#: (flexible) and 8.3 % (rigid) at 100 km/h (README)
-DEFAULT_STEP = 1e-3
 
 
 def static_deflection(fb, corners, n_modes=None) -> np.ndarray:
@@ -168,7 +166,7 @@ def prepare(car, *, body: str, speed: float, road=None, f_max=None, cache=True, 
 
 
 def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
-             h: float = DEFAULT_STEP, output_step: float | None = None, driver=None, f_max=None,
+             h: float | None = None, output_step: float | None = None, driver=None, f_max=None,
              max_mode_hz=None, initial_rates=(0.0, 0.0, 0.0), progress: bool = False,
              cache: bool = True, log=None, prepared=None, settle: bool = True,
              prewarp: bool = True, inertia_coupling: str = "auto",
@@ -199,19 +197,22 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         Simulated time, s.
     body : {"flexible", "rigid", "full"}
         Body model (see module docstring).
-    h : float
-        Time step, s (1e-5 .. 5e-3; default :data:`DEFAULT_STEP`, 1e-3).  Measured
-        against h/8 on ISO class C at 70/100 km/h and on the slalom, 4 s, output every
-        step (``bench/bench_convergence.py``, README, worst corner, percent of the
-        fluctuating part, x / y / z): the linkage car rigid within 2.8 / 0.9 / 0.2 %,
-        flexible 2.5 / 0.7 / 0.2 %; the prismatic car rigid 1.8 / 0.3 / 0.2 %, flexible
-        1.8 / 3.5 / 0.2 % (2026-12-04, 13:13-13:17 UTC).  At 2 ms the linkage car is
-        within 8.3 % (rigid) and 6.8 % (flexible).  Check any run with
-        :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
+    h : float, optional
+        Time step, s (1e-5 .. 5e-3).  Default: the car's
+        :func:`~flexpipe.vehicle.run_inputs.default_step`, :data:`DEFAULT_STEP` (1.25 ms),
+        or :data:`COMPLIANT_STEP` (0.25 ms) for a linkage suspension in compliant mode.
+        Measured at 1.25 ms against h/8 on ISO class C at 70/100 km/h and on the slalom,
+        4 s, output every step (``bench/bench_convergence.py``, README, worst corner,
+        percent of the fluctuating part, x / y / z): the linkage car rigid within 3.8 /
+        0.8 / 0.3 %, flexible 3.5 / 0.9 / 0.3 %; the prismatic car rigid 2.6 / 0.3 / 0.3 %,
+        flexible 2.4 / 5.5 / 0.3 % (its single hardpoints' lever, README) (2026-12-04,
+        16:44-16:52 UTC).  At 2 ms the linkage car is within 8.3 % (rigid) and 6.8 %
+        (flexible).  Check any run with :func:`flexpipe.vehicle.convergence.check_step`
+        (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
         Coarser output keeps every n-th step without filtering: content above the
-        output's Nyquist frequency aliases (the flexible linkage car at 1 ms has hub-force
+        output's Nyquist frequency aliases (the flexible linkage car at 1 ms had hub-force
         content up to its 670 Hz body modes; on the 30 Hz body of 2026-12-01, sampled at
         2 ms, its x step error read 3.5 or 5.2 % depending on which steps are kept, 4.4 %
         over all steps, at spectral radius 0.5).

@@ -71,8 +71,7 @@ def state_problem(st, roll: float, pitch: float) -> str | None:
     if max(map(abs, travel)) > MAX_TRAVEL:
         i = max(range(4), key=lambda k: abs(travel[k]))
         return (f"suspension travel {travel[i]:.2f} m at corner {CORNERS[i]}: the wheel "
-                "left its travel range - numerical divergence (try a smaller step h) or "
-                "missing bump/rebound stops")
+                f"left its travel range: missing bump/rebound stops, or {_STIFF}")
     return None
 
 
