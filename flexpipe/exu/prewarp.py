@@ -20,10 +20,11 @@ step error of the modes is removed.
 Critically damped or overdamped modes (the Adams/Flex default above 1 kHz) do not ring and
 are left as they are.  Where the match would need ``c' < 0`` only the frequency is
 matched, with ``c' = 0``: at h = 2 ms and spectral radius 0.5 a 2 % mode above about
-87 Hz, a 10 % mode above about 165 Hz; at the defaults (h = 1 ms, spectral radius 0.7) a
-2 % mode above about 300 Hz, while every 10 % mode the step can reach is matched
-(:func:`prewarp_modes` on a 1 Hz grid, 2026-12-02); modes whose frequency the step
-cannot reach at all (near its Nyquist frequency) are left as they are.
+87 Hz, a 10 % mode above about 165 Hz; at the defaults (h = 1.25 ms, spectral radius 0.7)
+a 2 % mode above about 242 Hz (302 Hz at 1 ms), while every 10 % mode the step can reach
+is matched (:func:`prewarp_modes` on a 1 Hz grid, 2026-12-02 and 2026-12-04); modes whose
+frequency the step cannot reach at all (near its Nyquist frequency: from 319 Hz at
+1.25 ms, 398 Hz at 1 ms) are left as they are.
 
 The recurrence is Exudyn's generalized-alpha (Arnold and Brüls 2007, the form Exudyn
 implements): ``alpha_m = (2 rho - 1) / (rho + 1)``, ``alpha_f = rho / (rho + 1)``,

@@ -12,7 +12,7 @@ hypercube.  See ``docs/sweeps.md`` for the format; the short version::
     t_end_s = 10.0
     h_s = 0.00125                   # time step (default: simulate's for the car, 1.25 ms
                                     # or 0.25 ms for a compliant linkage suspension)
-    output_step_s = 0.002           # default: h_s (every step)
+    output_step_s = 0.0025          # default: h_s (every step)
     settle_s = 0.0                  # metrics leave out samples before this time
     design = "grid"                 # grid | list | lhs
     samples = 16                    # lhs only

@@ -206,9 +206,8 @@ def simulate(car, *, road=None, path=None, speed, t_end, body: str = "flexible",
         percent of the fluctuating part, x / y / z): the linkage car rigid within 3.8 /
         0.8 / 0.3 %, flexible 3.5 / 0.9 / 0.3 %; the prismatic car rigid 2.6 / 0.3 / 0.3 %,
         flexible 2.4 / 5.5 / 0.3 % (its single hardpoints' lever, README) (2026-12-04,
-        16:44-16:52 UTC).  At 2 ms the linkage car is within 8.3 % (rigid) and 6.8 %
-        (flexible).  Check any run with :func:`flexpipe.vehicle.convergence.check_step`
-        (``flexpipe run --check-step``).
+        16:44 UTC); at 2 ms the linkage car 8.3 %.  Check any run with
+        :func:`flexpipe.vehicle.convergence.check_step` (``flexpipe run --check-step``).
     output_step : float, optional
         Output sampling interval, s (a multiple of ``h``; default ``h``, every step).
         Coarser output keeps every n-th step without filtering: content above the
