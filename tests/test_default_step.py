@@ -109,3 +109,14 @@ def test_a_compliant_car_at_a_coarser_step_is_warned(tmp_path):
         check_run(comp, speed=10.0, t_end=0.01, body="rigid")
         check_run(comp, speed=10.0, t_end=0.01, body="rigid", h=1e-4)
         check_run(LINKAGE, speed=10.0, t_end=0.01, body="rigid", h=2e-3)
+
+
+def test_flexpipe_info_states_the_cars_step(tmp_path):
+    from flexpipe.vehicle.describe import car_text
+
+    assert "time runs in compliant mode (default time step 0.25 ms)" in car_text(
+        load_car(_compliant(tmp_path)))
+    assert "time runs in kinematic mode (default time step 1.25 ms)" in car_text(
+        load_car(LINKAGE))
+    assert "prismatic corners" in (t := car_text(load_car(PRISMATIC))) and \
+        "default time step 1.25 ms" in t

@@ -41,6 +41,7 @@ def car_text(car: Car) -> str:
     """
     from flexpipe.vehicle import bodymodel
     from flexpipe.vehicle.corners import static_wheel_loads
+    from flexpipe.vehicle.run_inputs import default_step
 
     rb = bodymodel.rigid_properties(car)
     lines = [f"{car.file}: car '{car.name}'"]
@@ -65,14 +66,16 @@ def car_text(car: Car) -> str:
                          for c in car.corners))
     if car.suspension is None:
         N = static_wheel_loads(car, rb.mass, rb.center_of_mass)
-        lines.append("  suspension: prismatic corners (hardpoint_m, spring/damper along body z)")
+        lines.append("  suspension: prismatic corners (hardpoint_m, spring/damper along body z); "
+                     f"default time step {1e3 * default_step(car):g} ms")
     else:
         from flexpipe.vehicle.linkage_setup import linkage_statics
         from flexpipe.vehicle.suspension.statics import point_masses
 
         try:
             susp, N = linkage_statics(car, rb)
-            lines.append(f"  suspension: linkage templates, time runs in {susp.mode} mode")
+            lines.append(f"  suspension: linkage templates, time runs in {susp.mode} mode "
+                         f"(default time step {1e3 * default_step(car):g} ms)")
             for name, axle in susp.axles.items():
                 lines += _axle_lines(car, name, axle, N[CORNERS.index(axle.left.corner)])
         except SolverError as exc:  # name the file: the corner's [suspension.<axle>]
