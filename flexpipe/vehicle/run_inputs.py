@@ -37,8 +37,9 @@ START_MARGIN_M = 3.0
 #: default time step, s: the linkage sample's hub forces are within 5 % of h/8 in x, y and
 #: z at it, rigid and flexible, on ISO C 70/100 km/h and the slalom (worst 3.8 %,
 #: ``bench/bench_convergence.py``, 2026-12-04 16:44 UTC); 1 ms, the default until then,
-#: took 25 % more CPU for a worst 2.8 %, and 2 ms leaves x at 6.8 % (flexible) and 8.3 %
-#: (rigid) at 100 km/h (README, "Step convergence")
+#: took 26-27 % more CPU for a worst 2.8 % (``bench_linkage``, 17:25 UTC, and two
+#: alternating pairs at 16:39), and 2 ms leaves x at 6.8 % (flexible) and 8.3 % (rigid)
+#: at 100 km/h (README, "Step convergence")
 DEFAULT_STEP = 1.25e-3
 #: default time step of a car whose linkage suspension runs in compliant mode (every
 #: bushing as given), s: its light arms on stiff bushings ring at roughly 70-350 Hz; the
@@ -76,7 +77,7 @@ def as_road(road, needed: float):
 
 def _warn_coarse_compliant(car: Car, h: float) -> None:
     """Warn when a compliant linkage suspension runs at a step coarser than its default."""
-    if getattr(car.suspension, "mode", None) != "compliant" or h <= COMPLIANT_STEP * (1 + 1e-9):
+    if default_step(car) != COMPLIANT_STEP or h <= COMPLIANT_STEP * (1 + 1e-9):
         return
     import warnings
 
