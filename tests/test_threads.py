@@ -23,7 +23,12 @@ from exudyn.advancedUtilities import CreateSymbolicUserFunction
 import flexpipe as fp
 import flexpipe.exu.threads as threads_mod
 from flexpipe.errors import InputError
-from flexpipe.exu.threads import auto_threads, solver_threads, usable_cores, user_functions_last
+from flexpipe.exu.threads import (
+    auto_threads,
+    misplaced_user_function,
+    solver_threads,
+    usable_cores,
+)
 from flexpipe.roads import iso8608
 from flexpipe.vehicle.run_inputs import check_threads
 from tests._carfiles import absolute_text
@@ -79,7 +84,7 @@ def _springs(order: str, threads: int, *, n: int = 60):
     s.parallel.numberOfThreads = threads
     exu.SolveDynamic(mbs, s)
     z = np.array([mbs.GetNodeOutput(p, exu.OutputVariableType.Position)[2] for p in points])
-    return z, user_functions_last(mbs), mbs
+    return z, misplaced_user_function(mbs) is None, mbs
 
 
 @two_cores

@@ -183,7 +183,14 @@ def check_arguments(args) -> tuple[str, ...]:
         Naming the option, its unit and the valid range.
     """
     from flexpipe.errors import FlexpipeError, InputError
-    from flexpipe.vehicle.run_inputs import H_MAX, H_MIN, T_END_MAX, checked_number, default_step
+    from flexpipe.vehicle.run_inputs import (
+        DEFAULT_STEP,
+        H_MAX,
+        H_MIN,
+        T_END_MAX,
+        checked_number,
+        default_step,
+    )
 
     bodies = tuple(b.strip() for b in args.body.split(",") if b.strip())
     bad = [b for b in bodies if b not in ("rigid", "flexible", "full")]
@@ -197,7 +204,7 @@ def check_arguments(args) -> tuple[str, ...]:
         try:  # the car's default step; a bad car file is named by the run's own checks
             h = default_step(args.car)
         except FlexpipeError:
-            from flexpipe.vehicle.run_inputs import DEFAULT_STEP as h
+            h = DEFAULT_STEP
     else:
         h = checked_number(args.h, "--h", lo=H_MIN, hi=H_MAX, lo_closed=True, unit="s",
                            key="h")

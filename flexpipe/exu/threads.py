@@ -91,15 +91,10 @@ def misplaced_user_function(mbs) -> tuple | None:
     return None
 
 
-def user_functions_last(mbs) -> bool:
-    """True when every object with a user function comes after every object without one
-    (the order under which Exudyn's multi-threaded residual is right, module docstring)."""
-    return misplaced_user_function(mbs) is None
-
-
 def solver_threads(mbs, requested: int) -> tuple[int, str]:
     """Threads Exudyn may use for ``mbs``: ``requested``, or 1 with the reason when the
-    objects are not in the order :func:`user_functions_last` requires."""
+    objects are not in the order the module docstring gives (every object with a user
+    function after every object without one)."""
     if requested > 1:
         bad = misplaced_user_function(mbs)
         if bad is not None:
